@@ -1,0 +1,40 @@
+// Assembler: gathers, evaluates and scatters every element block into the global
+// residual (all DOFs, so prescribed rows carry the reactions) and the sparse tangent
+// over the free equations. The sparsity pattern and each element entry's slot in the
+// value array are computed once per model structure; assembly then only adds numbers.
+#pragma once
+
+#include <Eigen/Sparse>
+
+#include "core/model.hpp"
+
+namespace tirefe {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+class Assembler {
+ public:
+  explicit Assembler(Model& model) : model_(model) {}
+
+  /// Rebuilds the pattern if the model's structure changed since the last call;
+  /// returns true when it did (a linear solver must then redo its analysis).
+  bool update_pattern();
+
+  /// residual: element forces weighted by context.factors (external loads are the
+  /// integrator's business); tangent: cK K + cC C + cM M over the free equations.
+  void assemble(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual);
+
+  const SparseMatrix& tangent() const { return tangent_; }
+  SparseMatrix& tangent() { return tangent_; }
+  int pattern_version() const { return pattern_version_; }
+
+ private:
+  long structure_signature() const;
+
+  Model& model_;
+  SparseMatrix tangent_;
+  long signature_ = -1;
+  int pattern_version_ = 0;
+};
+
+}  // namespace tirefe

@@ -1,0 +1,192 @@
+// The element contract shared by every element, load and contact kernel.
+//
+// An element never knows which integrator drives it (STYLE.md). It returns
+//     residual = wK * f_int(u) + wC * C v + wM * M a
+//     tangent  = cK * dF_int/du + cC * C + cM * M
+// where the integrator alone chooses the weights w and the tangent factors c
+// (static: w = (1,0,0), c = (1,0,0); Newmark: w = (1,1,1), c = (1, gamma/(beta h), 1/(beta h^2))).
+//
+// Kernels are small value types with fixed-size Eigen blocks; ElementBlockOf<Kernel>
+// loops over one block of them, gathers, evaluates and scatters without allocating,
+// and keeps their history as committed + trial copies (commit on an accepted step,
+// revert on a cut step).
+#pragma once
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/mesh.hpp"
+#include "core/state.hpp"
+
+namespace tirefe {
+
+struct IntegratorFactors {
+  double force_stiffness = 1.0;  // wK
+  double force_damping = 0.0;    // wC
+  double force_mass = 0.0;       // wM
+  double tangent_stiffness = 1.0;  // cK
+  double tangent_damping = 0.0;    // cC
+  double tangent_mass = 0.0;       // cM
+};
+
+struct EvaluationContext {
+  double time = 0.0;     // time at the end of the step being solved
+  double time_step = 0.0;
+  IntegratorFactors factors;
+  bool want_tangent = true;
+};
+
+struct ElementEnergy {
+  double strain = 0.0;
+  double kinetic = 0.0;
+  ElementEnergy& operator+=(const ElementEnergy& other) {
+    strain += other.strain;
+    kinetic += other.kinetic;
+    return *this;
+  }
+};
+
+/// Thrown when an element produces NaN or infinity: names the element and its nodes.
+class NonFiniteResult : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Global equation numbers and where each element-matrix entry lands in the sparse
+/// tangent's value array; built by the Assembler (assembler.hpp).
+class TangentSlots;
+
+/// Global buffers one assembly pass writes into.
+struct AssemblyTarget {
+  Eigen::VectorXd* residual = nullptr;  // one entry per DOF (prescribed DOFs give reactions)
+  double* tangent_values = nullptr;     // sparse values of the free-equation tangent, or null
+};
+
+template <int Dofs>
+struct LocalState {
+  Eigen::Matrix<double, Dofs, 1> displacement, velocity, acceleration;
+};
+
+class ElementBlock {
+ public:
+  virtual ~ElementBlock() = default;
+  virtual const std::string& name() const = 0;
+  virtual int nodes_per_element() const = 0;
+  virtual int size() const = 0;
+  virtual std::vector<int> element_nodes(int element) const = 0;
+
+  /// Positions of element-matrix entries in the sparse value array, row-major per
+  /// element, -1 where a row or column is a prescribed DOF.
+  virtual void bind_tangent_slots(std::vector<int> slots) = 0;
+
+  virtual void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) = 0;
+  virtual ElementEnergy energy(const State& state) const = 0;
+  virtual void commit() = 0;
+  virtual void revert() = 0;
+};
+
+struct NoHistory {};
+
+template <class Kernel>
+class ElementBlockOf final : public ElementBlock {
+ public:
+  static constexpr int kNodes = Kernel::kNodes;
+  static constexpr int kDofs = kDofsPerNode * kNodes;
+  using History = typename Kernel::History;
+  using Vector = Eigen::Matrix<double, kDofs, 1>;
+  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
+
+  explicit ElementBlockOf(std::string name) : name_(std::move(name)) {}
+
+  int add(const std::array<int, kNodes>& nodes, Kernel kernel) {
+    nodes_.push_back(nodes);
+    kernels_.push_back(std::move(kernel));
+    committed_.emplace_back();
+    trial_.emplace_back();
+    return size() - 1;
+  }
+
+  const std::string& name() const override { return name_; }
+  int nodes_per_element() const override { return kNodes; }
+  int size() const override { return static_cast<int>(kernels_.size()); }
+  std::vector<int> element_nodes(int element) const override {
+    return {nodes_[element].begin(), nodes_[element].end()};
+  }
+  const Kernel& kernel(int element) const { return kernels_[element]; }
+  Kernel& kernel(int element) { return kernels_[element]; }
+  const History& trial_history(int element) const { return trial_[element]; }
+  const History& committed_history(int element) const { return committed_[element]; }
+
+  void bind_tangent_slots(std::vector<int> slots) override { slots_ = std::move(slots); }
+
+  void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) override {
+    LocalState<kDofs> local;
+    Vector residual;
+    Matrix tangent;
+    const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
+    for (int e = 0; e < size(); ++e) {
+      gather(e, state, local);
+      trial_[e] = committed_[e];
+      kernels_[e].evaluate(local, context, committed_[e], trial_[e], residual,
+                           with_tangent ? &tangent : nullptr);
+      if (!residual.allFinite()) throw_non_finite(e, "residual");
+      scatter_residual(e, residual, *target.residual);
+      if (with_tangent) scatter_tangent(e, tangent, target.tangent_values);
+    }
+  }
+
+  ElementEnergy energy(const State& state) const override {
+    ElementEnergy total;
+    LocalState<kDofs> local;
+    for (int e = 0; e < size(); ++e) {
+      gather(e, state, local);
+      total += kernels_[e].energy(local, trial_[e]);
+    }
+    return total;
+  }
+
+  void commit() override { committed_ = trial_; }
+  void revert() override { trial_ = committed_; }
+
+ private:
+  void gather(int e, const State& state, LocalState<kDofs>& local) const {
+    for (int n = 0; n < kNodes; ++n) {
+      const int first = dof_index(nodes_[e][n], 0);
+      local.displacement.template segment<kDofsPerNode>(kDofsPerNode * n) =
+          state.displacement.template segment<kDofsPerNode>(first);
+      local.velocity.template segment<kDofsPerNode>(kDofsPerNode * n) =
+          state.velocity.template segment<kDofsPerNode>(first);
+      local.acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
+          state.acceleration.template segment<kDofsPerNode>(first);
+    }
+  }
+  void scatter_residual(int e, const Vector& residual, Eigen::VectorXd& global) const {
+    for (int n = 0; n < kNodes; ++n)
+      global.template segment<kDofsPerNode>(dof_index(nodes_[e][n], 0)) +=
+          residual.template segment<kDofsPerNode>(kDofsPerNode * n);
+  }
+  void scatter_tangent(int e, const Matrix& tangent, double* values) const {
+    const int* slot = slots_.data() + static_cast<size_t>(e) * kDofs * kDofs;
+    const double* entry = tangent.data();
+    for (int k = 0; k < kDofs * kDofs; ++k)
+      if (slot[k] >= 0) values[slot[k]] += entry[k];
+  }
+  [[noreturn]] void throw_non_finite(int e, const char* what) const {
+    std::string nodes;
+    for (int n : nodes_[e]) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n);
+    throw NonFiniteResult("element " + std::to_string(e) + " of block '" + name_ + "' (nodes " + nodes +
+                          ") produced a non-finite " + what);
+  }
+
+  std::string name_;
+  std::vector<std::array<int, kNodes>> nodes_;
+  std::vector<Kernel> kernels_;
+  std::vector<History> committed_, trial_;
+  std::vector<int> slots_;
+};
+
+}  // namespace tirefe

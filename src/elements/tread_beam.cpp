@@ -1,0 +1,134 @@
+#include "elements/tread_beam.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace tirefe {
+
+namespace {
+void require_nonnegative(double value, const char* name) {
+  if (!std::isfinite(value) || value < 0.0)
+    throw ModelError(std::string("beam section: ") + name + " must be a non-negative finite number (got " +
+                     std::to_string(value) + ")");
+}
+void require_positive(double value, const char* name) {
+  if (!std::isfinite(value) || value <= 0.0)
+    throw ModelError(std::string("beam section: ") + name + " must be positive (got " + std::to_string(value) + ")");
+}
+}  // namespace
+
+void BeamSection::check() const {
+  require_positive(axial_stiffness, "EA");
+  require_positive(shear_stiffness, "GA");
+  require_positive(bending_stiffness, "EI");
+  require_nonnegative(mass_per_length, "rhoA");
+  require_nonnegative(rotary_inertia_per_length, "rhoI");
+  require_nonnegative(curvature_damping, "curvature damping");
+}
+
+TreadBeam::TreadBeam(const Eigen::Vector2d& start, const Eigen::Vector2d& end, const BeamSection& section)
+    : section_(section) {
+  section_.check();
+  const Eigen::Vector2d chord = end - start;
+  length_ = chord.norm();
+  if (!(length_ > 0.0)) throw ModelError("beam element with coincident nodes (zero length)");
+  reference_angle_ = std::atan2(chord.y(), chord.x());
+}
+
+TreadBeam::Strains TreadBeam::strains(const Vector& d) const {
+  const Eigen::Vector2d stretch = (Eigen::Vector2d(length_ * std::cos(reference_angle_), length_ * std::sin(reference_angle_)) +
+                                   d.segment<2>(3) - d.segment<2>(0)) / length_;
+  const double beta = reference_angle_ + 0.5 * (d[2] + d[5]);
+  const double c = std::cos(beta), s = std::sin(beta);
+  return {stretch.x() * c + stretch.y() * s - 1.0, -stretch.x() * s + stretch.y() * c, (d[5] - d[2]) / length_};
+}
+
+void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
+                         History&, Vector& residual, Matrix* tangent) const {
+  const Vector& d = local.displacement;
+  const double cos0 = std::cos(reference_angle_), sin0 = std::sin(reference_angle_);
+  const Eigen::Vector2d stretch =
+      Eigen::Vector2d(cos0, sin0) + (d.segment<2>(3) - d.segment<2>(0)) / length_;  // x'
+  const double beta = reference_angle_ + 0.5 * (d[2] + d[5]);
+  const Eigen::Vector2d t(std::cos(beta), std::sin(beta)), n(-std::sin(beta), std::cos(beta));
+  const double axial = stretch.dot(t) - 1.0, shear = stretch.dot(n), curvature = (d[5] - d[2]) / length_;
+  const double N = section_.axial_stiffness * axial, V = section_.shear_stiffness * shear,
+               M = section_.bending_stiffness * curvature;
+
+  // Strain gradients: x' depends on the translations (+-1/L0), beta on the rotations (1/2 each).
+  const double h = 1.0 / length_;
+  Vector d_axial, d_shear, d_curvature;
+  d_axial << -h * t.x(), -h * t.y(), 0.5 * shear, h * t.x(), h * t.y(), 0.5 * shear;
+  d_shear << -h * n.x(), -h * n.y(), -0.5 * (1.0 + axial), h * n.x(), h * n.y(), -0.5 * (1.0 + axial);
+  d_curvature << 0.0, 0.0, -h, 0.0, 0.0, h;
+
+  const IntegratorFactors& f = context.factors;
+  residual = (f.force_stiffness * length_) * (N * d_axial + V * d_shear + M * d_curvature);
+  const double damping_moment = section_.curvature_damping * (local.velocity[5] - local.velocity[2]) / length_;
+  if (f.force_damping != 0.0) residual += (f.force_damping * length_ * damping_moment) * d_curvature;
+  if (f.force_mass != 0.0) residual += f.force_mass * mass_times(local.acceleration);
+  if (!tangent) return;
+
+  Matrix& K = *tangent;
+  K.noalias() = (section_.axial_stiffness * d_axial) * d_axial.transpose();
+  K.noalias() += (section_.shear_stiffness * d_shear) * d_shear.transpose();
+  K.noalias() += (section_.bending_stiffness * d_curvature) * d_curvature.transpose();
+  // Geometric stiffness: N d2(eps) + V d2(gam). Only translation-rotation and
+  // rotation-rotation couplings are non-zero since x' is linear in u and beta in theta.
+  // d2(eps) = Bx^T n b^T + b n^T Bx - (1+eps) b b^T,  d2(gam) = -Bx^T t b^T - b t^T Bx - gam b b^T.
+  const Eigen::Vector2d coupling = 0.5 * h * (N * n - V * t);  // per unit of dx'/du sign
+  const double rotation_rotation = 0.25 * (-N * (1.0 + axial) - V * shear);
+  const int translations[2] = {0, 3};
+  const double signs[2] = {-1.0, 1.0};
+  const int rotations[2] = {2, 5};
+  for (int a = 0; a < 2; ++a)
+    for (int c = 0; c < 2; ++c)
+      for (int rot : rotations) {
+        K(translations[a] + c, rot) += signs[a] * coupling[c];
+        K(rot, translations[a] + c) += signs[a] * coupling[c];
+      }
+  for (int r1 : rotations)
+    for (int r2 : rotations) K(r1, r2) += rotation_rotation;
+  K *= f.tangent_stiffness * length_;
+
+  if (f.tangent_damping != 0.0 && section_.curvature_damping != 0.0)
+    K.noalias() += (f.tangent_damping * section_.curvature_damping * length_) * d_curvature * d_curvature.transpose();
+  if (f.tangent_mass != 0.0) add_mass(f.tangent_mass, K);
+}
+
+TreadBeam::Vector TreadBeam::mass_times(const Vector& x) const {
+  // Consistent mass of linear shape functions: L0/6 [2 1; 1 2] per component.
+  const double per_length[3] = {section_.mass_per_length, section_.mass_per_length,
+                                section_.rotary_inertia_per_length};
+  Vector product;
+  for (int c = 0; c < 3; ++c) {
+    const double scale = per_length[c] * length_ / 6.0;
+    product[c] = scale * (2.0 * x[c] + x[c + 3]);
+    product[c + 3] = scale * (x[c] + 2.0 * x[c + 3]);
+  }
+  return product;
+}
+
+void TreadBeam::add_mass(double factor, Matrix& tangent) const {
+  const double per_length[3] = {section_.mass_per_length, section_.mass_per_length,
+                                section_.rotary_inertia_per_length};
+  for (int c = 0; c < 3; ++c) {
+    const double scale = factor * per_length[c] * length_ / 6.0;
+    tangent(c, c) += 2.0 * scale;
+    tangent(c + 3, c + 3) += 2.0 * scale;
+    tangent(c, c + 3) += scale;
+    tangent(c + 3, c) += scale;
+  }
+}
+
+ElementEnergy TreadBeam::energy(const LocalState<kDofs>& local, const History&) const {
+  const Strains e = strains(local.displacement);
+  ElementEnergy energy;
+  energy.strain = 0.5 * length_ *
+                  (section_.axial_stiffness * e.axial * e.axial + section_.shear_stiffness * e.shear * e.shear +
+                   section_.bending_stiffness * e.curvature * e.curvature);
+  energy.kinetic = 0.5 * local.velocity.dot(mass_times(local.velocity));
+  return energy;
+}
+
+}  // namespace tirefe

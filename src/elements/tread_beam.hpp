@@ -1,0 +1,65 @@
+// TreadBeam: a geometrically exact plane beam (Simo-Reissner), two nodes with
+// (u_x, u_y, theta_z), used for the tire's tread (belt) and for test structures.
+//
+// Kinematics, with x = X + u, the reference length L0 and reference angle phi0:
+//   x' = (x_b - x_a) / L0,  beta = phi0 + (theta_a + theta_b) / 2,
+//   t = (cos beta, sin beta),  n = (-sin beta, cos beta),
+//   axial strain eps = x'.t - 1,  shear strain gam = x'.n,  curvature kap = (theta_b - theta_a) / L0.
+// Section law: N = EA eps, V = GA_s gam, M = EI kap. All strains are sampled at the
+// midpoint (one-point quadrature), which removes shear locking for linear interpolation.
+// Energy L0 (EA eps^2 + GA gam^2 + EI kap^2) / 2; the residual is its gradient and the
+// tangent its (symmetric) Hessian, including the geometric terms N d2eps + V d2gam.
+// Inertia: consistent mass of rho*A (translations) and rho*I (rotation), linear shape
+// functions. Damping: a bending moment c_kappa * d(kap)/dt (curvature-rate damping).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "core/element.hpp"
+
+namespace tirefe {
+
+struct BeamSection {
+  double axial_stiffness = 0.0;     // EA [N]
+  double shear_stiffness = 0.0;     // GA_s [N]
+  double bending_stiffness = 0.0;   // EI [N m^2]
+  double mass_per_length = 0.0;     // rho A [kg/m]
+  double rotary_inertia_per_length = 0.0;  // rho I [kg m]
+  double curvature_damping = 0.0;   // c_kappa [N m^2 s]
+
+  /// Throws ModelError naming the first non-physical value.
+  void check() const;
+};
+
+class TreadBeam {
+ public:
+  static constexpr int kNodes = 2;
+  static constexpr int kDofs = 6;
+  using History = NoHistory;
+  using Vector = Eigen::Matrix<double, kDofs, 1>;
+  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
+
+  TreadBeam(const Eigen::Vector2d& start, const Eigen::Vector2d& end, const BeamSection& section);
+
+  void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
+                History& trial, Vector& residual, Matrix* tangent) const;
+  ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+
+  struct Strains {
+    double axial, shear, curvature;
+  };
+  Strains strains(const Vector& displacement) const;
+  double reference_length() const { return length_; }
+  const BeamSection& section() const { return section_; }
+
+ private:
+  /// M x for the consistent mass matrix.
+  Vector mass_times(const Vector& x) const;
+  void add_mass(double factor, Matrix& tangent) const;
+
+  BeamSection section_;
+  double length_;
+  double reference_angle_;
+};
+
+}  // namespace tirefe

@@ -1,0 +1,60 @@
+#include "solvers/integrator.hpp"
+
+#include <sstream>
+
+#include "core/mesh.hpp"
+
+namespace tirefe {
+
+Integrator Integrator::newmark(double beta, double gamma) {
+  if (!(beta > 0.0 && beta <= 0.5) || !(gamma >= 0.5 && gamma <= 1.0))
+    throw ModelError("Newmark needs 0 < beta <= 1/2 and 1/2 <= gamma <= 1 (implicit, stable); got beta = " +
+                     std::to_string(beta) + ", gamma = " + std::to_string(gamma));
+  return Integrator(Kind::Newmark, beta, gamma, 0.0);
+}
+
+Integrator Integrator::hht(double alpha) {
+  if (!(alpha >= -1.0 / 3.0 && alpha <= 0.0))
+    throw ModelError("HHT needs alpha in [-1/3, 0]; got " + std::to_string(alpha));
+  return Integrator(Kind::Hht, 0.25 * (1.0 - alpha) * (1.0 - alpha), 0.5 - alpha, alpha);
+}
+
+std::string Integrator::name() const {
+  std::ostringstream text;
+  switch (kind_) {
+    case Kind::QuasiStatic: return "quasi-static";
+    case Kind::Newmark: text << "Newmark(beta=" << beta_ << ", gamma=" << gamma_ << ")"; break;
+    case Kind::Hht: text << "HHT(alpha=" << alpha_ << ")"; break;
+  }
+  return text.str();
+}
+
+IntegratorFactors Integrator::factors(double step) const {
+  if (!is_dynamic()) return {};
+  const double weight = 1.0 + alpha_;
+  return {weight, weight, 1.0, weight, weight * gamma_ / (beta_ * step), 1.0 / (beta_ * step * step)};
+}
+
+void Integrator::predict(const State& committed, double step, State& trial) const {
+  trial.time = committed.time + step;
+  if (!is_dynamic()) {
+    trial.displacement = committed.displacement;
+    trial.velocity.setZero();
+    trial.acceleration.setZero();
+    return;
+  }
+  trial.acceleration = committed.acceleration;
+  trial.velocity = committed.velocity + step * committed.acceleration;
+  trial.displacement = committed.displacement + step * committed.velocity + (0.5 * step * step) * committed.acceleration;
+}
+
+void Integrator::update_rates(const State& committed, double step, int dof, State& trial) const {
+  if (!is_dynamic()) return;
+  const double a_old = committed.acceleration[dof];
+  const double a_new = (trial.displacement[dof] - committed.displacement[dof] - step * committed.velocity[dof] -
+                        step * step * (0.5 - beta_) * a_old) / (beta_ * step * step);
+  trial.acceleration[dof] = a_new;
+  trial.velocity[dof] = committed.velocity[dof] + step * ((1.0 - gamma_) * a_old + gamma_ * a_new);
+}
+
+}  // namespace tirefe

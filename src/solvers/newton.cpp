@@ -1,0 +1,61 @@
+#include "solvers/newton.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <string>
+
+namespace tirefe {
+
+namespace {
+std::string format_norms(int iteration, double norm, double relative, double increment) {
+  char line[128];
+  std::snprintf(line, sizeof line, "    newton %2d  |R| %.3e  |R|/Rref %.3e  |du| %.2e\n", iteration, norm,
+                relative, increment);
+  return line;
+}
+}  // namespace
+
+const NewtonReport& NewtonSolver::solve(StepEquations& equations, KluSolver& linear_solver) {
+  report_.iterations = 0;
+  report_.residual_norms.clear();
+  report_.residual_norms.reserve(settings_.max_iterations + 1);
+  double relative_increment = 0.0;
+  for (;;) {
+    double force_level = 0.0;
+    equations.evaluate(true, residual_, force_level);
+    const double norm = residual_.norm();
+    report_.residual_norms.push_back(norm);
+    if (report_.iterations == 0) report_.reference_force = std::max({norm, force_level, 1e-300});
+    const double relative = norm / report_.reference_force;
+    if (settings_.log) *settings_.log << format_norms(report_.iterations, norm, relative, relative_increment);
+
+    if (!std::isfinite(norm))
+      throw ConvergenceFailure("the residual is not finite (NaN or infinity) at Newton iteration " +
+                               std::to_string(report_.iterations));
+    if (relative <= settings_.residual_tolerance ||
+        (report_.iterations > 0 && relative_increment <= settings_.increment_tolerance))
+      return report_;
+    if (relative > settings_.divergence_ratio)
+      throw ConvergenceFailure("Newton iterations diverge (|R|/Rref = " + std::to_string(relative) +
+                               " at iteration " + std::to_string(report_.iterations) + ")");
+    if (report_.iterations == settings_.max_iterations)
+      throw ConvergenceFailure("no convergence in " + std::to_string(settings_.max_iterations) +
+                               " Newton iterations (|R|/Rref = " + std::to_string(relative) + ")");
+
+    try {
+      linear_solver.factorize(equations.tangent());
+    } catch (const SingularMatrix& singular) {
+      throw ConvergenceFailure(singular.what());
+    }
+    increment_ = -residual_;
+    linear_solver.solve(increment_);
+    if (!increment_.allFinite())
+      throw ConvergenceFailure("the Newton increment is not finite at iteration " +
+                               std::to_string(report_.iterations));
+    relative_increment = equations.apply_increment(increment_);
+    ++report_.iterations;
+  }
+}
+
+}  // namespace tirefe

@@ -1,0 +1,68 @@
+// NewtonSolver: full Newton-Raphson iterations on one step's equations.
+//
+// Convergence is judged on the normalised residual |R| / R_ref, where R_ref is the
+// largest of the first residual, the external force and the reaction force levels of
+// the step, or on an increment at round-off level. A NaN, a residual growing past
+// divergence_ratio * R_ref, or running out of iterations throws ConvergenceFailure so
+// that the driver can cut the step.
+#pragma once
+
+#include <Eigen/Dense>
+#include <iosfwd>
+#include <stdexcept>
+#include <vector>
+
+#include "core/assembler.hpp"
+#include "solvers/linear_solver.hpp"
+
+namespace tirefe {
+
+class ConvergenceFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct NewtonSettings {
+  int max_iterations = 25;
+  double residual_tolerance = 1e-9;  // on |R| / R_ref
+  double increment_tolerance = 1e-13;  // on |du|_inf / (1 + |u|_inf): round-off level
+  double divergence_ratio = 1e8;
+  std::ostream* log = nullptr;  // per-iteration lines when set
+};
+
+struct NewtonReport {
+  int iterations = 0;   // linear solves performed
+  double reference_force = 0.0;
+  std::vector<double> residual_norms;  // |R| at each evaluation, the last one converged
+};
+
+/// The equations of one step, as the Newton loop sees them.
+class StepEquations {
+ public:
+  virtual ~StepEquations() = default;
+  /// Residual over the free equations at the current trial state (and the tangent,
+  /// left in tangent(), when with_tangent); also returns the step's force level.
+  virtual void evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) = 0;
+  virtual const SparseMatrix& tangent() const = 0;
+  /// Adds the increment of the free equations to the trial state; returns the
+  /// relative increment size |du|_inf / (1 + |u|_inf).
+  virtual double apply_increment(const Eigen::VectorXd& increment) = 0;
+};
+
+class NewtonSolver {
+ public:
+  explicit NewtonSolver(NewtonSettings settings = {}) : settings_(settings) {}
+  NewtonSettings& settings() { return settings_; }
+  const NewtonSettings& settings() const { return settings_; }
+
+  /// Iterates to convergence; throws ConvergenceFailure. The report stays valid until the next call.
+  const NewtonReport& solve(StepEquations& equations, KluSolver& linear_solver);
+  const NewtonReport& last_report() const { return report_; }
+
+ private:
+  NewtonSettings settings_;
+  NewtonReport report_;
+  Eigen::VectorXd residual_, increment_;
+};
+
+}  // namespace tirefe

@@ -1,0 +1,74 @@
+// Helpers shared by the tests: finite-difference tangents of element kernels and
+// small model builders.
+#pragma once
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "core/element.hpp"
+
+namespace tirefe::testing {
+
+/// Central finite difference of a kernel's residual with respect to the displacement
+/// (cK part), the velocity (cC part) and the acceleration (cM part), combined with the
+/// given factors, to compare with the kernel's own tangent.
+template <class Kernel>
+typename ElementBlockOf<Kernel>::Matrix finite_difference_tangent(const Kernel& kernel,
+                                                                    const LocalState<Kernel::kDofs>& local,
+                                                                    const EvaluationContext& context,
+                                                                    const typename Kernel::History& committed,
+                                                                    double step = 1e-6) {
+  using Vector = typename ElementBlockOf<Kernel>::Vector;
+  typename ElementBlockOf<Kernel>::Matrix tangent;
+  tangent.setZero();
+  const IntegratorFactors& f = context.factors;
+  // Each rate column differentiates only the force part that depends on that rate, so
+  // the large factor (e.g. 1/(beta h^2)) does not amplify round-off of the other parts.
+  auto residual_at = [&](const LocalState<Kernel::kDofs>& perturbed, const EvaluationContext& part) {
+    Vector residual;
+    typename Kernel::History trial = committed;
+    kernel.evaluate(perturbed, part, committed, trial, residual, nullptr);
+    return residual;
+  };
+  EvaluationContext damping_only = context, mass_only = context;
+  damping_only.factors = {0.0, f.force_damping, 0.0, 0.0, 0.0, 0.0};
+  mass_only.factors = {0.0, 0.0, f.force_mass, 0.0, 0.0, 0.0};
+  damping_only.want_tangent = mass_only.want_tangent = false;
+  for (int j = 0; j < Kernel::kDofs; ++j) {
+    auto column = [&](auto field, const EvaluationContext& part, double factor) {
+      if (factor == 0.0) return;
+      LocalState<Kernel::kDofs> plus = local, minus = local;
+      (plus.*field)[j] += step;
+      (minus.*field)[j] -= step;
+      tangent.col(j) += factor * (residual_at(plus, part) - residual_at(minus, part)) / (2.0 * step);
+    };
+    column(&LocalState<Kernel::kDofs>::displacement, context, f.tangent_stiffness / f.force_stiffness);
+    if (f.force_damping != 0.0)
+      column(&LocalState<Kernel::kDofs>::velocity, damping_only, f.tangent_damping / f.force_damping);
+    if (f.force_mass != 0.0)
+      column(&LocalState<Kernel::kDofs>::acceleration, mass_only, f.tangent_mass / f.force_mass);
+  }
+  return tangent;
+}
+
+inline EvaluationContext dynamic_context(double step = 1e-3, double beta = 0.25, double gamma = 0.5) {
+  EvaluationContext context;
+  context.time_step = step;
+  context.factors = {1.0, 1.0, 1.0, 1.0, gamma / (beta * step), 1.0 / (beta * step * step)};
+  return context;
+}
+
+template <int Dofs>
+LocalState<Dofs> random_local_state(std::mt19937& random, double displacement_scale, double rotation_scale) {
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  LocalState<Dofs> local;
+  for (int i = 0; i < Dofs; ++i) {
+    const double scale = (i % 3 == 2) ? rotation_scale : displacement_scale;
+    local.displacement[i] = scale * uniform(random);
+    local.velocity[i] = uniform(random);
+    local.acceleration[i] = uniform(random);
+  }
+  return local;
+}
+
+}  // namespace tirefe::testing
