@@ -1,0 +1,386 @@
+// HDF5 output layer implementation (HDF5 1.10 C API). Negative HDF5 return codes become
+// IoError carrying the innermost HDF5 error description; automatic stack printing is off.
+#include "io/hdf5_file.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <functional>
+#include <numeric>
+#include <utility>
+
+namespace tirefe::io {
+namespace {
+
+// The innermost entry of the HDF5 error stack is the most specific one (e.g. errno text).
+std::string hdf5_error_detail() {
+  std::string detail;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* error, void* out) -> herr_t {
+        if (n == 0 && error->desc != nullptr) *static_cast<std::string*>(out) = error->desc;
+        return 0;
+      },
+      &detail);
+  H5Eclear2(H5E_DEFAULT);
+  return detail.empty() ? "HDF5 error" : detail;
+}
+
+std::string describe(const std::string& action, const std::string& object, const std::string& file) {
+  return "cannot " + action + " '" + object + "' in '" + file + "'";
+}
+
+// `message` is only evaluated on failure, so hot paths build no strings.
+template <class T, class Message>
+T check(T rc, Message&& message) {
+  if (rc < 0) throw IoError(message() + ": " + hdf5_error_detail());
+  return rc;
+}
+
+void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+Hdf5Handle make_fapl(const std::string& path) {
+  auto message = [&] { return "cannot set up file access for '" + path + "'"; };
+  Hdf5Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), message), H5Pclose);
+  // V18 superblock/object format: readable by h5py 3.7 / HDF5 1.10, and it has no
+  // "file open for write" flag, so h5dump can read a flushed file while we still write it.
+  check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V110), message);
+  check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), message);
+#if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7) || H5_VERSION_GE(1, 12, 1)
+  // No flock(): live monitoring (h5dump/h5py on a running job) must not be locked out.
+  check(H5Pset_file_locking(fapl.get(), false, true), message);
+#endif
+  return fapl;
+}
+
+// Variable-length UTF-8: h5py 3 reads such attributes as str (fixed-length ones as bytes).
+Hdf5Handle make_string_type() {
+  auto message = [] { return std::string("cannot create string type"); };
+  Hdf5Handle type(check(H5Tcopy(H5T_C_S1), message), H5Tclose);
+  check(H5Tset_size(type.get(), H5T_VARIABLE), message);
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), message);
+  return type;
+}
+
+Hdf5Handle dataspace_of(const std::vector<hsize_t>& dims) {
+  const hid_t id = dims.empty() ? H5Screate(H5S_SCALAR)
+                                : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+  return Hdf5Handle(check(id, [] { return std::string("cannot create dataspace"); }), H5Sclose);
+}
+
+hsize_t element_count(const std::vector<hsize_t>& dims) {
+  return std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
+}
+
+// Reads `count` strings of attribute or dataset `object` with file type `file_type`; `read`
+// performs H5Aread/H5Dread into a buffer for the given memory type. Handles both
+// variable-length and fixed-length strings (files written by other tools).
+template <class Read, class Message>
+std::vector<std::string> read_string_elements(hid_t file_type, hsize_t count, Read&& read, Message&& message) {
+  if (check(H5Tget_class(file_type), message) != H5T_STRING) throw IoError(message() + ": not a string");
+  std::vector<std::string> result;
+  result.reserve(count);
+  if (check(H5Tis_variable_str(file_type), message) > 0) {
+    Hdf5Handle mem_type = make_string_type();
+    std::vector<char*> buffer(count, nullptr);
+    check(read(mem_type.get(), buffer.data()), message);
+    for (char* s : buffer) {
+      result.emplace_back(s != nullptr ? s : "");
+      H5free_memory(s);
+    }
+    return result;
+  }
+  const size_t size = H5Tget_size(file_type);
+  Hdf5Handle mem_type(check(H5Tcopy(file_type), message), H5Tclose);
+  std::vector<char> buffer(count * size);
+  check(read(mem_type.get(), buffer.data()), message);
+  const bool space_padded = H5Tget_strpad(file_type) == H5T_STR_SPACEPAD;
+  for (hsize_t i = 0; i < count; ++i) {
+    const char* s = buffer.data() + i * size;
+    std::string value(s, strnlen(s, size));
+    if (space_padded) value.erase(value.find_last_not_of(' ') + 1);
+    result.push_back(std::move(value));
+  }
+  return result;
+}
+
+template <class Message>
+Hdf5Handle open_single_value_attribute(hid_t file, const std::string& object_path, const std::string& name,
+                                      Message&& message) {
+  Hdf5Handle attribute(check(H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), message),
+                       H5Aclose);
+  Hdf5Handle space(check(H5Aget_space(attribute.get()), message), H5Sclose);
+  if (check(H5Sget_simple_extent_npoints(space.get()), message) != 1) throw IoError(message() + ": not a single value");
+  return attribute;
+}
+
+}  // namespace
+
+// --- Hdf5Handle -------------------------------------------------------------------------
+
+Hdf5Handle::Hdf5Handle(Hdf5Handle&& other) noexcept
+    : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
+
+Hdf5Handle& Hdf5Handle::operator=(Hdf5Handle&& other) noexcept {
+  if (this != &other) {
+    reset();
+    id_ = std::exchange(other.id_, H5I_INVALID_HID);
+    closer_ = other.closer_;
+  }
+  return *this;
+}
+
+void Hdf5Handle::reset() noexcept {
+  if (id_ >= 0 && closer_ != nullptr) closer_(id_);  // failure is ignored: destructors must not throw
+  id_ = H5I_INVALID_HID;
+}
+
+// --- ExtendibleDataset --------------------------------------------------------------------
+
+ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path,
+                                     std::string path)
+    : dataset_(std::move(dataset)),
+      dims_(std::move(dims)),
+      start_(dims_.size(), 0),
+      count_(dims_),
+      file_path_(std::move(file_path)),
+      path_(std::move(path)) {
+  count_[0] = 1;
+  row_size_ = static_cast<size_t>(element_count(count_));
+  file_space_ = Hdf5Handle(check(H5Dget_space(dataset_.get()), [&] { return describe("open dataset", path_, file_path_); }),
+                           H5Sclose);
+  mem_space_ = dataspace_of({static_cast<hsize_t>(row_size_)});
+}
+
+void ExtendibleDataset::append(const double* row_values) {
+  auto message = [&] { return describe("append to dataset", path_, file_path_); };
+  start_[0] = dims_[0];
+  dims_[0] += 1;
+  const int rank = static_cast<int>(dims_.size());
+  if (H5Dset_extent(dataset_.get(), dims_.data()) < 0 ||
+      H5Sset_extent_simple(file_space_.get(), rank, dims_.data(), nullptr) < 0 ||
+      H5Sselect_hyperslab(file_space_.get(), H5S_SELECT_SET, start_.data(), nullptr, count_.data(), nullptr) < 0 ||
+      H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, mem_space_.get(), file_space_.get(), H5P_DEFAULT, row_values) < 0) {
+    dims_[0] -= 1;
+    check(-1, message);
+  }
+}
+
+void ExtendibleDataset::append(double scalar) {
+  if (row_size_ != 1 || dims_.size() != 1) {
+    throw IoError(describe("append a scalar to dataset", path_, file_path_) + ": rows are not scalars");
+  }
+  append(&scalar);
+}
+
+// --- Hdf5File ------------------------------------------------------------------------------
+
+Hdf5File::Hdf5File(std::string path, Hdf5Handle file) : path_(std::move(path)), file_(std::move(file)) {
+  auto message = [&] { return "cannot set up link creation for '" + path_ + "'"; };
+  lcpl_ = Hdf5Handle(check(H5Pcreate(H5P_LINK_CREATE), message), H5Pclose);
+  check(H5Pset_create_intermediate_group(lcpl_.get(), 1), message);
+}
+
+Hdf5File Hdf5File::create(const std::string& path) {
+  silence_hdf5_errors();
+  Hdf5Handle fapl = make_fapl(path);
+  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  check(id, [&] { return "cannot create output file '" + path + "'"; });
+  return Hdf5File(path, Hdf5Handle(id, H5Fclose));
+}
+
+Hdf5File Hdf5File::open_read_only(const std::string& path) {
+  silence_hdf5_errors();
+  Hdf5Handle fapl = make_fapl(path);
+  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get());
+  check(id, [&] { return "cannot open file '" + path + "'"; });
+  return Hdf5File(path, Hdf5Handle(id, H5Fclose));
+}
+
+Hdf5File::Hdf5File(Hdf5File&& other) noexcept
+    : path_(std::move(other.path_)),
+      file_(std::move(other.file_)),
+      lcpl_(std::move(other.lcpl_)),
+      datasets_(std::move(other.datasets_)) {}
+
+Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
+  // Swap, so our old datasets and file are closed (datasets first) when `other` dies.
+  std::swap(path_, other.path_);
+  std::swap(file_, other.file_);
+  std::swap(lcpl_, other.lcpl_);
+  std::swap(datasets_, other.datasets_);
+  return *this;
+}
+
+Hdf5File::~Hdf5File() {
+  datasets_.clear();
+  file_.reset();
+}
+
+void Hdf5File::write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type,
+                                      hid_t mem_type, const void* data) {
+  auto message = [&] { return describe("write attribute '" + name + "' of", object_path, path_); };
+  const hid_t file = file_.get();
+  const hid_t id = exists(object_path)
+                       ? H5Oopen(file, object_path.c_str(), H5P_DEFAULT)
+                       : H5Gcreate2(file, object_path.c_str(), lcpl_.get(), H5P_DEFAULT, H5P_DEFAULT);
+  Hdf5Handle object(check(id, message), H5Oclose);
+  if (check(H5Aexists(object.get(), name.c_str()), message) > 0) check(H5Adelete(object.get(), name.c_str()), message);
+  Hdf5Handle space = dataspace_of({});
+  Hdf5Handle attribute(check(H5Acreate2(object.get(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), message),
+                       H5Aclose);
+  check(H5Awrite(attribute.get(), mem_type, data), message);
+}
+
+void Hdf5File::write_attribute(const std::string& object_path, const std::string& name, const std::string& value) {
+  Hdf5Handle type = make_string_type();
+  const char* text = value.c_str();
+  write_scalar_attribute(object_path, name, type.get(), type.get(), &text);
+}
+
+void Hdf5File::write_attribute(const std::string& object_path, const std::string& name, double value) {
+  write_scalar_attribute(object_path, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
+}
+
+void Hdf5File::write_attribute(const std::string& object_path, const std::string& name, long long value) {
+  write_scalar_attribute(object_path, name, H5T_STD_I64LE, H5T_NATIVE_LLONG, &value);
+}
+
+std::string Hdf5File::read_string_attribute(const std::string& object_path, const std::string& name) const {
+  auto message = [&] { return describe("read attribute '" + name + "' of", object_path, path_); };
+  Hdf5Handle attribute = open_single_value_attribute(file_.get(), object_path, name, message);
+  Hdf5Handle type(check(H5Aget_type(attribute.get()), message), H5Tclose);
+  auto read = [&](hid_t mem_type, void* buffer) { return H5Aread(attribute.get(), mem_type, buffer); };
+  return read_string_elements(type.get(), 1, read, message).front();
+}
+
+double Hdf5File::read_double_attribute(const std::string& object_path, const std::string& name) const {
+  auto message = [&] { return describe("read attribute '" + name + "' of", object_path, path_); };
+  Hdf5Handle attribute = open_single_value_attribute(file_.get(), object_path, name, message);
+  double value = 0.0;
+  check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), message);  // converts integer attributes too
+  return value;
+}
+
+void Hdf5File::write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type,
+                             hid_t mem_type, const void* data) {
+  auto message = [&] { return describe("write dataset", dataset_path, path_); };
+  Hdf5Handle space = dataspace_of(dims);
+  Hdf5Handle dataset(check(H5Dcreate2(file_.get(), dataset_path.c_str(), file_type, space.get(), lcpl_.get(),
+                                      H5P_DEFAULT, H5P_DEFAULT),
+                           message),
+                     H5Dclose);
+  if (element_count(dims) > 0) check(H5Dwrite(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), message);
+}
+
+void Hdf5File::write_matrix(const std::string& dataset_path, const Eigen::MatrixXd& values) {
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = values;
+  write_dataset(dataset_path, {static_cast<hsize_t>(values.rows()), static_cast<hsize_t>(values.cols())},
+                H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, row_major.data());
+}
+
+void Hdf5File::write_vector(const std::string& dataset_path, const std::vector<double>& values) {
+  write_dataset(dataset_path, {values.size()}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values.data());
+}
+
+void Hdf5File::write_int_vector(const std::string& dataset_path, const std::vector<long long>& values) {
+  write_dataset(dataset_path, {values.size()}, H5T_STD_I64LE, H5T_NATIVE_LLONG, values.data());
+}
+
+void Hdf5File::write_int_matrix(const std::string& dataset_path, hsize_t rows, hsize_t cols, const long long* data) {
+  write_dataset(dataset_path, {rows, cols}, H5T_STD_I64LE, H5T_NATIVE_LLONG, data);
+}
+
+void Hdf5File::write_strings(const std::string& dataset_path, const std::vector<std::string>& values) {
+  std::vector<const char*> pointers;
+  pointers.reserve(values.size());
+  for (const std::string& value : values) pointers.push_back(value.c_str());
+  Hdf5Handle type = make_string_type();
+  write_dataset(dataset_path, {values.size()}, type.get(), type.get(), pointers.data());
+}
+
+void Hdf5File::write_string_dataset(const std::string& dataset_path, const std::string& text) {
+  const char* pointer = text.c_str();
+  Hdf5Handle type = make_string_type();
+  write_dataset(dataset_path, {}, type.get(), type.get(), &pointer);
+}
+
+ExtendibleDataset& Hdf5File::create_extendible(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
+                                               const std::string& unit) {
+  auto message = [&] { return describe("create extendible dataset", dataset_path, path_); };
+  const hsize_t row_size = element_count(row_shape);
+  if (row_size == 0) throw IoError(message() + ": row shape has a zero extent");
+  std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk;
+  dims.insert(dims.end(), row_shape.begin(), row_shape.end());
+  max_dims.insert(max_dims.end(), row_shape.begin(), row_shape.end());
+  chunk = dims;
+  // ~2 KiB chunks for scalar series, up to ~64 KiB for small vector rows, one row for big ones.
+  chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(256, 8192 / row_size));
+
+  const int rank = static_cast<int>(dims.size());
+  Hdf5Handle space(check(H5Screate_simple(rank, dims.data(), max_dims.data()), message), H5Sclose);
+  Hdf5Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
+  check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), message);
+  Hdf5Handle dataset(check(H5Dcreate2(file_.get(), dataset_path.c_str(), H5T_IEEE_F64LE, space.get(), lcpl_.get(),
+                                      dcpl.get(), H5P_DEFAULT),
+                           message),
+                     H5Dclose);
+  ExtendibleDataset created(std::move(dataset), std::move(dims), path_, dataset_path);
+  if (!unit.empty()) write_attribute(dataset_path, "unit", unit);
+  return datasets_.emplace_back(std::move(created));
+}
+
+template <class T>
+std::vector<T> Hdf5File::read_numeric(const std::string& dataset_path, hid_t mem_type,
+                                      std::vector<hsize_t>* shape) const {
+  auto message = [&] { return describe("read dataset", dataset_path, path_); };
+  Hdf5Handle dataset(check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
+  Hdf5Handle space(check(H5Dget_space(dataset.get()), message), H5Sclose);
+  std::vector<hsize_t> dims(static_cast<size_t>(check(H5Sget_simple_extent_ndims(space.get()), message)));
+  check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), message);
+  std::vector<T> values(static_cast<size_t>(element_count(dims)));
+  if (!values.empty()) check(H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), message);
+  if (shape != nullptr) *shape = std::move(dims);
+  return values;
+}
+
+std::vector<double> Hdf5File::read_doubles(const std::string& dataset_path, std::vector<hsize_t>* shape) const {
+  return read_numeric<double>(dataset_path, H5T_NATIVE_DOUBLE, shape);
+}
+
+std::vector<long long> Hdf5File::read_ints(const std::string& dataset_path, std::vector<hsize_t>* shape) const {
+  return read_numeric<long long>(dataset_path, H5T_NATIVE_LLONG, shape);
+}
+
+std::vector<std::string> Hdf5File::read_strings(const std::string& dataset_path) const {
+  auto message = [&] { return describe("read dataset", dataset_path, path_); };
+  Hdf5Handle dataset(check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
+  Hdf5Handle space(check(H5Dget_space(dataset.get()), message), H5Sclose);
+  const auto count = static_cast<hsize_t>(check(H5Sget_simple_extent_npoints(space.get()), message));
+  Hdf5Handle type(check(H5Dget_type(dataset.get()), message), H5Tclose);
+  auto read = [&](hid_t mem_type, void* buffer) {
+    return H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+  };
+  return read_string_elements(type.get(), count, read, message);
+}
+
+bool Hdf5File::exists(const std::string& object_path) const {
+  // H5Lexists fails (rather than returning false) when an intermediate group is missing,
+  // so walk the path one component at a time.
+  if (object_path.empty()) return false;
+  size_t end = 0;
+  while (end != std::string::npos) {
+    end = object_path.find('/', end + 1);
+    const std::string prefix = object_path.substr(0, end);
+    if (prefix.empty() || prefix == "/") continue;
+    const htri_t found = H5Lexists(file_.get(), prefix.c_str(), H5P_DEFAULT);
+    if (found < 0) H5Eclear2(H5E_DEFAULT);
+    if (found <= 0) return false;
+  }
+  return true;
+}
+
+void Hdf5File::flush() {
+  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), [&] { return "cannot flush '" + path_ + "'"; });
+}
+
+}  // namespace tirefe::io

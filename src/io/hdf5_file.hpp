@@ -1,0 +1,135 @@
+// HDF5 output layer: a thin RAII wrapper over the HDF5 1.10 C API used for result files,
+// restart data and post-processing helpers. Every failure is reported as IoError naming the
+// file and the object (dataset/attribute) path.
+#pragma once
+
+#include <hdf5.h>
+
+#include <Eigen/Dense>
+#include <cstddef>
+#include <deque>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace tirefe::io {
+
+class IoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Owns one hid_t and closes it with the matching H5?close function.
+class Hdf5Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Hdf5Handle() = default;
+  Hdf5Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Hdf5Handle(Hdf5Handle&& other) noexcept;
+  Hdf5Handle& operator=(Hdf5Handle&& other) noexcept;
+  Hdf5Handle(const Hdf5Handle&) = delete;
+  Hdf5Handle& operator=(const Hdf5Handle&) = delete;
+  ~Hdf5Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  void reset() noexcept;
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+// An extendible, chunked dataset that grows by one "row" per append along its first
+// dimension. A row has a fixed shape (empty shape = a scalar per row -> 1-D dataset of
+// length rows(); shape {n,3} -> dataset rows() x n x 3). Doubles only.
+class ExtendibleDataset {
+ public:
+  ExtendibleDataset(ExtendibleDataset&&) noexcept = default;
+  ExtendibleDataset& operator=(ExtendibleDataset&&) noexcept = default;
+
+  void append(const double* row_values);  // row_size() doubles, row-major
+  void append(double scalar);             // only for scalar rows
+  hsize_t rows() const { return dims_[0]; }
+  size_t row_size() const { return row_size_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  friend class Hdf5File;
+  ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path,
+                    std::string path);
+
+  Hdf5Handle dataset_;
+  Hdf5Handle file_space_;  // reused across appends: resized in place, never re-created
+  Hdf5Handle mem_space_;   // one row, flat
+  std::vector<hsize_t> dims_, start_, count_;
+  size_t row_size_ = 1;
+  std::string file_path_, path_;  // for error messages only
+};
+
+class Hdf5File {
+ public:
+  // Create (truncate) a file. Parent folders must exist.
+  static Hdf5File create(const std::string& path);
+  // Open an existing file read-only (tests, restart, post-processing).
+  static Hdf5File open_read_only(const std::string& path);
+
+  Hdf5File(Hdf5File&& other) noexcept;
+  Hdf5File& operator=(Hdf5File&& other) noexcept;
+  ~Hdf5File();
+
+  const std::string& path() const { return path_; }
+
+  // Attributes on a group or dataset ("/" = root); a missing object is created as a group,
+  // with intermediate groups. Strings are variable-length UTF-8 (h5py reads them as str).
+  void write_attribute(const std::string& object_path, const std::string& name, const std::string& value);
+  void write_attribute(const std::string& object_path, const std::string& name, double value);
+  void write_attribute(const std::string& object_path, const std::string& name, long long value);
+  // Other integer types (int, size_t, ...) would be ambiguous between double and long long.
+  template <class Int, std::enable_if_t<std::is_integral_v<Int>, int> = 0>
+  void write_attribute(const std::string& object_path, const std::string& name, Int value) {
+    write_attribute(object_path, name, static_cast<long long>(value));
+  }
+  std::string read_string_attribute(const std::string& object_path, const std::string& name) const;
+  double read_double_attribute(const std::string& object_path, const std::string& name) const;
+
+  // Fixed datasets, row-major; groups along the path are created as needed.
+  void write_matrix(const std::string& dataset_path, const Eigen::MatrixXd& values);  // rows x cols
+  void write_vector(const std::string& dataset_path, const std::vector<double>& values);
+  void write_int_vector(const std::string& dataset_path, const std::vector<long long>& values);
+  void write_int_matrix(const std::string& dataset_path, hsize_t rows, hsize_t cols, const long long* data);
+  void write_strings(const std::string& dataset_path, const std::vector<std::string>& values);  // 1-D, vlen UTF-8
+  void write_string_dataset(const std::string& dataset_path, const std::string& text);  // scalar, for large text
+
+  // Created empty, chunked, unlimited first dimension. The reference stays valid while this
+  // object lives (also across moves of the Hdf5File). A non-empty unit becomes attribute "unit".
+  ExtendibleDataset& create_extendible(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
+                                       const std::string& unit = "");
+
+  // Whole dataset converted to double / long long, plus its shape (empty for scalars).
+  std::vector<double> read_doubles(const std::string& dataset_path, std::vector<hsize_t>* shape = nullptr) const;
+  std::vector<long long> read_ints(const std::string& dataset_path, std::vector<hsize_t>* shape = nullptr) const;
+  // String dataset (1-D or scalar -> one element).
+  std::vector<std::string> read_strings(const std::string& dataset_path) const;
+  bool exists(const std::string& object_path) const;
+
+  // Flush everything so that a process killed afterwards leaves a file readable up to here.
+  void flush();
+
+ private:
+  Hdf5File(std::string path, Hdf5Handle file);
+  void write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type,
+                     hid_t mem_type, const void* data);
+  void write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type,
+                              hid_t mem_type, const void* data);
+  template <class T>
+  std::vector<T> read_numeric(const std::string& dataset_path, hid_t mem_type, std::vector<hsize_t>* shape) const;
+
+  std::string path_;
+  Hdf5Handle file_;
+  Hdf5Handle lcpl_;  // link creation: intermediate groups on
+  // Declared after file_ so the datasets are closed before the file.
+  std::deque<ExtendibleDataset> datasets_;
+};
+
+}  // namespace tirefe::io

@@ -1,0 +1,78 @@
+// ResultFile: one run's HDF5 output. Layout (docs/output.md):
+//   /                 attributes: tirefe_version, git_commit, created, deck_path, units, title
+//   /deck             the deck's full text
+//   /mesh/coordinates             node reference positions, nodes x 2 [m]
+//   /mesh/blocks/<name>           element connectivity (0-based node indices), attribute "type"
+//   /mesh/node_sets/<name>        0-based node indices
+//   /history/<channel>            one row per accepted step: time, step_size, newton_iterations,
+//                                 cuts, residual, and the deck's channels (node DOFs, reactions, ...)
+//   /fields/time, /fields/step    one row per field frame
+//   /fields/displacement          frames x nodes x 3 (u_x, u_y, theta_z)
+//   /fields/velocity              frames x nodes x 3 (dynamic runs)
+// Rows are flushed at field frames and at least every quarter second of wall time, and
+// when the file closes, so a run that fails leaves a file readable up to its last step
+// and a killed run one readable up to its last flush.
+#pragma once
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/hdf5_file.hpp"
+#include "solvers/analysis.hpp"
+
+namespace tirefe::io {
+
+struct RunMetadata {
+  std::string title;
+  std::string deck_path;
+  std::string deck_text;
+};
+
+class ResultFile {
+ public:
+  using Channel = std::function<double(const Analysis&, const StepRecord&)>;
+
+  ResultFile(const std::string& path, const RunMetadata& metadata);
+  const std::string& path() const { return file_.path(); }
+  Hdf5File& file() { return file_; }
+
+  /// Adds a history channel (one value per accepted step); before the first step only.
+  void add_channel(const std::string& name, const std::string& unit, Channel channel);
+  /// Writes displacement (and velocity) fields every 'interval' accepted steps (0: never).
+  void set_field_interval(int interval) { field_interval_ = interval; }
+  int field_interval() const { return field_interval_; }
+
+  /// Records one accepted step (writes the mesh first if it has not been written).
+  void record(const Analysis& analysis, const StepRecord& record);
+  /// Writes a field frame now, whatever the interval.
+  void write_fields(const Analysis& analysis, int step);
+  int steps_recorded() const { return steps_recorded_; }
+  void flush();
+
+ private:
+  struct HistoryChannel {
+    ExtendibleDataset* dataset;
+    Channel value;
+  };
+  void write_mesh(const Model& model);
+  void start_history();
+  void flush_if_due();
+
+  Hdf5File file_;
+  std::vector<std::pair<std::string, std::string>> channel_names_;  // name, unit
+  std::vector<Channel> pending_channels_;
+  std::vector<HistoryChannel> channels_;
+  bool mesh_written_ = false;
+  int field_interval_ = 0;
+  int steps_recorded_ = 0;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+  ExtendibleDataset* field_time_ = nullptr;
+  ExtendibleDataset* field_step_ = nullptr;
+  ExtendibleDataset* field_displacement_ = nullptr;
+  ExtendibleDataset* field_velocity_ = nullptr;
+};
+
+}  // namespace tirefe::io

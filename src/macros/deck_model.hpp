@@ -1,0 +1,53 @@
+// DeckModel: one structure built and driven by a deck: the Model and its Analysis,
+// the deck's named things (sections, load functions), and its result file.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/model.hpp"
+#include "elements/tread_beam.hpp"
+#include "io/result_file.hpp"
+#include "macros/deck_session.hpp"
+#include "solvers/analysis.hpp"
+
+namespace tirefe::macros {
+
+class DeckModel {
+ public:
+  DeckModel(std::string title, DeckSession& session);
+
+  const std::string& title() const { return title_; }
+  Model& model() { return model_; }
+  Analysis& analysis() { return analysis_; }
+  DeckSession& session() { return session_; }
+
+  void define_section(const std::string& name, const BeamSection& section);
+  const BeamSection& section(const std::string& name) const;
+  void define_load_function(const std::string& name, LoadFunction function);
+  int load_function(const std::string& name) const;
+
+  /// Opens the result file (a relative path is taken inside the session's output folder).
+  void open_output(const std::string& file, int field_interval);
+  io::ResultFile* output() { return output_.get(); }
+  /// The result file, opened under a default name if the deck named none.
+  io::ResultFile& output_or_default();
+
+  /// Advances the analysis; the first step opens the default output if none is open.
+  const std::vector<StepRecord>& advance(double duration);
+
+ private:
+  void print_step(const StepRecord& record) const;
+
+  std::string title_;
+  DeckSession& session_;
+  Model model_;
+  Analysis analysis_;
+  std::map<std::string, BeamSection> sections_;
+  std::map<std::string, int> load_functions_;
+  std::unique_ptr<io::ResultFile> output_;
+};
+
+}  // namespace tirefe::macros

@@ -1,0 +1,30 @@
+// DeckSession: what one `tirefe deck.lua` run shares across the deck's models: where
+// output goes, and the tally of the deck's self-checks.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tirefe::macros {
+
+struct CheckResult {
+  std::string name;
+  bool passed;
+};
+
+struct DeckSession {
+  std::string output_dir = "results";
+  std::string deck_path;
+  std::string deck_text;
+  bool quiet = false;
+  std::vector<CheckResult> checks;
+  int default_outputs_opened = 0;
+
+  int failed_checks() const {
+    int failed = 0;
+    for (const auto& check : checks) failed += check.passed ? 0 : 1;
+    return failed;
+  }
+};
+
+}  // namespace tirefe::macros

@@ -1,0 +1,335 @@
+// LuaSandbox: safe library set, text-only loading, require(), tirefe.parameters and the
+// error plumbing that reports every deck problem as "deck.lua:LINE: message".
+#include "macros/lua_sandbox.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace tirefe::macros {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kSandboxKey = "tirefe.sandbox";  // registry: light userdata -> LuaSandbox
+constexpr const char* kLoadedKey = "tirefe.loaded";    // registry: require() cache
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out.empty() ? "none" : out;
+}
+
+// Full path for file chunks (short_src truncates long paths to 60 characters).
+std::string display_name(const lua_Debug& ar) {
+  return ar.source[0] == '@' ? std::string(ar.source + 1) : std::string(ar.short_src);
+}
+
+struct Location {
+  std::string file, line, body;
+};
+
+// Splits the "where:LINE: " prefix that luaL_where and the parser put on messages.
+std::optional<Location> split_location(const std::string& message) {
+  for (auto colon = message.find(':'); colon != std::string::npos; colon = message.find(':', colon + 1)) {
+    auto end = colon + 1;
+    while (end < message.size() && std::isdigit(static_cast<unsigned char>(message[end]))) ++end;
+    if (end > colon + 1 && message.compare(end, 2, ": ") == 0)
+      return Location{message.substr(0, colon), message.substr(colon + 1, end - colon - 1), message.substr(end + 2)};
+  }
+  return std::nullopt;
+}
+
+// The chunk on the current stack that a message prefix names (display name, is it the deck?).
+// A prefix naming no running chunk is ordinary message text and is left alone.
+std::optional<std::pair<std::string, bool>> chunk_on_stack(lua_State* L, const std::string& file,
+                                                           const std::string& deck_path) {
+  if (!deck_path.empty() && file == deck_path) return std::make_pair(deck_path, true);
+  lua_Debug ar;
+  for (int level = 0; lua_getstack(L, level, &ar); ++level) {
+    lua_getinfo(L, "S", &ar);
+    if (file == ar.short_src || file == display_name(ar))
+      return std::make_pair(display_name(ar), !deck_path.empty() && ar.source == "@" + deck_path);
+  }
+  return std::nullopt;
+}
+
+std::string error_text(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TSTRING || lua_type(L, index) == LUA_TNUMBER) return lua_tostring(L, index);
+  if (luaL_callmeta(L, index, "__tostring") && lua_type(L, -1) == LUA_TSTRING) {
+    std::string text = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    return text;
+  }
+  return std::string("(error object is a ") + luaL_typename(L, index) + " value)";
+}
+
+// load() with the mode forced to text: precompiled chunks bypass the parser's checks.
+int text_only_load(lua_State* L) {
+  if (lua_gettop(L) < 3) lua_settop(L, 3);  // pads chunkname/mode; an absent 'env' must stay absent
+  lua_pushliteral(L, "t");
+  lua_replace(L, 3);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, LUA_MULTRET);
+  return lua_gettop(L);
+}
+
+// require(name): <deck dir>/name.lua, <deck dir>/name/init.lua, then the same under lua_dir.
+int lua_require(lua_State* L) {
+  const std::string name = luaL_checkstring(L, 1);
+  lua_settop(L, 1);
+  lua_getfield(L, LUA_REGISTRYINDEX, kLoadedKey);  // 2
+  if (lua_getfield(L, 2, name.c_str()) != LUA_TNIL) return 1;
+  lua_pop(L, 1);
+  if (name.empty() || name.front() == '.' || name.find_first_of("/\\") != std::string::npos ||
+      name.find("..") != std::string::npos)
+    raise_deck_error(L, "require: invalid module name '" + name + "' (use dots for folders, e.g. 'tire.profiles')");
+
+  std::string relative = name;
+  std::replace(relative.begin(), relative.end(), '.', '/');
+  const LuaSandbox* self = LuaSandbox::from(L);
+  std::vector<fs::path> dirs;
+  if (self) {
+    const fs::path deck_dir = fs::path(self->deck_path()).parent_path();
+    dirs.push_back(deck_dir.empty() ? fs::path(".") : deck_dir);
+    if (!self->lua_dir().empty()) dirs.emplace_back(self->lua_dir());
+  }
+  std::vector<std::string> tried;
+  for (const auto& dir : dirs) {
+    for (const auto& candidate : {dir / (relative + ".lua"), dir / relative / "init.lua"}) {
+      tried.push_back(candidate.string());
+      std::error_code ec;
+      if (!fs::is_regular_file(candidate, ec)) continue;
+      if (luaL_loadfilex(L, tried.back().c_str(), "t") != LUA_OK)
+        raise_deck_error(L, "cannot load module '" + name + "': " + error_text(L, -1));
+      lua_pushstring(L, name.c_str());
+      lua_pushstring(L, tried.back().c_str());
+      lua_call(L, 2, 1);
+      if (lua_isnil(L, -1)) {  // modules returning nothing are cached as 'true', as in standard Lua
+        lua_pop(L, 1);
+        lua_pushboolean(L, 1);
+      }
+      lua_pushvalue(L, -1);
+      lua_setfield(L, 2, name.c_str());
+      return 1;
+    }
+  }
+  raise_deck_error(L, "module '" + name + "' not found; searched: " + join(tried));
+}
+
+}  // namespace
+
+LuaSandbox::LuaSandbox(std::string lua_dir) : lua_dir_(std::move(lua_dir)), state_(luaL_newstate(), lua_close) {
+  if (!state_) throw std::runtime_error("cannot create a Lua state (out of memory)");
+  lua_State* L = state();
+  lua_pushlightuserdata(L, this);
+  lua_setfield(L, LUA_REGISTRYINDEX, kSandboxKey);
+  lua_newtable(L);
+  lua_setfield(L, LUA_REGISTRYINDEX, kLoadedKey);
+  open_safe_libraries();
+  register_function("parameters", protected_call<lua_parameters>);
+}
+
+LuaSandbox* LuaSandbox::from(lua_State* L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, kSandboxKey);
+  auto* self = static_cast<LuaSandbox*>(lua_touserdata(L, -1));
+  lua_pop(L, 1);
+  return self;
+}
+
+void LuaSandbox::open_safe_libraries() {
+  lua_State* L = state();
+  static const luaL_Reg libraries[] = {{LUA_GNAME, luaopen_base},       {LUA_TABLIBNAME, luaopen_table},
+                                       {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
+                                       {LUA_UTF8LIBNAME, luaopen_utf8},  {LUA_COLIBNAME, luaopen_coroutine}};
+  for (const auto& library : libraries) {
+    luaL_requiref(L, library.name, library.func, 1);
+    lua_pop(L, 1);
+  }
+  // os: clocks, dates and environment only; the rest reaches files and processes.
+  luaL_requiref(L, LUA_OSLIBNAME, luaopen_os, 0);
+  lua_newtable(L);
+  for (const char* name : {"clock", "time", "date", "getenv"}) {
+    lua_getfield(L, -2, name);
+    lua_setfield(L, -2, name);
+  }
+  lua_setglobal(L, LUA_OSLIBNAME);
+  lua_pop(L, 1);
+
+  for (const char* name : {"dofile", "loadfile"}) {  // file access goes through require() only
+    lua_pushnil(L);
+    lua_setglobal(L, name);
+  }
+  lua_getglobal(L, "load");
+  lua_pushcclosure(L, text_only_load, 1);
+  lua_setglobal(L, "load");
+  lua_pushcfunction(L, lua_require);
+  lua_setglobal(L, "require");
+}
+
+void LuaSandbox::register_function(const char* name, lua_CFunction f) {
+  lua_State* L = state();
+  if (lua_getglobal(L, "tirefe") != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_setglobal(L, "tirefe");
+  }
+  lua_pushcfunction(L, f);
+  lua_setfield(L, -2, name);
+  lua_pop(L, 1);
+}
+
+int LuaSandbox::message_handler(lua_State* L) {
+  LuaSandbox* self = from(L);
+  const std::string deck = self ? self->deck_path_ : std::string();
+  std::string where = deck_location(L);
+  std::string text = error_text(L, 1);
+  // Re-anchor Lua's own "file:LINE: " prefix on the deck line; keep the inner origin as a hint.
+  if (const auto location = split_location(text)) {
+    if (const auto chunk = chunk_on_stack(L, location->file, deck)) {
+      const std::string origin = chunk->first + ":" + location->line;
+      text = location->body;
+      if (chunk->second)
+        where = origin + ": ";  // may be a caller's line, via error(msg, 2)
+      else if (origin + ": " != where)
+        text += " (raised at " + origin + ")";
+    }
+  }
+  if (where.empty() && !deck.empty()) where = deck + ": ";
+  text = where + text;
+  luaL_traceback(L, L, text.c_str(), 1);
+  if (self) self->last_traceback_ = lua_tostring(L, -1);
+  lua_pushstring(L, text.c_str());
+  return 1;
+}
+
+void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::string, std::string>& overrides) {
+  deck_path_ = deck_path;
+  overrides_ = overrides;
+  parameters_called_ = false;
+  last_traceback_.clear();
+  std::ifstream in(deck_path, std::ios::binary);
+  if (!in) throw DeckError(deck_path + ": cannot open the deck file");
+  deck_text_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (deck_text_.rfind(LUA_SIGNATURE, 0) == 0)
+    throw DeckError(deck_path + ": is a precompiled (binary) Lua chunk; decks must be Lua source text");
+  register_function("parameters", protected_call<lua_parameters>);  // the bindings may have replaced 'tirefe'
+
+  lua_State* L = state();
+  const int base = lua_gettop(L);
+  lua_pushcfunction(L, message_handler);
+  int status = luaL_loadfilex(L, deck_path.c_str(), "t");
+  const bool loaded = status == LUA_OK;
+  if (loaded) status = lua_pcall(L, 0, 0, base + 1);
+  if (status != LUA_OK) {
+    std::string message = error_text(L, -1);
+    lua_settop(L, base);
+    if (!loaded) {  // the parser names the deck by its (possibly truncated) short_src
+      if (const auto location = split_location(message))
+        message = deck_path + ":" + location->line + ": " + location->body;
+    }
+    if (message.rfind(deck_path + ":", 0) != 0) message = deck_path + ": " + message;
+    throw DeckError(message);
+  }
+  lua_settop(L, base);
+  if (!parameters_called_ && !overrides_.empty())
+    throw DeckError(deck_path + ": command-line parameter '" + overrides_.begin()->first +
+                    "' is not declared by the deck (declare it with tirefe.parameters{...})");
+}
+
+std::string deck_location(lua_State* L) {
+  const LuaSandbox* self = LuaSandbox::from(L);
+  const std::string deck_source = self && !self->deck_path().empty() ? "@" + self->deck_path() : std::string();
+  std::string innermost;
+  lua_Debug ar;
+  for (int level = 0; lua_getstack(L, level, &ar); ++level) {
+    lua_getinfo(L, "Sl", &ar);
+    if (ar.currentline <= 0) continue;  // C functions carry no line
+    std::string where = display_name(ar) + ":" + std::to_string(ar.currentline) + ": ";
+    if (!deck_source.empty() && deck_source == ar.source) return where;
+    if (innermost.empty()) innermost = std::move(where);
+  }
+  return innermost;
+}
+
+void raise_deck_error(lua_State* L, const std::string& message) {
+  const std::string text = deck_location(L) + message;
+  lua_pushlstring(L, text.data(), text.size());
+  lua_error(L);  // C++ build: throws, so 'text' and the callers' locals are destroyed properly
+  std::abort();  // unreachable; lua_error is not declared [[noreturn]]
+}
+
+bool push_parsed(lua_State* L, int lua_type, bool integer, const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  if (lua_type == LUA_TNUMBER && integer) {
+    const long long value = std::strtoll(begin, &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE) return false;
+    lua_pushinteger(L, static_cast<lua_Integer>(value));
+  } else if (lua_type == LUA_TNUMBER) {
+    const double value = std::strtod(begin, &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(value)) return false;
+    lua_pushnumber(L, value);
+  } else if (lua_type == LUA_TBOOLEAN) {
+    if (text != "true" && text != "false") return false;
+    lua_pushboolean(L, text == "true");
+  } else if (lua_type == LUA_TSTRING) {
+    lua_pushlstring(L, text.data(), text.size());
+  } else {
+    return false;
+  }
+  return true;
+}
+
+int lua_parameters(lua_State* L) {
+  if (!lua_istable(L, 1))
+    raise_deck_error(L, "tirefe.parameters expects a table of defaults, e.g. tirefe.parameters{ speed_kmh = 50 }");
+  lua_settop(L, 1);
+  lua_newtable(L);  // 2: the result; the deck's defaults table stays untouched
+  std::vector<std::string> declared;
+  lua_pushnil(L);
+  while (lua_next(L, 1)) {
+    if (lua_type(L, -2) != LUA_TSTRING) raise_deck_error(L, "tirefe.parameters: parameter names must be strings");
+    declared.emplace_back(lua_tostring(L, -2));
+    lua_pushvalue(L, -2);
+    lua_insert(L, -2);
+    lua_rawset(L, 2);
+  }
+  std::sort(declared.begin(), declared.end());
+
+  LuaSandbox* self = LuaSandbox::from(L);
+  if (!self) return 1;
+  self->parameters_called_ = true;
+  for (const auto& [key, text] : self->overrides_) {
+    lua_getfield(L, 2, key.c_str());
+    const int type = lua_type(L, -1);
+    const bool is_integer = lua_isinteger(L, -1);
+    const std::string default_text = luaL_tolstring(L, -1, nullptr);
+    lua_pop(L, 2);
+    if (type == LUA_TNIL)
+      raise_deck_error(L, "command-line parameter '" + key + "' is not declared by the deck (declared: " +
+                              join(declared) + ")");
+    if (type != LUA_TNUMBER && type != LUA_TBOOLEAN && type != LUA_TSTRING)
+      raise_deck_error(L, "command-line parameter '" + key + "' cannot override a " + lua_typename(L, type) +
+                              " default");
+    if (!push_parsed(L, type, is_integer, text)) {
+      const char* expected = type == LUA_TBOOLEAN ? "true or false" : is_integer ? "an integer" : "a number";
+      raise_deck_error(L, "command-line parameter '" + key + "=" + text + "' must be " + expected +
+                              " like its default " + default_text);
+    }
+    lua_setfield(L, 2, key.c_str());
+  }
+  return 1;
+}
+
+}  // namespace tirefe::macros

@@ -1,0 +1,397 @@
+// Validation of macro argument tables against their MacroSpec, typed accessors, and the
+// generated Markdown reference. One checker per value type serves validation and accessors.
+#include "macros/macro_spec.hpp"
+
+#include "macros/lua_sandbox.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+namespace tirefe::macros {
+namespace {
+
+using Problem = std::optional<std::string>;  // a violation message, starting with "key '...'"
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+std::string format_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.14g", value);
+  return buffer;
+}
+
+const char* type_name(ValueType type) {
+  switch (type) {
+    case ValueType::Number: return "number";
+    case ValueType::Integer: return "integer";
+    case ValueType::String: return "string";
+    case ValueType::Boolean: return "boolean";
+    case ValueType::NumberList: return "list of numbers";
+    case ValueType::IntegerList: return "list of integers";
+    case ValueType::NumberMatrix: return "list of equal-length number lists";
+    case ValueType::StringList: return "list of strings";
+    case ValueType::Function: return "function";
+    case ValueType::Table: return "table";
+    case ValueType::Any: return "any value";
+  }
+  return "?";
+}
+
+std::string with_article(ValueType type) {
+  const std::string name = type_name(type);
+  return (name.front() == 'i' ? "an " : "a ") + name;
+}
+
+// Short form for messages, e.g. string "abc" or number 2.5. Never converts numbers in place
+// (lua_tostring would, which breaks lua_next traversals).
+std::string describe_value(lua_State* L, int index) {
+  switch (lua_type(L, index)) {
+    case LUA_TSTRING: {
+      std::string text = lua_tostring(L, index);
+      if (text.size() > 40) text = text.substr(0, 37) + "...";
+      return "string \"" + text + "\"";
+    }
+    case LUA_TNUMBER:
+      return "number " + (lua_isinteger(L, index) ? std::to_string(lua_tointeger(L, index))
+                                                   : format_number(lua_tonumber(L, index)));
+    case LUA_TBOOLEAN: return lua_toboolean(L, index) ? "boolean true" : "boolean false";
+    default: return luaL_typename(L, index);
+  }
+}
+
+Problem type_problem(lua_State* L, int index, ValueType type, const std::string& what) {
+  return what + " must be " + with_article(type) + ", got " + describe_value(L, index);
+}
+
+Problem check_number(lua_State* L, int index, ValueType type, const ParameterSpec& p, const std::string& what) {
+  if (lua_type(L, index) != LUA_TNUMBER) return type_problem(L, index, type, what);
+  const double value = lua_tonumber(L, index);
+  if (!std::isfinite(value)) return what + " is not a finite number";
+  int exact = 0;
+  if (type == ValueType::Integer) lua_tointegerx(L, index, &exact);  // accepts integral floats such as 1e3
+  if (type == ValueType::Integer && !exact) return type_problem(L, index, type, what);
+  const bool ok = p.range == Range::Positive      ? value > 0
+                  : p.range == Range::NonNegative ? value >= 0
+                  : p.range == Range::Fraction01  ? value >= 0 && value <= 1
+                                                  : true;
+  if (ok) return std::nullopt;
+  const char* bound = p.range == Range::Positive ? "positive" : p.range == Range::NonNegative ? "non-negative"
+                                                                                              : "between 0 and 1";
+  return what + " must be " + bound + " (got " + format_number(value) + ")";
+}
+
+// A table whose keys are exactly 1..#t; 'index' must be absolute.
+Problem check_sequence(lua_State* L, int index, ValueType type, const std::string& what) {
+  if (!lua_istable(L, index)) return type_problem(L, index, type, what);
+  const auto length = static_cast<lua_Integer>(lua_rawlen(L, index));
+  lua_pushnil(L);
+  while (lua_next(L, index)) {
+    int is_integer = 0;
+    const lua_Integer position = lua_tointegerx(L, -2, &is_integer);
+    if (!is_integer || position < 1 || position > length) {
+      Problem problem = what + " must be " + with_article(type) + " {a, b, ...}, found key " + describe_value(L, -2);
+      lua_pop(L, 2);
+      return problem;
+    }
+    lua_pop(L, 1);
+  }
+  return std::nullopt;
+}
+
+// A sequence of numbers (integers for IntegerList), each within p.range.
+Problem check_list(lua_State* L, int index, ValueType type, const ParameterSpec& p, const std::string& what) {
+  if (Problem problem = check_sequence(L, index, type, what)) return problem;
+  const auto length = static_cast<lua_Integer>(lua_rawlen(L, index));
+  const ValueType entry_type = type == ValueType::IntegerList ? ValueType::Integer : ValueType::Number;
+  for (lua_Integer i = 1; i <= length; ++i) {
+    lua_rawgeti(L, index, i);
+    Problem problem = check_number(L, lua_gettop(L), entry_type, p, what + " entry " + std::to_string(i));
+    lua_pop(L, 1);
+    if (problem) return problem;
+  }
+  return std::nullopt;
+}
+
+Problem check_matrix(lua_State* L, int index, const ParameterSpec& p, const std::string& what) {
+  if (Problem problem = check_sequence(L, index, ValueType::NumberMatrix, what)) return problem;
+  const auto rows = static_cast<lua_Integer>(lua_rawlen(L, index));
+  size_t width = 0;
+  for (lua_Integer r = 1; r <= rows; ++r) {
+    lua_rawgeti(L, index, r);
+    Problem problem = check_list(L, lua_gettop(L), ValueType::NumberList, p, what + " row " + std::to_string(r));
+    const size_t row_width = lua_rawlen(L, -1);
+    lua_pop(L, 1);
+    if (problem) return problem;
+    if (r == 1) width = row_width;
+    if (row_width != width)
+      return what + " row " + std::to_string(r) + " has " + std::to_string(row_width) + " entries, expected " +
+             std::to_string(width) + " like row 1";
+  }
+  return std::nullopt;
+}
+
+Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec& p, const std::string& what) {
+  index = lua_absindex(L, index);
+  switch (type) {
+    case ValueType::Number:
+    case ValueType::Integer: return check_number(L, index, type, p, what);
+    case ValueType::NumberList:
+    case ValueType::IntegerList: return check_list(L, index, type, p, what);
+    case ValueType::NumberMatrix: return check_matrix(L, index, p, what);
+    case ValueType::String: {
+      if (lua_type(L, index) != LUA_TSTRING) return type_problem(L, index, type, what);
+      const std::string value = lua_tostring(L, index);
+      if (p.choices.empty() || std::find(p.choices.begin(), p.choices.end(), value) != p.choices.end())
+        return std::nullopt;
+      return what + " must be one of " + join(p.choices) + " (got '" + value + "')";
+    }
+    case ValueType::StringList: {
+      if (Problem problem = check_sequence(L, index, type, what)) return problem;
+      const auto length = static_cast<lua_Integer>(lua_rawlen(L, index));
+      for (lua_Integer i = 1; i <= length; ++i) {
+        lua_rawgeti(L, index, i);
+        Problem problem = check_value(L, -1, ValueType::String, p, what + " entry " + std::to_string(i));
+        lua_pop(L, 1);
+        if (problem) return problem;
+      }
+      return std::nullopt;
+    }
+    case ValueType::Boolean: return lua_isboolean(L, index) ? std::nullopt : type_problem(L, index, type, what);
+    case ValueType::Function: return lua_isfunction(L, index) ? std::nullopt : type_problem(L, index, type, what);
+    case ValueType::Table: return lua_istable(L, index) ? std::nullopt : type_problem(L, index, type, what);
+    case ValueType::Any: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+// Edit distance ignoring case; a substitution costs a little more the further apart the letters
+// are, so that neighbours (EJ -> EI rather than EA) win ties.
+double typo_distance(const std::string& a, const std::string& b) {
+  std::vector<double> row(b.size() + 1), next(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<double>(j);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    next[0] = static_cast<double>(i);
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const int x = std::tolower(static_cast<unsigned char>(a[i - 1]));
+      const int y = std::tolower(static_cast<unsigned char>(b[j - 1]));
+      const double substitute = row[j - 1] + (x == y ? 0.0 : 1.0 + std::abs(x - y) / 1000.0);
+      next[j] = std::min({row[j] + 1.0, next[j - 1] + 1.0, substitute});
+    }
+    std::swap(row, next);
+  }
+  return row[b.size()];
+}
+
+std::string unknown_key_message(const MacroSpec& spec, const std::string& key) {
+  std::vector<std::string> known;
+  const std::string* best = nullptr;
+  double best_distance = 0;
+  for (const auto& p : spec.parameters) {
+    known.push_back(p.key);
+    const double distance = typo_distance(key, p.key);
+    if (distance < 2.5 && distance < static_cast<double>(p.key.size()) && (!best || distance < best_distance)) {
+      best = &p.key;
+      best_distance = distance;
+    }
+  }
+  const std::string hint = best ? "did you mean '" + *best + "'?; " : "";
+  return "macro '" + spec.name + "': unknown key '" + key + "' (" + hint + "known keys: " + join(known) + ")";
+}
+
+int push_field(lua_State* L, int table, const std::string& key) {
+  lua_pushlstring(L, key.data(), key.size());
+  return lua_rawget(L, table);
+}
+
+std::vector<double> to_number_list(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  std::vector<double> values(lua_rawlen(L, index));
+  for (size_t i = 0; i < values.size(); ++i) {
+    lua_rawgeti(L, index, static_cast<lua_Integer>(i + 1));
+    values[i] = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
+  return values;
+}
+
+}  // namespace
+
+MacroArguments::MacroArguments(lua_State* L, int table_index, const MacroSpec& spec)
+    : L_(L), table_(lua_absindex(L, table_index)), spec_(spec) {
+  const std::string macro = "macro '" + spec.name + "'";
+  if (!lua_istable(L, table_)) {
+    const bool one_line_example = !spec.example.empty() && spec.example.find('\n') == std::string::npos;
+    raise_deck_error(L, macro + " expects a table of named arguments, e.g. " +
+                            (one_line_example ? spec.example : "tirefe." + spec.name + "{...}"));
+  }
+  std::vector<std::string> unknown;
+  lua_pushnil(L);
+  while (lua_next(L, table_)) {
+    if (lua_type(L, -2) != LUA_TSTRING)
+      raise_deck_error(L, macro + " takes named arguments only, got a positional " + describe_value(L, -1));
+    std::string key = lua_tostring(L, -2);
+    const bool known = std::any_of(spec.parameters.begin(), spec.parameters.end(),
+                                   [&](const ParameterSpec& p) { return p.key == key; });
+    if (!known) unknown.push_back(std::move(key));
+    lua_pop(L, 1);
+  }
+  if (!unknown.empty())  // report the alphabetically first, so the message does not depend on hash order
+    raise_deck_error(L, unknown_key_message(spec, *std::min_element(unknown.begin(), unknown.end())));
+
+  for (const auto& p : spec.parameters) {
+    if (push_field(L, table_, p.key) == LUA_TNIL) {
+      lua_pop(L, 1);
+      if (!p.required) continue;
+      std::string meaning = p.doc;
+      if (!p.unit.empty()) meaning += (meaning.empty() ? "" : ", ") + p.unit;
+      raise_deck_error(L, macro + ": missing required key '" + p.key + "'" +
+                              (meaning.empty() ? "" : " (" + meaning + ")"));
+    }
+    const Problem problem = check_value(L, -1, p.type, p, "key '" + p.key + "'");
+    lua_pop(L, 1);
+    if (problem) raise_deck_error(L, macro + ": " + *problem);
+  }
+}
+
+const ParameterSpec& MacroArguments::parameter(const std::string& key) const {
+  for (const auto& p : spec_.parameters)
+    if (p.key == key) return p;
+  throw std::logic_error("macro '" + spec_.name + "': the binding reads key '" + key + "', which its spec lacks");
+}
+
+bool MacroArguments::has(const std::string& key) const {
+  parameter(key);
+  const bool present = push_field(L_, table_, key) != LUA_TNIL;
+  lua_pop(L_, 1);
+  return present;
+}
+
+void MacroArguments::push_value(const std::string& key) const {
+  parameter(key);
+  push_field(L_, table_, key);
+}
+
+// Absent key: the explicit fallback, else the spec default; then the same check as validation,
+// which also catches a binding reading a key with the wrong accessor.
+template <class T>
+T MacroArguments::read(const std::string& key, ValueType as, const T* fallback, T (*convert)(lua_State*, int)) const {
+  const ParameterSpec& p = parameter(key);
+  const std::string macro = "macro '" + spec_.name + "': ";
+  if (push_field(L_, table_, key) == LUA_TNIL) {
+    lua_pop(L_, 1);
+    if (fallback) return *fallback;
+    const bool scalar = as == ValueType::Number || as == ValueType::Integer || as == ValueType::Boolean ||
+                        as == ValueType::String;
+    const int lua_type = as == ValueType::Boolean ? LUA_TBOOLEAN : as == ValueType::String ? LUA_TSTRING : LUA_TNUMBER;
+    if (!scalar || !p.default_value || !push_parsed(L_, lua_type, as == ValueType::Integer, *p.default_value))
+      throw std::logic_error(macro + "key '" + key + "' was not given and has no usable default");
+  }
+  if (const Problem problem = check_value(L_, -1, as, p, "key '" + key + "'")) {
+    lua_pop(L_, 1);
+    throw std::runtime_error(macro + *problem);
+  }
+  T value = convert(L_, lua_gettop(L_));
+  lua_pop(L_, 1);
+  return value;
+}
+
+double MacroArguments::number(const std::string& key) const {
+  return read<double>(key, ValueType::Number, nullptr, [](lua_State* L, int i) { return lua_tonumber(L, i); });
+}
+double MacroArguments::number_or(const std::string& key, double fallback) const {
+  return read<double>(key, ValueType::Number, &fallback, [](lua_State* L, int i) { return lua_tonumber(L, i); });
+}
+long long MacroArguments::integer(const std::string& key) const {
+  return read<long long>(key, ValueType::Integer, nullptr,
+                         [](lua_State* L, int i) { return static_cast<long long>(lua_tointeger(L, i)); });
+}
+long long MacroArguments::integer_or(const std::string& key, long long fallback) const {
+  return read<long long>(key, ValueType::Integer, &fallback,
+                         [](lua_State* L, int i) { return static_cast<long long>(lua_tointeger(L, i)); });
+}
+std::string MacroArguments::string(const std::string& key) const {
+  return read<std::string>(key, ValueType::String, nullptr,
+                           [](lua_State* L, int i) { return std::string(lua_tostring(L, i)); });
+}
+std::string MacroArguments::string_or(const std::string& key, const std::string& fallback) const {
+  return read<std::string>(key, ValueType::String, &fallback,
+                           [](lua_State* L, int i) { return std::string(lua_tostring(L, i)); });
+}
+bool MacroArguments::boolean(const std::string& key) const {
+  return read<bool>(key, ValueType::Boolean, nullptr, [](lua_State* L, int i) { return lua_toboolean(L, i) != 0; });
+}
+bool MacroArguments::boolean_or(const std::string& key, bool fallback) const {
+  return read<bool>(key, ValueType::Boolean, &fallback, [](lua_State* L, int i) { return lua_toboolean(L, i) != 0; });
+}
+std::vector<double> MacroArguments::number_list(const std::string& key) const {
+  return read<std::vector<double>>(key, ValueType::NumberList, nullptr, to_number_list);
+}
+std::vector<long long> MacroArguments::integer_list(const std::string& key) const {
+  return read<std::vector<long long>>(key, ValueType::IntegerList, nullptr, [](lua_State* L, int index) {
+    std::vector<long long> values(lua_rawlen(L, index));
+    for (size_t i = 0; i < values.size(); ++i) {
+      lua_rawgeti(L, index, static_cast<lua_Integer>(i + 1));
+      values[i] = static_cast<long long>(lua_tointeger(L, -1));
+      lua_pop(L, 1);
+    }
+    return values;
+  });
+}
+std::vector<std::string> MacroArguments::string_list(const std::string& key) const {
+  return read<std::vector<std::string>>(key, ValueType::StringList, nullptr, [](lua_State* L, int index) {
+    std::vector<std::string> values(lua_rawlen(L, index));
+    for (size_t i = 0; i < values.size(); ++i) {
+      lua_rawgeti(L, index, static_cast<lua_Integer>(i + 1));
+      values[i] = lua_tostring(L, -1);
+      lua_pop(L, 1);
+    }
+    return values;
+  });
+}
+std::vector<std::vector<double>> MacroArguments::number_matrix(const std::string& key) const {
+  return read<std::vector<std::vector<double>>>(key, ValueType::NumberMatrix, nullptr, [](lua_State* L, int index) {
+    std::vector<std::vector<double>> rows(lua_rawlen(L, index));
+    for (size_t r = 0; r < rows.size(); ++r) {
+      lua_rawgeti(L, index, static_cast<lua_Integer>(r + 1));
+      rows[r] = to_number_list(L, -1);
+      lua_pop(L, 1);
+    }
+    return rows;
+  });
+}
+
+std::string markdown_reference(const std::vector<MacroSpec>& specs) {
+  const auto cell = [](std::string text) {  // '|' would split the table cell
+    for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+    return text;
+  };
+  std::string out = "# tirefe macro reference\n\nEvery macro takes one table of named arguments: `tirefe.name{key = value, ...}`.\n";
+  for (const auto& spec : specs) {
+    out += "\n## " + spec.name + "\n\n" + spec.doc + "\n\n";
+    out += "| key | type | unit | required / default | meaning |\n|---|---|---|---|---|\n";
+    for (const auto& p : spec.parameters) {
+      std::string type = type_name(p.type);
+      if (p.range == Range::Positive) type += " > 0";
+      if (p.range == Range::NonNegative) type += " >= 0";
+      if (p.range == Range::Fraction01) type += " in [0, 1]";
+      const std::string need = p.required ? "required" : p.default_value ? "default `" + *p.default_value + "`" : "optional";
+      std::string meaning = p.doc;
+      std::vector<std::string> choices;
+      for (const auto& choice : p.choices) choices.push_back("`" + choice + "`");
+      if (!choices.empty()) meaning += " One of: " + join(choices) + ".";
+      out += "| `" + p.key + "` | " + cell(type) + " | " + cell(p.unit) + " | " + cell(need) + " | " + cell(meaning) +
+             " |\n";
+    }
+    if (!spec.example.empty()) out += "\nExample:\n\n```lua\n" + spec.example + "\n```\n";
+  }
+  return out;
+}
+
+}  // namespace tirefe::macros

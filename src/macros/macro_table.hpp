@@ -1,0 +1,50 @@
+// MacroTable: every macro a deck can call, each a documented spec plus a handler.
+// Module macros are called as tirefe.name{...}; model macros as model:name{...} on a
+// model made by tirefe.model{...}. One generic Lua entry point validates the argument
+// table against the spec and turns C++ exceptions into deck errors at the calling line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "macros/lua_sandbox.hpp"
+#include "macros/macro_spec.hpp"
+
+namespace tirefe::macros {
+
+class DeckModel;
+struct DeckSession;
+
+/// Handlers return the number of Lua results they pushed.
+using ModuleHandler = int (*)(lua_State* L, DeckSession& session, const MacroArguments& arguments);
+using ModelHandler = int (*)(lua_State* L, DeckModel& model, const MacroArguments& arguments);
+
+struct ModuleMacro {
+  MacroSpec spec;
+  ModuleHandler handler;
+};
+struct ModelMacro {
+  MacroSpec spec;
+  ModelHandler handler;
+};
+
+struct MacroTable {
+  std::vector<ModuleMacro> module_macros;
+  std::vector<ModelMacro> model_macros;
+};
+
+/// All macros of tirefe (each group of macros adds itself in its own file).
+const MacroTable& macro_table();
+void add_model_macros(MacroTable& table);
+
+/// Installs tirefe.* and the model methods into the sandbox's Lua state.
+void install_macros(LuaSandbox& sandbox, DeckSession& session);
+/// Markdown reference of every macro (docs/macros.md is generated from it).
+std::string macro_reference();
+
+/// The DeckModel behind a model userdata at 'index' (raises a deck error otherwise).
+DeckModel& check_model(lua_State* L, int index);
+/// Pushes a new model userdata owning a DeckModel.
+DeckModel& push_new_model(lua_State* L, const std::string& title, DeckSession& session);
+
+}  // namespace tirefe::macros

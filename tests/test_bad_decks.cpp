@@ -1,0 +1,102 @@
+// Bad decks (tests/bad_decks/): each must stop with a one-line error that names the deck
+// file and line and says what is wrong, exit with status 1, and never crash. Each deck
+// states its expectation in its first lines:
+//   -- expect line N: text that must appear in the message   (N = 0: no line number)
+//   -- args: key=value ...                                   (optional command-line parameters)
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_status;
+  std::string errors;  // standard error
+};
+
+RunResult run_tirefe(const std::string& arguments) {
+  const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
+  const std::string command = std::string(TIREFE_BINARY) + " " + arguments + " --quiet --output-dir " +
+                              output.string() + " 2>&1 >/dev/null";
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string errors;
+  std::array<char, 512> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe)) errors += buffer.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), errors};
+}
+
+struct Expectation {
+  int line = -1;
+  std::string text;
+  std::string arguments;
+};
+
+Expectation read_expectation(const fs::path& deck) {
+  std::ifstream in(deck);
+  Expectation expectation;
+  std::string line;
+  const std::regex expect_pattern(R"(^-- expect line (\d+): (.*)$)"), args_pattern(R"(^-- args: (.*)$)");
+  for (int i = 0; i < 5 && std::getline(in, line); ++i) {
+    std::smatch match;
+    if (std::regex_match(line, match, expect_pattern)) {
+      expectation.line = std::stoi(match[1]);
+      expectation.text = match[2];
+    } else if (std::regex_match(line, match, args_pattern)) {
+      expectation.arguments = match[1];
+    }
+  }
+  return expectation;
+}
+
+}  // namespace
+
+TEST_CASE("every bad deck gets a clear one-line error with file and line", "[decks][bad]") {
+  const fs::path folder = fs::path(TIREFE_TEST_DATA_DIR) / "bad_decks";
+  int decks = 0;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    if (entry.path().extension() != ".lua") continue;
+    const Expectation expectation = read_expectation(entry.path());
+    const std::string deck = entry.path().string();
+    INFO("deck " << deck);
+    REQUIRE(expectation.line >= 0);
+    const RunResult result = run_tirefe(deck + " " + expectation.arguments);
+    INFO("message: " << result.errors);
+    CHECK(result.exit_status == 1);
+    CHECK(std::count(result.errors.begin(), result.errors.end(), '\n') == 1);
+    CHECK(result.errors.find(expectation.text) != std::string::npos);
+    if (expectation.line > 0)
+      CHECK(result.errors.rfind("tirefe: " + deck + ":" + std::to_string(expectation.line) + ": ", 0) == 0);
+    else
+      CHECK(result.errors.find(deck) != std::string::npos);
+    ++decks;
+  }
+  CHECK(decks >= 19);
+}
+
+TEST_CASE("the self-checking decks in inputs/ pass their checks", "[decks]") {
+  for (const char* deck : {"cantilever_elastica.lua", "cantilever_rollup.lua"}) {
+    const std::string path = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / deck).string();
+    INFO("deck " << path);
+    const RunResult result = run_tirefe(path);
+    INFO("errors: " << result.errors);
+    CHECK(result.exit_status == 0);
+  }
+}
+
+TEST_CASE("a deck whose self-check fails exits with status 3", "[decks]") {
+  const fs::path deck = fs::temp_directory_path() / "tirefe_failing_check.lua";
+  std::ofstream(deck) << "tirefe.check{ name = \"one is two\", value = 1, expected = 2, tolerance = 0.5 }\n";
+  CHECK(run_tirefe(deck.string()).exit_status == 3);
+  fs::remove(deck);
+}
