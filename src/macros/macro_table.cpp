@@ -171,14 +171,13 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
 
 std::string macro_reference() {
   std::vector<MacroSpec> specs;
-  for (const auto& macro : macro_table().module_macros) specs.push_back(macro.spec);
-  for (auto spec : [] {
-         std::vector<MacroSpec> methods;
-         for (const auto& macro : macro_table().model_macros) methods.push_back(macro.spec);
-         return methods;
-       }()) {
-    spec.name = "model:" + spec.name;
-    specs.push_back(spec);
+  for (const auto& macro : macro_table().module_macros) {
+    specs.push_back(macro.spec);
+    specs.back().name = "tirefe." + macro.spec.name;
+  }
+  for (const auto& macro : macro_table().model_macros) {
+    specs.push_back(macro.spec);
+    specs.back().name = "model:" + macro.spec.name;
   }
   return markdown_reference(specs);
 }
