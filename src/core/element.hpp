@@ -10,6 +10,12 @@
 // loops over one block of them, gathers, evaluates and scatters without allocating,
 // and keeps their history as committed + trial copies (commit on an accepted step,
 // revert on a cut step).
+//
+// Augmented-Lagrangian kernels (contact) also get a per-step base history: evaluations
+// start from it, and between Newton solves of one step augment() may update it (Uzawa
+// multiplier updates) from the converged trial history. It starts each step equal to the
+// committed history, so a cut step reverts the multipliers too. A kernel opts in with
+//     bool augment(History& base, const History& trial) const;   // true: solve again
 #pragma once
 
 #include <Eigen/Dense>
@@ -17,6 +23,8 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/mesh.hpp"
@@ -87,9 +95,20 @@ class ElementBlock {
   virtual ElementEnergy energy(const State& state) const = 0;
   virtual void commit() = 0;
   virtual void revert() = 0;
+  /// Uzawa update after a converged Newton solve; true if the block wants another solve.
+  virtual bool augment() { return false; }
 };
 
 struct NoHistory {};
+
+namespace detail {
+template <class Kernel, class = void>
+struct HasAugment : std::false_type {};
+template <class Kernel>
+struct HasAugment<Kernel, std::void_t<decltype(std::declval<const Kernel&>().augment(
+                              std::declval<typename Kernel::History&>(),
+                              std::declval<const typename Kernel::History&>()))>> : std::true_type {};
+}  // namespace detail
 
 template <class Kernel>
 class ElementBlockOf final : public ElementBlock {
@@ -106,6 +125,7 @@ class ElementBlockOf final : public ElementBlock {
     nodes_.push_back(nodes);
     kernels_.push_back(std::move(kernel));
     committed_.emplace_back();
+    base_.emplace_back();
     trial_.emplace_back();
     return size() - 1;
   }
@@ -120,6 +140,10 @@ class ElementBlockOf final : public ElementBlock {
   Kernel& kernel(int element) { return kernels_[element]; }
   const History& trial_history(int element) const { return trial_[element]; }
   const History& committed_history(int element) const { return committed_[element]; }
+  /// Sets an element's history (initial contact state, restart) as committed.
+  void set_history(int element, const History& history) {
+    committed_[element] = base_[element] = trial_[element] = history;
+  }
 
   void bind_tangent_slots(std::vector<int> slots) override { slots_ = std::move(slots); }
 
@@ -130,8 +154,8 @@ class ElementBlockOf final : public ElementBlock {
     const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
     for (int e = 0; e < size(); ++e) {
       gather(e, state, local);
-      trial_[e] = committed_[e];
-      kernels_[e].evaluate(local, context, committed_[e], trial_[e], residual,
+      trial_[e] = base_[e];
+      kernels_[e].evaluate(local, context, base_[e], trial_[e], residual,
                            with_tangent ? &tangent : nullptr);
       if (!residual.allFinite()) throw_non_finite(e, "residual");
       scatter_residual(e, residual, *target.residual);
@@ -149,8 +173,23 @@ class ElementBlockOf final : public ElementBlock {
     return total;
   }
 
-  void commit() override { committed_ = trial_; }
-  void revert() override { trial_ = committed_; }
+  void commit() override {
+    committed_ = trial_;
+    base_ = trial_;
+  }
+  void revert() override {
+    trial_ = committed_;
+    base_ = committed_;
+  }
+  bool augment() override {
+    if constexpr (detail::HasAugment<Kernel>::value) {
+      bool again = false;
+      for (int e = 0; e < size(); ++e) again = kernels_[e].augment(base_[e], trial_[e]) || again;
+      return again;
+    } else {
+      return false;
+    }
+  }
 
  private:
   void gather(int e, const State& state, LocalState<kDofs>& local) const {
@@ -185,7 +224,7 @@ class ElementBlockOf final : public ElementBlock {
   std::string name_;
   std::vector<std::array<int, kNodes>> nodes_;
   std::vector<Kernel> kernels_;
-  std::vector<History> committed_, trial_;
+  std::vector<History> committed_, base_, trial_;
   std::vector<int> slots_;
 };
 

@@ -89,4 +89,10 @@ void Model::revert_history() {
   for (auto& block : blocks_) block->revert();
 }
 
+bool Model::augment() {
+  bool again = false;
+  for (auto& block : blocks_) again = block->augment() || again;
+  return again;
+}
+
 }  // namespace tirefe

@@ -70,6 +70,8 @@ class Model {
 
   void commit_history();
   void revert_history();
+  /// Augmented-Lagrangian update of every block; true if one wants another solve.
+  bool augment();
 
  private:
   int checked_component(int component) const;

@@ -10,8 +10,9 @@ namespace tirefe {
 Analysis::Analysis(Model& model) : model_(model), assembler_(model) {}
 
 void Analysis::set_integrator(const Integrator& integrator) {
-  // Entering dynamics needs accelerations in equilibrium with the current state.
-  acceleration_pending_ = integrator.is_dynamic() && !integrator_.is_dynamic();
+  // Entering dynamics needs accelerations in equilibrium with the current state; a
+  // request still pending (new initial conditions) survives a change of scheme.
+  acceleration_pending_ = integrator.is_dynamic() && (acceleration_pending_ || !integrator_.is_dynamic());
   integrator_ = integrator;
   old_forces_valid_ = false;
 }
@@ -30,6 +31,10 @@ void Analysis::set_log(std::ostream* log) {
 
 void Analysis::prepare() {
   if (assembler_.update_pattern()) linear_solver_.analyze(assembler_.tangent());
+  size_state();
+}
+
+void Analysis::size_state() {
   const int dofs = model_.mesh().dof_count();
   if (committed_.displacement.size() != dofs) {
     // Nodes added since the last step start at rest.
@@ -39,6 +44,8 @@ void Analysis::prepare() {
       field->tail(dofs - old_size).setZero();
     }
     reactions_.setZero(dofs);
+    model_.external_forces(committed_.time, external_old_);
+    reactions_valid_ = false;
     old_forces_valid_ = false;
   }
 }
@@ -94,9 +101,17 @@ bool Analysis::try_step(double step, StepRecord& record) {
     old_forces_valid_ = true;
   }
   try {
-    const NewtonReport& report = newton_.solve(*this, linear_solver_);
-    record.newton_iterations = report.iterations;
-    record.residual = report.residual_norms.back();
+    const NewtonReport* report = &newton_.solve(*this, linear_solver_);
+    record.newton_iterations = report->iterations;
+    record.augmentations = 0;
+    // Augmented Lagrangian: update the multipliers and solve again until the
+    // constraints are met to their tolerance (or the augmentation budget is spent).
+    while (record.augmentations < control_.max_augmentations && model_.augment()) {
+      ++record.augmentations;
+      report = &newton_.solve(*this, linear_solver_);
+      record.newton_iterations += report->iterations;
+    }
+    record.residual = report->residual_norms.back();
     return true;
   } catch (const std::exception& failure) {  // ConvergenceFailure, NonFiniteResult, SingularMatrix
     model_.revert_history();
@@ -108,6 +123,9 @@ bool Analysis::try_step(double step, StepRecord& record) {
 }
 
 void Analysis::finish_step(double step) {
+  // residual_all_ must hold the physical residual M a + g - F of the new state, whose
+  // prescribed entries are the reactions: the last Newton evaluation gives it unless
+  // HHT weighted the forces.
   const bool weighted = integrator_.old_force_weight() != 0.0;
   if (weighted) {
     // Physical reactions M a + g - F, and g_{n+1} for the next step's weighting.
@@ -121,18 +139,118 @@ void Analysis::finish_step(double step) {
     assembler_.assemble(context, trial_, residual_all_);
     residual_all_ += old_internal_forces_ - external_new_;
   }
+  const double work = step_work();  // before the reactions and the state move on
   reactions_.setZero(model_.mesh().dof_count());
   for (const auto& constraint : model_.prescribed_dofs()) reactions_[constraint.dof] = residual_all_[constraint.dof];
+  reactions_valid_ = true;
   model_.commit_history();
   std::swap(committed_, trial_);
   external_old_ = external_new_;
   old_forces_valid_ = weighted;
   ++accepted_steps_;
+
+  const ElementEnergy stored = stored_energy(committed_);
+  energy_.kinetic = stored.kinetic;
+  energy_.strain = stored.strain;
+  energy_.external_work += work;
+  energy_.dissipated = energy_.initial + energy_.external_work - stored.kinetic - stored.strain;
+}
+
+double Analysis::step_work() const {
+  // Trapezoidal work from the committed state to the trial state: the nodal loads on
+  // every DOF, the support reactions on the prescribed ones (residual_all_ holds the new reactions).
+  const Eigen::VectorXd& u_old = committed_.displacement;
+  const Eigen::VectorXd& u_new = trial_.displacement;
+  double work = 0.5 * (external_old_ + external_new_).dot(u_new - u_old);
+  for (const auto& constraint : model_.prescribed_dofs()) {
+    const int dof = constraint.dof;
+    work += 0.5 * (reactions_[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
+  }
+  return work;
+}
+
+ElementEnergy Analysis::stored_energy(const State& state) const {
+  ElementEnergy total;
+  for (const auto& block : model_.blocks()) total += block->energy(state);
+  return total;
+}
+
+void Analysis::start_energy_bookkeeping() {
+  model_.external_forces(committed_.time, external_old_);  // F_0 of the first step's trapezoid
+  const ElementEnergy stored = stored_energy(committed_);
+  energy_ = EnergyRecord{};
+  energy_.kinetic = stored.kinetic;
+  energy_.strain = stored.strain;
+  energy_.initial = stored.kinetic + stored.strain;
+  energy_started_ = true;
+}
+
+void Analysis::update_committed_reactions() {
+  // Physical residual M a + C v + f_int - F at the committed state (no inertia quasi-statically).
+  reactions_.setZero(model_.mesh().dof_count());
+  reactions_valid_ = true;
+  if (model_.prescribed_dofs().empty()) return;
+  EvaluationContext context;
+  context.time = committed_.time;
+  context.time_step = current_step_;
+  context.want_tangent = false;
+  context.factors = integrator_.is_dynamic() ? IntegratorFactors{1.0, 1.0, 1.0, 0.0, 0.0, 0.0}
+                                             : IntegratorFactors{1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  assembler_.assemble(context, committed_, residual_all_);
+  model_.revert_history();  // an evaluation at the committed state must leave no trial history behind
+  model_.external_forces(committed_.time, external_old_);
+  for (const auto& constraint : model_.prescribed_dofs())
+    reactions_[constraint.dof] = residual_all_[constraint.dof] - external_old_[constraint.dof];
+}
+
+Eigen::VectorXd& Analysis::initial_field(Eigen::VectorXd State::*field, const char* what) {
+  if (accepted_steps_ > 0)
+    throw ModelError(std::string("initial ") + what + " can only be set before the first step (" +
+                     std::to_string(accepted_steps_) + " steps are already taken)");
+  size_state();
+  acceleration_pending_ = acceleration_pending_ || integrator_.is_dynamic();
+  reactions_valid_ = false;
+  old_forces_valid_ = false;
+  energy_started_ = false;
+  return committed_.*field;
+}
+
+namespace {
+void set_entry(Eigen::VectorXd& field, int dof, double value, const char* what) {
+  if (dof < 0 || dof >= field.size())
+    throw ModelError(std::string("initial ") + what + ": DOF " + std::to_string(dof) + " does not exist (the model has " +
+                     std::to_string(field.size()) + " DOFs, dof = 3 * node + component)");
+  field[dof] = value;
+}
+void set_field(Eigen::VectorXd& field, const Eigen::VectorXd& values, const char* what) {
+  if (values.size() != field.size())
+    throw ModelError(std::string("initial ") + what + ": got " + std::to_string(values.size()) +
+                     " values for a model with " + std::to_string(field.size()) + " DOFs");
+  field = values;
+}
+}  // namespace
+
+void Analysis::set_initial_displacement(int dof, double value) {
+  set_entry(initial_field(&State::displacement, "displacement"), dof, value, "displacement");
+}
+
+void Analysis::set_initial_velocity(int dof, double value) {
+  set_entry(initial_field(&State::velocity, "velocity"), dof, value, "velocity");
+}
+
+void Analysis::set_initial_displacement(const Eigen::VectorXd& displacement) {
+  set_field(initial_field(&State::displacement, "displacement"), displacement, "displacement");
+}
+
+void Analysis::set_initial_velocity(const Eigen::VectorXd& velocity) {
+  set_field(initial_field(&State::velocity, "velocity"), velocity, "velocity");
 }
 
 const std::vector<StepRecord>& Analysis::advance(double duration) {
   prepare();
   if (acceleration_pending_) initialize_acceleration();
+  if (!reactions_valid_) update_committed_reactions();
+  if (!energy_started_) start_energy_bookkeeping();
   records_.clear();
   if (duration <= 0.0) duration = nominal_step_;
   const double start = committed_.time;
@@ -160,6 +278,7 @@ const std::vector<StepRecord>& Analysis::advance(double duration) {
     record.step = accepted_steps_;
     record.time = committed_.time;
     record.step_size = step;
+    record.energy = energy_;
     records_.push_back(record);
     for (const auto& observer : observers_) observer(*this, record);
     // Grow back toward the nominal step after an easy convergence.
@@ -177,6 +296,7 @@ void Analysis::initialize_acceleration() {
   context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 1.0};  // residual g, tangent M
   context.want_tangent = true;
   assembler_.assemble(context, committed_, residual_all_);
+  model_.revert_history();
   model_.external_forces(committed_.time, external_new_);
   const DofMap& dofs = model_.dof_map();
   Eigen::VectorXd unbalanced(dofs.equation_count());
@@ -195,6 +315,7 @@ void Analysis::initialize_acceleration() {
   external_old_ = external_new_;
   old_forces_valid_ = false;
   acceleration_pending_ = false;
+  reactions_valid_ = false;  // the inertia part of the reactions changed
 }
 
 }  // namespace tirefe

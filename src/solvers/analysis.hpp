@@ -3,6 +3,14 @@
 // the element history on success, and on failure reverts, cuts the step and retries.
 // Steps grow back after easy convergence. Observers hear of every accepted step
 // (output writers, logs).
+//
+// Energy bookkeeping (docs/dynamics.md), once per accepted step n -> n+1:
+//   W_{n+1} = W_n + (F_n + F_{n+1})/2 . (u_{n+1} - u_n) + (R_n + R_{n+1})/2 . (u_{n+1} - u_n)|prescribed,
+//   dissipated = (T_0 + U_0) + W - T - U,
+// with F the nodal loads, R the support reactions, T = v.M v/2 and U the blocks' stored
+// energy. For a linear model under Newmark average acceleration the balance is exact,
+// so 'dissipated' is the dashpots' work alone; otherwise it also holds the integrator's
+// numerical dissipation (HHT) and the trapezoidal rule's error on nonlinear forces.
 #pragma once
 
 #include <functional>
@@ -31,6 +39,16 @@ struct StepControl {
   int max_cuts = 10;         // consecutive halvings of one step
   int easy_iterations = 4;   // grow the step after converging in this many iterations or fewer
   double growth = 2.0;       // growth factor back toward the nominal step
+  int max_augmentations = 20;  // augmented-Lagrangian updates per step
+};
+
+/// Energies at the end of an accepted step; initial + external_work = kinetic + strain + dissipated.
+struct EnergyRecord {
+  double kinetic = 0.0;        // v.M v / 2
+  double strain = 0.0;         // sum of the element blocks' stored energy
+  double external_work = 0.0;  // of nodal loads and support reactions since the start
+  double initial = 0.0;        // kinetic + strain at the start of the analysis
+  double dissipated = 0.0;     // initial + external_work - kinetic - strain
 };
 
 struct StepRecord {
@@ -39,7 +57,9 @@ struct StepRecord {
   double step_size = 0.0;
   int newton_iterations = 0;
   int cuts = 0;           // cuts taken before this step converged
+  int augmentations = 0;  // augmented-Lagrangian multiplier updates
   double residual = 0.0;  // final |R|
+  EnergyRecord energy;    // at the end of the step
 };
 
 class Analysis : private StepEquations {
@@ -60,14 +80,26 @@ class Analysis : private StepEquations {
   /// it takes; returns the records of the accepted steps. Throws StepFailure.
   const std::vector<StepRecord>& advance(double duration = 0.0);
 
-  /// Solves M a = F - f_int - C v for the accelerations at the current time.
+  /// Solves M a = F - f_int - C v for the accelerations at the current time. Called by
+  /// advance() when the analysis enters dynamics or after new initial conditions.
   void initialize_acceleration();
+
+  /// Initial conditions, allowed before the first step only: one DOF
+  /// (dof_index(node, component)) or the whole field (one entry per DOF). Prescribed
+  /// DOFs follow their load functions from the first step on. A dynamic analysis
+  /// recomputes the consistent initial acceleration before its first step.
+  void set_initial_displacement(int dof, double value);
+  void set_initial_velocity(int dof, double value);
+  void set_initial_displacement(const Eigen::VectorXd& displacement);
+  void set_initial_velocity(const Eigen::VectorXd& velocity);
 
   const State& state() const { return committed_; }
   State& mutable_state() { return committed_; }
   /// Reactions at prescribed DOFs (zero elsewhere), from the last converged step.
   const Eigen::VectorXd& reactions() const { return reactions_; }
   const Eigen::VectorXd& external_forces() const { return external_new_; }
+  /// Energy balance as of the last accepted step (all zero before the first).
+  const EnergyRecord& energy() const { return energy_; }
   int accepted_steps() const { return accepted_steps_; }
   const NewtonReport& last_newton_report() const { return newton_.last_report(); }
   Assembler& assembler() { return assembler_; }
@@ -79,8 +111,14 @@ class Analysis : private StepEquations {
 
  private:
   void prepare();
+  void size_state();
   bool try_step(double step, StepRecord& record);
   void finish_step(double step);
+  Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
+  void update_committed_reactions();
+  double step_work() const;
+  ElementEnergy stored_energy(const State& state) const;
+  void start_energy_bookkeeping();
   // StepEquations
   void evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) override;
   const SparseMatrix& tangent() const override { return assembler_.tangent(); }
@@ -101,6 +139,9 @@ class Analysis : private StepEquations {
   Eigen::VectorXd residual_all_, external_new_, external_old_, old_internal_forces_, reactions_;
   bool old_forces_valid_ = false;
   bool acceleration_pending_ = false;
+  bool reactions_valid_ = false;  // reactions_ belong to the committed state
+  bool energy_started_ = false;
+  EnergyRecord energy_;
   int accepted_steps_ = 0;
   std::vector<StepRecord> records_;
   std::vector<std::function<void(const Analysis&, const StepRecord&)>> observers_;
