@@ -12,6 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+
+#include "io/hdf5_file.hpp"
 #include <string>
 
 namespace fs = std::filesystem;
@@ -98,5 +100,39 @@ TEST_CASE("a deck whose self-check fails exits with status 3", "[decks]") {
   const fs::path deck = fs::temp_directory_path() / "tirefe_failing_check.lua";
   std::ofstream(deck) << "tirefe.check{ name = \"one is two\", value = 1, expected = 2, tolerance = 0.5 }\n";
   CHECK(run_tirefe(deck.string()).exit_status == 3);
+  fs::remove(deck);
+}
+
+TEST_CASE("a run that fails mid-way keeps a readable file with every completed step", "[decks][output]") {
+  const fs::path deck = fs::temp_directory_path() / "tirefe_fails_midway.lua";
+  std::ofstream(deck) << R"(
+local model = tirefe.model{ title = "fails at t = 0.4" }
+local a = model:node{ x = 0, y = 0 }
+local b = model:node{ x = 1, y = 0 }
+model:section{ name = "s", EA = 1e5, GA = 1e5, EI = 1 }
+model:beam{ section = "s", nodes = { a, b } }
+model:fix{ node = a }
+-- At t = 0.4 the support of node a is released: a mechanism no step cut can save.
+model:load{ node = b, fy = -1 }
+model:output{ file = "fails_midway.h5", fields_every = 1 }
+model:history{ name = "tip_uy", node = b, dof = "uy" }
+model:step_control{ max_cuts = 2 }
+model:solve{ to = 0.3, dt = 0.1 }
+model:release{ node = a, dofs = { "ux", "uy", "rz" } }
+model:solve{ to = 1.0 }
+)";
+  const RunResult result = run_tirefe(deck.string());
+  INFO(result.errors);
+  CHECK(result.exit_status == 1);
+  CHECK(result.errors.find("could not be solved") != std::string::npos);
+  const fs::path file = fs::temp_directory_path() / "tirefe_bad_decks" / "fails_midway.h5";
+  tirefe::io::Hdf5File output = tirefe::io::Hdf5File::open_read_only(file.string());
+  const std::vector<double> time = output.read_doubles("/history/time");
+  REQUIRE(time.size() == 3);
+  CHECK(time.back() == Approx(0.3));
+  CHECK(output.read_doubles("/history/tip_uy").size() == 3);
+  std::vector<hsize_t> shape;
+  output.read_doubles("/fields/displacement", &shape);
+  CHECK(shape[0] == 3);
   fs::remove(deck);
 }

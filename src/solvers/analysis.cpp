@@ -257,6 +257,7 @@ const std::vector<StepRecord>& Analysis::advance(double duration) {
   const double target = start + duration;
   const double time_round_off = 1e-12 * std::max(1.0, std::abs(target));
   double step = std::min(current_step_, control_.max_step > 0.0 ? control_.max_step : current_step_);
+  records_.reserve(static_cast<size_t>(std::min(duration / step, 1e6)) + 16);
   while (committed_.time < target - time_round_off) {
     const double remaining = target - committed_.time;
     // Take the rest in one step if a sliver would be left over.

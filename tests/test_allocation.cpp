@@ -1,0 +1,54 @@
+// The Newton loop allocates nothing once a model is set up: assembly, factorisation and
+// solves reuse their buffers. Checked by counting global operator new calls.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "elements/tread_beam.hpp"
+#include "solvers/analysis.hpp"
+
+namespace {
+std::atomic<long> allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* memory = std::malloc(size ? size : 1)) return memory;
+  throw std::bad_alloc();
+}
+void operator delete(void* memory) noexcept { std::free(memory); }
+void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+
+TEST_CASE("steps after the first allocate no memory in assembly, Newton and KLU refactorisation", "[kernel][allocation]") {
+  using namespace tirefe;
+  Model model;
+  BeamSection section;
+  section.axial_stiffness = 1e4;
+  section.shear_stiffness = 1e4;
+  section.bending_stiffness = 1.0;
+  section.mass_per_length = 1.0;
+  section.rotary_inertia_per_length = 1e-3;
+  const int elements = 20;
+  for (int i = 0; i <= elements; ++i) model.mesh().add_node({static_cast<double>(i) / elements, 0.0});
+  auto& beams = model.add_block<TreadBeam>("beam");
+  for (int i = 0; i < elements; ++i)
+    beams.add({i, i + 1}, TreadBeam(model.mesh().position(i), model.mesh().position(i + 1), section));
+  for (int c = 0; c < kDofsPerNode; ++c) model.fix(0, c);
+  model.add_nodal_load(elements, kUy, -2.0, Model::kRampLoadFunction);
+
+  Analysis analysis(model);
+  analysis.set_integrator(Integrator::newmark());
+  analysis.set_time_step(1e-3);
+  analysis.advance(5e-3);  // warm-up: pattern, symbolic analysis, first factorisation, buffers
+
+  const long before = allocations.load();
+  const auto& records = analysis.advance(5e-3);
+  const long during = allocations.load() - before;
+  int iterations = 0;
+  for (const auto& record : records) iterations += record.newton_iterations;
+  INFO(records.size() << " steps, " << iterations << " Newton iterations, " << during << " allocations");
+  CHECK(iterations >= 5);
+  CHECK(during == 0);
+}
