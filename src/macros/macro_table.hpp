@@ -36,6 +36,7 @@ struct MacroTable {
 /// All macros of tirefe (each group of macros adds itself in its own file).
 const MacroTable& macro_table();
 void add_model_macros(MacroTable& table);
+void add_tire_macros(MacroTable& table);
 
 /// Installs tirefe.* and the model methods into the sandbox's Lua state.
 void install_macros(LuaSandbox& sandbox, DeckSession& session);

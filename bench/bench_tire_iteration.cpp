@@ -1,0 +1,88 @@
+// Cost of one Newton iteration on the 100-element 145 SR-12 tire (303 DOFs), split into
+// assembly (all element kernels), KLU refactorisation and triangular solves, at the
+// inflated state with a free-spinning hub, Newmark factors of a 1e-4 s step.
+//   build/bench_tire_iteration [repetitions]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/assembler.hpp"
+#include "solvers/analysis.hpp"
+#include "tire/tire_builder.hpp"
+
+using namespace tirefe;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+TireParameters tire_145sr12() {
+  TireParameters p;
+  p.elements = 100;
+  p.outer_diameter = 0.543;
+  p.rim_diameter = 0.3048;
+  p.tread_width = 0.110;
+  p.pressure = 0.208e6;
+  p.sidewall.cord_length = 0.140;
+  p.tread.axial_stiffness = 3e6;
+  p.tread.shear_stiffness = 5e4;
+  p.tread.bending_stiffness = 20.0;
+  p.tread.mass_per_length = 2.2;
+  p.tread.rotary_inertia_per_length = 7e-5;
+  p.sidewall.bending_stiffness = 100.0;
+  p.sidewall.shear_stiffness = 2e4;
+  p.sidewall.radial_damping = 150.0;
+  p.sidewall.circumferential_damping = 150.0;
+  p.rim_mass = 8.0;
+  p.rim_rotary_inertia = 0.1;
+  return p;
+}
+
+template <class Work>
+double microseconds_per_call(int repetitions, Work&& work) {
+  const auto start = Clock::now();
+  for (int i = 0; i < repetitions; ++i) work();
+  return std::chrono::duration<double, std::micro>(Clock::now() - start).count() / repetitions;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::atoi(argv[1]) : 2000;
+  Model model;
+  const Tire tire = build_tire(model, tire_145sr12(), LoadFunction::linear());
+  model.fix(tire.spindle, kUx);
+  model.fix(tire.spindle, kUy);
+  Analysis analysis(model);
+  analysis.set_time_step(0.5);
+  analysis.advance(1.0);  // inflate quasi-statically
+  std::printf("tire: %d nodes, %d equations, inflated in %d steps\n", model.mesh().node_count(),
+              model.dof_map().equation_count(), analysis.accepted_steps());
+
+  Assembler& assembler = analysis.assembler();
+  KluSolver& solver = analysis.linear_solver();
+  EvaluationContext context;
+  context.time = 1.0;
+  const double h = 1e-4;
+  context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
+  Eigen::VectorXd residual;
+  const State& state = analysis.state();
+  assembler.assemble(context, state, residual);
+  solver.factorize(assembler.tangent());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Ones(model.dof_map().equation_count());
+
+  context.want_tangent = true;
+  const double assembly = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
+  context.want_tangent = false;
+  const double residual_only = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
+  const double refactor = microseconds_per_call(repetitions, [&] { solver.factorize(assembler.tangent()); });
+  const double solve = microseconds_per_call(repetitions, [&] { solver.solve(rhs); });
+
+  std::printf("nonzeros %ld, repetitions %d\n", static_cast<long>(assembler.tangent().nonZeros()), repetitions);
+  std::printf("%-36s %10s\n", "per Newton iteration", "us");
+  std::printf("%-36s %10.1f\n", "assembly (residual + tangent)", assembly);
+  std::printf("%-36s %10.1f\n", "assembly (residual only)", residual_only);
+  std::printf("%-36s %10.1f\n", "KLU refactorisation", refactor);
+  std::printf("%-36s %10.1f\n", "triangular solve", solve);
+  std::printf("%-36s %10.1f\n", "total", assembly + refactor + solve);
+  return 0;
+}

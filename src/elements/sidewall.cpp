@@ -1,0 +1,269 @@
+// SidewallWedge and its section law. The math is in sidewall.hpp; this file adds the
+// linearisation. With dP = B du, B = [I, rho_perp, -N_a I, 0, -N_b I, 0] (rho_perp =
+// k x rho), de_y = e_x (e_x.dP)/L, de_x = -e_y (e_x.dP)/L, dL = e_y.dP and
+// dgamma = e_x.dP/L - dtheta_S, the elastic traction T = F e_y + S e_x (S = k_gamma gamma)
+// varies as
+//   dT = [F' e_y e_y^T + ((F + k_gamma) e_x - S e_y) e_x^T / L] dP - k_gamma e_x dtheta_S,
+// the damping traction D = -C_d v (C_d = c_r e_y e_y^T + c_t e_x e_x^T) as
+//   dD/du = -(c_r - c_t)(v_x e_y + v_y e_x) e_x^T dP / L - omega_S C_d k x (dP - rho_perp dtheta_S),
+//   dD/dv = C_d (B - L e_x e_theta^T),
+// and the residual sum_q (l/2) B^T T adds the geometric terms of B (d rho_perp/dtheta_S
+// = -rho) and of the deformed chord length l (dl = t.(du_b - du_a)).
+#include "elements/sidewall.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace tirefe {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Two-point Gauss rule on xi in [0, 1]: exact for the cubic N_i T of a smoothly varying
+// traction, and the integrand varies little over one of 50-100 wedges.
+constexpr double kGaussOffset = 0.28867513459481288225;  // 1 / (2 sqrt 3)
+constexpr double kGaussPoints[SidewallWedge::kQuadraturePoints] = {0.5 - kGaussOffset, 0.5 + kGaussOffset};
+constexpr double kGaussWeight = 0.5;
+
+/// k x a: the counter-clockwise perpendicular.
+inline Eigen::Vector2d perpendicular(const Eigen::Vector2d& a) { return {-a.y(), a.x()}; }
+
+struct ArchSolution {
+  double half_angle, cos_half, sin_half;
+};
+
+/// Root of sin(alpha) - ratio alpha on (0, pi] for 0 <= ratio < 1. The function is
+/// positive below the root and negative above (sinc decreases), which keeps a bracket
+/// for the bisection safeguard. The start is the series inversion of sinc about 0,
+/// alpha^2 = 6y + (9/5) y^2 + (144/175) y^3 with y = 1 - ratio: 1e-5 accurate for
+/// service chords (ratio 0.85-0.95), 6 % at ratio 0, so Newton needs 2-4 steps.
+ArchSolution solve_half_angle(double ratio) {
+  const double y = 1.0 - ratio;
+  double alpha = std::min(std::sqrt(y * (6.0 + y * (1.8 + y * (144.0 / 175.0)))), kPi);
+  double low = 0.0, high = kPi;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    const double residual = std::sin(alpha) - ratio * alpha;
+    if (residual == 0.0) break;
+    (residual > 0.0 ? low : high) = alpha;
+    double next = alpha - residual / (std::cos(alpha) - ratio);
+    // A converged step may land on the bracket end just moved to alpha: keep it.
+    if (!(next >= low && next <= high)) next = 0.5 * (low + high);
+    const double step = next - alpha;
+    alpha = next;
+    // Quadratic convergence: the error after a step d is about 1.5 d^2 / alpha, so
+    // |d| < 1e-8 alpha leaves round-off; the bracket test ends a bisection run.
+    if (std::abs(step) <= 1e-8 * alpha || high - low <= 1e-15 * high) break;
+  }
+  return {alpha, std::cos(alpha), std::sin(alpha)};
+}
+
+void require(bool condition, const std::string& message) {
+  if (!condition) throw ModelError("sidewall: " + message);
+}
+
+}  // namespace
+
+double ArchShape::meridian_angle() const { return 0.5 * kPi - half_angle; }
+double ArchShape::radius(double cord_length) const { return cord_length / (2.0 * half_angle); }
+
+ArchShape solve_arch(double chord, double cord_length) {
+  const double ratio = chord / cord_length;
+  if (!(cord_length > 0.0) || !(ratio >= 0.0 && ratio < 1.0))
+    throw std::domain_error("sidewall arch: no circular arch of length " + std::to_string(cord_length) +
+                            " m over a chord of " + std::to_string(chord) + " m");
+  const ArchSolution arch = solve_half_angle(ratio);
+  // Eq. 1 as g(alpha, L) = l_sw sin(alpha) - L alpha = 0: dalpha/dL = alpha / (l_sw cos(alpha) - L) < 0.
+  return {arch.half_angle, arch.half_angle / (cord_length * arch.cos_half - chord)};
+}
+
+void SidewallProperties::check() const {
+  auto finite = [](double value) { return std::isfinite(value); };
+  require(finite(rim_radius) && rim_radius > 0.0, "the rim radius must be positive");
+  require(finite(cord_length) && cord_length > 0.0, "the cord length l_sw must be positive");
+  require(sidewall_count >= 1, "the sidewall count n_sw must be at least 1");
+  require(finite(bending_stiffness) && bending_stiffness >= 0.0, "the bending stiffness k_sw must be >= 0");
+  require(bending_sign == 1.0 || bending_sign == -1.0, "the bending sign must be +1 or -1");
+  require(finite(shear_stiffness) && shear_stiffness >= 0.0, "the shear stiffness k_gamma must be >= 0");
+  require(finite(radial_damping) && radial_damping >= 0.0, "the radial damping c_r must be >= 0");
+  require(finite(circumferential_damping) && circumferential_damping >= 0.0,
+          "the circumferential damping c_t must be >= 0");
+  require(straight_cord_half_angle > 0.0 && straight_cord_half_angle <= 0.5,
+          "the straight-cord half-angle alpha* must lie in (0, 0.5] rad");
+}
+
+SidewallLaw::SidewallLaw(const SidewallProperties& properties) : properties_(properties) {
+  properties_.check();
+  const double l = properties_.cord_length;
+  signed_bending_ = properties_.bending_sign * properties_.bending_stiffness * 4.0 / (l * l);
+  const double switch_half_angle = properties_.straight_cord_half_angle;
+  switch_cos_ = std::cos(switch_half_angle);
+  switch_sin_ = std::sin(switch_half_angle);
+  switch_chord_ = l * switch_sin_ / switch_half_angle;
+  switch_dhalf_angle_dchord_ = switch_half_angle / (l * switch_cos_ - switch_chord_);
+}
+
+double SidewallLaw::reference_half_angle(double chord) const {
+  require(chord > 0.0 && chord < switch_chord_,
+          "the reference cord spans " + std::to_string(chord) + " m, but it must be shorter than " +
+              std::to_string(switch_chord_) + " m (the sidewall length l_sw = " +
+              std::to_string(properties_.cord_length) + " m less the near-straight range)");
+  return solve_arch(chord, properties_.cord_length).half_angle;
+}
+
+void SidewallLaw::arch_force(double alpha, double cos_half, double sin_half, double alpha0, double pressure,
+                             double& force, double& dforce_dhalf_angle) const {
+  // Membrane n_sw p r sin(theta) with r = l_sw/(2 alpha), sin(theta) = cos(alpha).
+  const double membrane_scale = 0.5 * properties_.sidewall_count * pressure * properties_.cord_length;
+  const double bending_shape = alpha * (alpha - alpha0);
+  force = membrane_scale * cos_half / alpha + signed_bending_ * bending_shape * cos_half;
+  dforce_dhalf_angle = -membrane_scale * (alpha * sin_half + cos_half) / (alpha * alpha) +
+                       signed_bending_ * ((2.0 * alpha - alpha0) * cos_half - bending_shape * sin_half);
+}
+
+SidewallLaw::CordForce SidewallLaw::cord_force(double chord, double alpha0, double pressure) const {
+  double force, dforce_dhalf_angle;
+  if (chord < switch_chord_) {
+    const double l = properties_.cord_length;
+    const ArchSolution arch = solve_half_angle(chord / l);
+    arch_force(arch.half_angle, arch.cos_half, arch.sin_half, alpha0, pressure, force, dforce_dhalf_angle);
+    return {force, dforce_dhalf_angle * arch.half_angle / (l * arch.cos_half - chord)};
+  }
+  // Near-straight or stretched cord: the linear continuation of the arch law from L*.
+  arch_force(properties_.straight_cord_half_angle, switch_cos_, switch_sin_, alpha0, pressure, force,
+             dforce_dhalf_angle);
+  const double stiffness = dforce_dhalf_angle * switch_dhalf_angle_dchord_;
+  return {force + stiffness * (chord - switch_chord_), stiffness};
+}
+
+struct SidewallWedge::Kinematics {
+  Eigen::Vector2d rim_offset;  // rho = R(theta_S) r_rim e_r
+  Eigen::Vector2d cord;        // P = x_r - x_t
+  Eigen::Vector2d e_y, e_x;
+  double chord;        // L
+  double shear_angle;  // gamma
+};
+
+SidewallWedge::SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector2d& tread_a,
+                             const Eigen::Vector2d& tread_b, const SidewallProperties& properties,
+                             std::shared_ptr<const PressureSchedule> pressure)
+    : law_(properties), pressure_(std::move(pressure)), spindle_(spindle), tread_a_(tread_a), tread_b_(tread_b) {
+  require(pressure_ != nullptr, "a pressure schedule is required (it may be zero)");
+  require((tread_b - tread_a).norm() > 0.0, "the two tread nodes coincide");
+  for (int q = 0; q < kQuadraturePoints; ++q) {
+    const double xi = kGaussPoints[q];
+    reference_tread_[q] = (1.0 - xi) * tread_a + xi * tread_b;
+    const Eigen::Vector2d radial = reference_tread_[q] - spindle;
+    const double distance = radial.norm();
+    require(distance > properties.rim_radius, "a tread point lies inside the rim (distance " +
+                                                  std::to_string(distance) + " m from the spindle)");
+    reference_rim_offset_[q] = (properties.rim_radius / distance) * radial;
+    reference_half_angle_[q] = law_.reference_half_angle(distance - properties.rim_radius);
+  }
+}
+
+SidewallWedge::Kinematics SidewallWedge::kinematics(const Vector& u, int q, double cos_spin,
+                                                    double sin_spin) const {
+  const double xi = kGaussPoints[q];
+  const Eigen::Vector2d& offset = reference_rim_offset_[q];
+  Kinematics k;
+  k.rim_offset = {cos_spin * offset.x() - sin_spin * offset.y(), sin_spin * offset.x() + cos_spin * offset.y()};
+  const Eigen::Vector2d tread_point =
+      reference_tread_[q] + (1.0 - xi) * u.segment<2>(3) + xi * u.segment<2>(6);
+  k.cord = spindle_ + u.segment<2>(0) + k.rim_offset - tread_point;
+  k.chord = k.cord.norm();
+  k.e_y = k.cord / k.chord;
+  k.e_x = perpendicular(k.e_y);
+  // gamma: from the rotated reference cord -rho (atan2 needs no normalisation) to e_y.
+  const Eigen::Vector2d reference = -k.rim_offset;
+  k.shear_angle = std::atan2(reference.x() * k.e_y.y() - reference.y() * k.e_y.x(), reference.dot(k.e_y));
+  return k;
+}
+
+SidewallWedge::CordState SidewallWedge::cord_state(const Vector& displacement, int q) const {
+  const Kinematics k = kinematics(displacement, q, std::cos(displacement[2]), std::sin(displacement[2]));
+  return {k.chord, k.shear_angle};
+}
+
+void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
+                             History&, Vector& residual, Matrix* tangent) const {
+  const Vector& u = local.displacement;
+  const Vector& velocity = local.velocity;
+  const IntegratorFactors& f = context.factors;
+  const SidewallProperties& properties = law_.properties();
+  const double pressure = pressure_->at(context.time);
+  const double shear_stiffness = properties.shear_stiffness;
+  const double c_r = properties.radial_damping, c_t = properties.circumferential_damping;
+  const bool damped = (c_r != 0.0 || c_t != 0.0) && (f.force_damping != 0.0 || (tangent && f.tangent_damping != 0.0));
+  const double cos_spin = std::cos(u[2]), sin_spin = std::sin(u[2]);
+  const double spin_rate = velocity[2];
+
+  // The traction acts per unit deformed chord length l (see docs/sidewall.md).
+  const Eigen::Vector2d tread_chord = tread_b_ + u.segment<2>(6) - tread_a_ - u.segment<2>(3);
+  const double chord_length = tread_chord.norm();
+  const Eigen::Vector2d chord_direction = tread_chord / chord_length;
+  const double length_weight = kGaussWeight * chord_length;
+
+  residual.setZero();
+  if (tangent) tangent->setZero();
+  Eigen::Matrix<double, 2, kDofs> B = Eigen::Matrix<double, 2, kDofs>::Zero();
+  B(0, 0) = B(1, 1) = 1.0;
+
+  for (int q = 0; q < kQuadraturePoints; ++q) {
+    const double xi = kGaussPoints[q], shape_a = 1.0 - xi, shape_b = xi;
+    const Kinematics k = kinematics(u, q, cos_spin, sin_spin);
+    const SidewallLaw::CordForce cord = law_.cord_force(k.chord, reference_half_angle_[q], pressure);
+    const double shear_force = shear_stiffness * k.shear_angle;
+    const Eigen::Vector2d elastic = cord.force * k.e_y + shear_force * k.e_x;
+
+    Eigen::Vector2d damping = Eigen::Vector2d::Zero(), relative_velocity = Eigen::Vector2d::Zero();
+    if (damped) {
+      // Tread point velocity relative to the rim's rigid motion at x_t (x_t - x_S = rho - P).
+      relative_velocity = shape_a * velocity.segment<2>(3) + shape_b * velocity.segment<2>(6) -
+                          velocity.segment<2>(0) - spin_rate * perpendicular(k.rim_offset - k.cord);
+      damping = -(c_r * relative_velocity.dot(k.e_y)) * k.e_y - (c_t * relative_velocity.dot(k.e_x)) * k.e_x;
+    }
+
+    const Eigen::Vector2d rim_perpendicular = perpendicular(k.rim_offset);
+    B(0, 2) = rim_perpendicular.x();
+    B(1, 2) = rim_perpendicular.y();
+    B(0, 3) = B(1, 4) = -shape_a;
+    B(0, 6) = B(1, 7) = -shape_b;
+
+    residual.noalias() +=
+        length_weight * (B.transpose() * (f.force_stiffness * elastic + f.force_damping * damping));
+    if (!tangent) continue;
+
+    // u-derivatives: the elastic part scales with cK, the damping force's dependence on
+    // u (cord directions, spin term) with wC; the velocity part with cC.
+    const Eigen::Vector2d traction = f.tangent_stiffness * elastic + f.force_damping * damping;
+    Eigen::Matrix2d G = f.tangent_stiffness * (cord.stiffness * k.e_y * k.e_y.transpose() +
+                                               ((cord.force + shear_stiffness) * k.e_x - shear_force * k.e_y) *
+                                                   k.e_x.transpose() / k.chord);
+    Eigen::Vector2d spin_column = -f.tangent_stiffness * shear_stiffness * k.e_x;
+    if (damped) {
+      const Eigen::Matrix2d C_d = c_r * k.e_y * k.e_y.transpose() + c_t * k.e_x * k.e_x.transpose();
+      Eigen::Matrix2d k_cross;  // k x (.)
+      k_cross << 0.0, -1.0, 1.0, 0.0;
+      const double v_y = relative_velocity.dot(k.e_y), v_x = relative_velocity.dot(k.e_x);
+      G += f.force_damping * (-(c_r - c_t) * (v_x * k.e_y + v_y * k.e_x) * k.e_x.transpose() / k.chord -
+                              spin_rate * C_d * k_cross);
+      spin_column -= f.force_damping * spin_rate * (C_d * k.rim_offset);
+      G += f.tangent_damping * C_d;
+      spin_column -= (f.tangent_damping * c_t * k.chord) * k.e_x;
+    }
+    Matrix& K = *tangent;
+    K.noalias() += B.transpose() * (length_weight * G * B);
+    K.col(2).noalias() += B.transpose() * (length_weight * spin_column);
+    K(2, 2) -= length_weight * k.rim_offset.dot(traction);
+    const Vector force_direction = kGaussWeight * (B.transpose() * traction);  // d(residual)/d(l)
+    for (int c = 0; c < 2; ++c) {
+      K.col(3 + c) -= chord_direction[c] * force_direction;
+      K.col(6 + c) += chord_direction[c] * force_direction;
+    }
+  }
+}
+
+ElementEnergy SidewallWedge::energy(const LocalState<kDofs>&, const History&) const { return {}; }
+
+}  // namespace tirefe

@@ -1,0 +1,48 @@
+// TreadPressure: the inflation pressure on the tread of one wedge, a follower load
+// (MODEL.md section 1). Nodes: tread nodes a and b, counter-clockwise about the spindle.
+//
+// The pressure p(t) (the tire's shared PressureSchedule) over the tread width w acts
+// normal to the DEFORMED chord c = x_b - x_a (x = X + u), outward: for counter-clockwise
+// nodes the outward normal is c rotated by -90 degrees, (c_y, -c_x)/|c|. The total
+// force p w |c| is split equally between the two nodes:
+//   f_a = f_b = (p w / 2) (c_y, -c_x) = -(p w / 2) k x c.
+// The residual is internal minus external force, so r_a = r_b = (p w / 2) k x c; with
+// d(k x c) = k x (du_b - du_a) the load stiffness (unsymmetric) is
+//   dr_a/du_a = dr_b/du_a = -(p w / 2) [k x],  dr_a/du_b = dr_b/du_b = +(p w / 2) [k x],
+// [k x] = [[0, -1], [1, 0]]. Rotations carry nothing. The load has no per-element
+// potential (the ring's p times enclosed area is one), so energy() returns zero.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+
+#include "core/element.hpp"
+#include "elements/pressure_schedule.hpp"
+
+namespace tirefe {
+
+class TreadPressure {
+ public:
+  static constexpr int kNodes = 2;
+  static constexpr int kDofs = 6;
+  using History = NoHistory;
+  using Vector = Eigen::Matrix<double, kDofs, 1>;
+  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
+
+  /// Reference positions of the two tread nodes (counter-clockwise), tread width w [m].
+  TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,
+                std::shared_ptr<const PressureSchedule> pressure);
+
+  void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
+                History& trial, Vector& residual, Matrix* tangent) const;
+  ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+
+  double width() const { return width_; }
+
+ private:
+  Eigen::Vector2d reference_chord_;
+  double width_;
+  std::shared_ptr<const PressureSchedule> pressure_;
+};
+
+}  // namespace tirefe

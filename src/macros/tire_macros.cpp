@@ -1,0 +1,102 @@
+// model:tire{...}: builds a ring tire from named physical parameters (src/tire/).
+// Tire parameter sets live in lua/tires/*.lua: model:tire(require("tires.145SR12")).
+#include "macros/deck_model.hpp"
+#include "macros/macro_table.hpp"
+#include "tire/tire_builder.hpp"
+
+namespace tirefe::macros {
+
+namespace {
+
+using VT = ValueType;
+
+int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  TireParameters parameters;
+  parameters.elements = static_cast<int>(arguments.integer("elements"));
+  parameters.outer_diameter = arguments.number("outer_diameter");
+  parameters.rim_diameter = arguments.number("rim_diameter");
+  parameters.tread_width = arguments.number("tread_width");
+  parameters.pressure = arguments.number("pressure");
+  parameters.tread.axial_stiffness = arguments.number("tread_EA");
+  parameters.tread.shear_stiffness = arguments.number("tread_GA");
+  parameters.tread.bending_stiffness = arguments.number("tread_EI");
+  parameters.tread.mass_per_length = arguments.number("tread_mass_per_length");
+  parameters.tread.rotary_inertia_per_length = arguments.number("tread_rotary_inertia_per_length");
+  parameters.tread.curvature_damping = arguments.number("tread_curvature_damping");
+  parameters.sidewall.cord_length = arguments.number("sidewall_length");
+  parameters.sidewall.bending_stiffness = arguments.number("k_sw");
+  parameters.sidewall.bending_sign = arguments.number("k_sw_sign");
+  parameters.sidewall.shear_stiffness = arguments.number("k_gamma");
+  parameters.sidewall.radial_damping = arguments.number("sidewall_radial_damping");
+  parameters.sidewall.circumferential_damping = arguments.number("sidewall_circumferential_damping");
+  parameters.rim_mass = arguments.number("rim_mass");
+  parameters.rim_rotary_inertia = arguments.number("rim_rotary_inertia");
+  parameters.centre = {arguments.number("x"), arguments.number("y")};
+
+  const std::string name = arguments.string("name");
+  const Tire tire = build_tire(deck.model(), parameters,
+                               deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))),
+                               name);
+  lua_createtable(L, 0, 4);
+  lua_pushinteger(L, tire.spindle + 1);
+  lua_setfield(L, -2, "spindle");
+  lua_createtable(L, static_cast<int>(tire.tread_nodes.size()), 0);
+  for (size_t i = 0; i < tire.tread_nodes.size(); ++i) {
+    lua_pushinteger(L, tire.tread_nodes[i] + 1);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "tread");
+  lua_pushstring(L, (name + "_spindle").c_str());
+  lua_setfield(L, -2, "spindle_set");
+  lua_pushstring(L, (name + "_tread").c_str());
+  lua_setfield(L, -2, "tread_set");
+  return 1;
+}
+
+ParameterSpec positive(const char* key, const char* unit, const char* doc) {
+  return {key, VT::Number, true, unit, doc, std::nullopt, Range::Positive};
+}
+ParameterSpec optional_non_negative(const char* key, const char* unit, const char* doc) {
+  return {key, VT::Number, false, unit, doc, std::string("0"), Range::NonNegative};
+}
+
+}  // namespace
+
+void add_tire_macros(MacroTable& table) {
+  table.model_macros.push_back(
+      {{"tire",
+        "Builds a ring tire (MODEL.md section 1): a spindle node, N tread nodes on the outer circle, and N wedges "
+        "of tread beam + sidewall + inflation pressure, with the rim and hub as mass and rotary inertia on the "
+        "spindle. Returns {spindle, tread, spindle_set, tread_set} (deck node numbers and set names). "
+        "docs/tire.md explains every parameter and where the 145 SR-12 values come from.",
+        {{"name", VT::String, false, "", "prefix of the tire's blocks and node sets", std::string("tire")},
+         {"elements", VT::Integer, false, "", "number of wedges N", std::string("100"), Range::Positive},
+         positive("outer_diameter", "m", "unloaded, uninflated diameter at the tread nodes"),
+         positive("rim_diameter", "m", "effective rim diameter"),
+         positive("tread_width", "m", "width the inflation pressure acts on"),
+         {"pressure", VT::Number, true, "Pa", "inflation pressure", std::nullopt, Range::NonNegative},
+         {"pressure_load_function", VT::String, false, "", "load function scaling the pressure", std::string("ramp")},
+         positive("sidewall_length", "m", "meridian cord length l_sw of one sidewall"),
+         positive("tread_EA", "N", "tread axial stiffness"),
+         positive("tread_GA", "N", "tread shear stiffness GA_s"),
+         positive("tread_EI", "N m^2", "tread bending stiffness"),
+         positive("tread_mass_per_length", "kg/m", "tread (belt) mass per length"),
+         optional_non_negative("tread_rotary_inertia_per_length", "kg m", "tread rotary inertia per length"),
+         optional_non_negative("tread_curvature_damping", "N m^2 s", "tread bending moment per curvature rate"),
+         {"k_sw", VT::Number, true, "N m", "effective sidewall bending stiffness (both sidewalls)", std::nullopt,
+          Range::NonNegative},
+         {"k_sw_sign", VT::Number, false, "", "+1: eq. 9 as printed; -1: the physical bending direction",
+          std::string("1")},
+         {"k_gamma", VT::Number, true, "N/m", "sidewall shear stiffness per radian (both sidewalls)", std::nullopt,
+          Range::NonNegative},
+         optional_non_negative("sidewall_radial_damping", "N s/m^2", "dashpot along the cord, per length"),
+         optional_non_negative("sidewall_circumferential_damping", "N s/m^2", "dashpot across the cord, per length"),
+         positive("rim_mass", "kg", "rim and hub mass"),
+         positive("rim_rotary_inertia", "kg m^2", "rim and hub rotary inertia"),
+         {"x", VT::Number, false, "m", "spindle x", std::string("0")},
+         {"y", VT::Number, false, "m", "spindle y", std::string("0")}},
+        "local tire = model:tire(require(\"tires.145SR12\"))"},
+       tire_macro});
+}
+
+}  // namespace tirefe::macros

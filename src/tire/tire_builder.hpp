@@ -1,0 +1,52 @@
+// TireBuilder: the ring tire of MODEL.md section 1 from named physical parameters.
+//
+// One spindle node at the wheel centre and N tread nodes equally spaced on the circle
+// of the unloaded outer diameter (the tread nodes carry the contact). Each wedge i joins
+// the spindle to tread nodes i and i+1 (counter-clockwise) and is made of
+//   - a tread beam between the two tread nodes (block <name>_tread),
+//   - the sidewall arch-membrane element (block <name>_sidewall),
+//   - the follower inflation pressure on the tread chord (block <name>_pressure);
+// and the rigid rim + hub is a mass and rotary inertia on the spindle (block <name>_rim).
+// Node sets: <name>_spindle, <name>_tread.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/model.hpp"
+#include "elements/pressure_schedule.hpp"
+#include "elements/sidewall.hpp"
+#include "elements/tread_beam.hpp"
+
+namespace tirefe {
+
+struct TireParameters {
+  int elements = 100;
+  double outer_diameter = 0.0;   // unloaded, uninflated, at the tread nodes [m]
+  double rim_diameter = 0.0;     // effective rim diameter [m]
+  double tread_width = 0.0;      // width the pressure acts on [m]
+  BeamSection tread;             // tread (belt) beam section
+  SidewallProperties sidewall;   // rim_radius is set from rim_diameter
+  double rim_mass = 0.0;         // rim + hub mass [kg]
+  double rim_rotary_inertia = 0.0;  // rim + hub rotary inertia [kg m^2]
+  double pressure = 0.0;         // inflation pressure [Pa]
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // spindle position [m]
+
+  /// Throws ModelError naming the first missing, non-physical or inconsistent parameter.
+  void check() const;
+};
+
+struct Tire {
+  std::string name;
+  int spindle = -1;               // 0-based node index
+  std::vector<int> tread_nodes;   // 0-based, counter-clockwise from the +x axis
+  std::shared_ptr<PressureSchedule> pressure;
+  TireParameters parameters;
+};
+
+/// Adds a tire to the model; the pressure follows parameters.pressure * pressure_ramp(t).
+Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pressure_ramp,
+                const std::string& name = "tire");
+
+}  // namespace tirefe
