@@ -101,6 +101,16 @@ class ElementBlock {
 
 struct NoHistory {};
 
+/// The fixed sizes and block types of a kernel with `Nodes` nodes; kernels derive from it.
+template <int Nodes, class HistoryType = NoHistory>
+struct KernelShape {
+  static constexpr int kNodes = Nodes;
+  static constexpr int kDofs = kDofsPerNode * Nodes;
+  using History = HistoryType;
+  using Vector = Eigen::Matrix<double, kDofs, 1>;
+  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
+};
+
 namespace detail {
 template <class Kernel, class = void>
 struct HasAugment : std::false_type {};

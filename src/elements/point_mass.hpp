@@ -27,14 +27,8 @@ struct SpringMassProperties {
   Eigen::Vector3d inertia() const { return {mass, mass, rotary_inertia}; }
 };
 
-class NodalSpringMass {
+class NodalSpringMass : public KernelShape<1> {
  public:
-  static constexpr int kNodes = 1;
-  static constexpr int kDofs = 3;
-  using History = NoHistory;
-  using Vector = Eigen::Matrix<double, kDofs, 1>;
-  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
-
   explicit NodalSpringMass(const SpringMassProperties& properties);
 
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,

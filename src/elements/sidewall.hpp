@@ -107,14 +107,9 @@ class SidewallLaw {
   double switch_chord_, switch_cos_, switch_sin_, switch_dhalf_angle_dchord_;
 };
 
-class SidewallWedge {
+class SidewallWedge : public KernelShape<3> {
  public:
-  static constexpr int kNodes = 3;
-  static constexpr int kDofs = 9;
   static constexpr int kQuadraturePoints = 2;
-  using History = NoHistory;
-  using Vector = Eigen::Matrix<double, kDofs, 1>;
-  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
 
   /// Reference positions of the spindle and of the two tread nodes (counter-clockwise).
   SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector2d& tread_a, const Eigen::Vector2d& tread_b,

@@ -31,13 +31,8 @@ struct BeamSection {
   void check() const;
 };
 
-class TreadBeam {
+class TreadBeam : public KernelShape<2> {
  public:
-  static constexpr int kNodes = 2;
-  static constexpr int kDofs = 6;
-  using History = NoHistory;
-  using Vector = Eigen::Matrix<double, kDofs, 1>;
-  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
 
   TreadBeam(const Eigen::Vector2d& start, const Eigen::Vector2d& end, const BeamSection& section);
 

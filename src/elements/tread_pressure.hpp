@@ -21,13 +21,8 @@
 
 namespace tirefe {
 
-class TreadPressure {
+class TreadPressure : public KernelShape<2> {
  public:
-  static constexpr int kNodes = 2;
-  static constexpr int kDofs = 6;
-  using History = NoHistory;
-  using Vector = Eigen::Matrix<double, kDofs, 1>;
-  using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
 
   /// Reference positions of the two tread nodes (counter-clockwise), tread width w [m].
   TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,

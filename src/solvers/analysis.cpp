@@ -185,6 +185,11 @@ void Analysis::start_energy_bookkeeping() {
   energy_started_ = true;
 }
 
+void Analysis::restart_energy_balance() {
+  size_state();
+  start_energy_bookkeeping();
+}
+
 void Analysis::update_committed_reactions() {
   // Physical residual M a + C v + f_int - F at the committed state (no inertia quasi-statically).
   reactions_.setZero(model_.mesh().dof_count());
@@ -218,8 +223,9 @@ Eigen::VectorXd& Analysis::initial_field(Eigen::VectorXd State::*field, const ch
 namespace {
 void set_entry(Eigen::VectorXd& field, int dof, double value, const char* what) {
   if (dof < 0 || dof >= field.size())
-    throw ModelError(std::string("initial ") + what + ": DOF " + std::to_string(dof) + " does not exist (the model has " +
-                     std::to_string(field.size()) + " DOFs, dof = 3 * node + component)");
+    throw ModelError(std::string("initial ") + what + ": DOF " + std::to_string(dof) +
+                     " does not exist (the model has " + std::to_string(field.size()) +
+                     " DOFs, dof = 3 * node + component)");
   field[dof] = value;
 }
 void set_field(Eigen::VectorXd& field, const Eigen::VectorXd& values, const char* what) {

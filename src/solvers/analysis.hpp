@@ -100,6 +100,9 @@ class Analysis : private StepEquations {
   const Eigen::VectorXd& external_forces() const { return external_new_; }
   /// Energy balance as of the last accepted step (all zero before the first).
   const EnergyRecord& energy() const { return energy_; }
+  /// Starts the balance afresh at the current state (after a static preload, say):
+  /// initial = kinetic + strain now, no external work yet.
+  void restart_energy_balance();
   int accepted_steps() const { return accepted_steps_; }
   const NewtonReport& last_newton_report() const { return newton_.last_report(); }
   Assembler& assembler() { return assembler_; }

@@ -35,7 +35,8 @@ struct HistoryRevert {
 }  // namespace
 
 ModalResult modal_analysis(Model& model, const State& state, int mode_count, const ModalSettings& settings) {
-  if (mode_count < 1) throw ModelError("modal analysis: ask for at least one mode (got " + std::to_string(mode_count) + ")");
+  if (mode_count < 1)
+    throw ModelError("modal analysis: ask for at least one mode (got " + std::to_string(mode_count) + ")");
   Assembler assembler(model);  // its own pattern, so an Analysis' solver is never left out of date
   assembler.update_pattern();
   const DofMap& dofs = model.dof_map();
@@ -74,7 +75,8 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
   Eigen::VectorXd eigenvalues;
   Eigen::MatrixXd vectors;
   if (result.symmetric) {
-    // L^-1 K L^-T y = omega^2 y with phi = L^-T y: mass-orthonormal shapes.
+    // L^-1 K L^-T y = omega^2 y with phi = L^-T y: mass-orthonormal shapes. This is what
+    // Eigen's GeneralizedSelfAdjointEigenSolver does, but it ignores a failed Cholesky.
     const auto lower = cholesky.matrixL();
     Eigen::MatrixXd reduced = lower.solve(0.5 * (stiffness + stiffness.transpose()));
     reduced = lower.solve(reduced.transpose()).eval();
@@ -106,7 +108,8 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
                        settings.rigid_body_tolerance * stiffness_norm * shape.lpNorm<Eigen::Infinity>();
     result.eigenvalues.push_back(omega_squared);
     result.rigid_body.push_back(rigid);
-    result.frequencies_hz.push_back(rigid ? 0.0 : std::copysign(std::sqrt(std::abs(omega_squared)), omega_squared) / kTwoPi);
+    const double signed_omega = std::copysign(std::sqrt(std::abs(omega_squared)), omega_squared);
+    result.frequencies_hz.push_back(rigid ? 0.0 : signed_omega / kTwoPi);
     for (int equation = 0; equation < equations; ++equation) result.shapes(dofs.dof(equation), i) = shape[equation];
   }
   return result;

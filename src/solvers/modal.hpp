@@ -11,7 +11,11 @@
 //  - otherwise (friction, follower loads): eigenvalues of M^-1 K, real parts reported.
 // A mode is rigid-body when the stiffness barely resists it,
 //   |K phi|_inf <= rigid_body_tolerance * |K|_inf * |phi|_inf,
-// and is reported with frequency 0. A negative omega^2 beyond that (a state past a
+// and is reported with frequency 0. Round-off leaves rigid-body modes near 1e-14 on this
+// scale while the softest elastic modes of slender beams (EA L^2 / EI = 1e6) sit near
+// 1e-8, hence the default 1e-10. A threshold on omega^2 relative to the largest omega^2
+// would not do: a small rotary inertia puts the top of the spectrum 1e10 or more above
+// the bending modes. A negative omega^2 beyond that (a state past a
 // stability limit) is reported as the negative frequency -sqrt(-omega^2) / (2 pi).
 #pragma once
 
@@ -26,7 +30,7 @@ namespace tirefe {
 class Analysis;
 
 struct ModalSettings {
-  double rigid_body_tolerance = 1e-8;  // tau above: |K phi| relative to |K| |phi|
+  double rigid_body_tolerance = 1e-10;  // tau above: |K phi| relative to |K| |phi|
   double symmetry_tolerance = 1e-10;   // max |K - K^T| relative to max |K|
 };
 
