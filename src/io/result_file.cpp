@@ -32,6 +32,13 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata) : f
   });
   add_channel("cuts", "", [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.cuts); });
   add_channel("residual", "N", [](const Analysis&, const StepRecord& step) { return step.residual; });
+  add_channel("augmentations", "", [](const Analysis&, const StepRecord& step) {
+    return static_cast<double>(step.augmentations);
+  });
+  add_channel("energy_kinetic", "J", [](const Analysis&, const StepRecord& step) { return step.energy.kinetic; });
+  add_channel("energy_strain", "J", [](const Analysis&, const StepRecord& step) { return step.energy.strain; });
+  add_channel("external_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.external_work; });
+  add_channel("energy_dissipated", "J", [](const Analysis&, const StepRecord& step) { return step.energy.dissipated; });
   file_.flush();
 }
 
@@ -76,6 +83,26 @@ void ResultFile::write_mesh(const Model& model) {
   field_displacement_ = &file_.create_extendible("/fields/displacement", node_field, "m, m, rad");
   field_velocity_ = &file_.create_extendible("/fields/velocity", node_field, "m/s, m/s, rad/s");
   mesh_written_ = true;
+}
+
+void ResultFile::write_modes(const std::string& label, const Analysis& analysis,
+                             const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
+                             const Eigen::MatrixXd& shapes) {
+  if (!mesh_written_) write_mesh(analysis.model());
+  const std::string group = "/modes/" + label;
+  file_.write_attribute(group, "time", analysis.state().time);
+  file_.write_vector(group + "/frequency", frequencies_hz);
+  file_.write_int_vector(group + "/rigid_body", std::vector<long long>(rigid_body.begin(), rigid_body.end()));
+  // Shapes as modes x nodes x 3, like the displacement fields.
+  const int nodes = analysis.model().mesh().node_count();
+  std::vector<double> values(static_cast<size_t>(shapes.cols()) * nodes * kDofsPerNode);
+  for (Eigen::Index mode = 0; mode < shapes.cols(); ++mode)
+    for (int dof = 0; dof < nodes * kDofsPerNode; ++dof) values[mode * nodes * kDofsPerNode + dof] = shapes(dof, mode);
+  Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> table(
+      values.data(), shapes.cols(), nodes * kDofsPerNode);
+  file_.write_matrix(group + "/shapes", table);
+  file_.write_attribute(group + "/shapes", "layout", std::string("modes x (3 nodes): u_x, u_y, theta_z per node"));
+  flush();
 }
 
 void ResultFile::write_fields(const Analysis& analysis, int step) {

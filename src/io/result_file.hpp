@@ -5,7 +5,8 @@
 //   /mesh/blocks/<name>           element connectivity (0-based node indices), attribute "type"
 //   /mesh/node_sets/<name>        0-based node indices
 //   /history/<channel>            one row per accepted step: time, step_size, newton_iterations,
-//                                 cuts, residual, and the deck's channels (node DOFs, reactions, ...)
+//                                 cuts, residual, augmentations, energies, and the deck's channels
+//   /modes/<label>/frequency, rigid_body, shapes   modal analyses
 //   /fields/time, /fields/step    one row per field frame
 //   /fields/displacement          frames x nodes x 3 (u_x, u_y, theta_z)
 //   /fields/velocity              frames x nodes x 3 (dynamic runs)
@@ -47,6 +48,9 @@ class ResultFile {
 
   /// Records one accepted step (writes the mesh first if it has not been written).
   void record(const Analysis& analysis, const StepRecord& record);
+  /// Writes the result of a modal analysis under /modes/<label>.
+  void write_modes(const std::string& label, const Analysis& analysis, const std::vector<double>& frequencies_hz,
+                   const std::vector<bool>& rigid_body, const Eigen::MatrixXd& shapes);
   /// Writes a field frame now, whatever the interval.
   void write_fields(const Analysis& analysis, int step);
   int steps_recorded() const { return steps_recorded_; }

@@ -106,6 +106,7 @@ const MacroTable& macro_table() {
   static const MacroTable table = [] {
     MacroTable built;
     add_model_macros(built);
+    add_dynamics_macros(built);
     add_tire_macros(built);
     return built;
   }();

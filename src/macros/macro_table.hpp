@@ -36,7 +36,18 @@ struct MacroTable {
 /// All macros of tirefe (each group of macros adds itself in its own file).
 const MacroTable& macro_table();
 void add_model_macros(MacroTable& table);
+void add_dynamics_macros(MacroTable& table);
 void add_tire_macros(MacroTable& table);
+
+// Argument pieces shared by the macro groups.
+const std::vector<std::string>& dof_names();  // ux, uy, rz
+int dof_component(const std::string& name);
+ParameterSpec node_key();
+ParameterSpec set_key();
+/// The kernel's 0-based index of a deck node number (from 1).
+int deck_node(DeckModel& deck, long long number);
+/// 0-based nodes named by the 'node' or 'set' argument (exactly one of them).
+std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments);
 
 /// Installs tirefe.* and the model methods into the sandbox's Lua state.
 void install_macros(LuaSandbox& sandbox, DeckSession& session);

@@ -17,34 +17,13 @@ using VT = ValueType;
 
 // ---- shared argument pieces ------------------------------------------------------
 
-const ParameterSpec kNodeKey{"node", VT::Integer, false, "", "node number (from 1)"};
-const ParameterSpec kSetKey{"set", VT::String, false, "", "name of a node set (instead of node)"};
+const ParameterSpec kNodeKey = node_key();
+const ParameterSpec kSetKey = set_key();
 const ParameterSpec kLoadFunctionKey{"load_function", VT::String, false, "",
                                      "name of the load function scaling the value", std::string("ramp")};
-const std::vector<std::string> kDofNames{"ux", "uy", "rz"};
+const std::vector<std::string> kDofNames = dof_names();
 
-int component_of(const std::string& name) {
-  for (int c = 0; c < kDofsPerNode; ++c)
-    if (kDofNames[c] == name) return c;
-  throw ModelError("unknown DOF '" + name + "' (use ux, uy or rz)");
-}
-
-/// The kernel's 0-based index of a deck node number.
-int deck_node(DeckModel& deck, long long number) {
-  const int count = deck.model().mesh().node_count();
-  if (number < 1 || number > count)
-    throw ModelError("node " + std::to_string(number) + " does not exist (the model has " + std::to_string(count) +
-                     " nodes, numbered from 1)");
-  return static_cast<int>(number) - 1;
-}
-
-/// 0-based nodes named by 'node' or 'set' (exactly one of them).
-std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments) {
-  const bool by_node = arguments.has("node"), by_set = arguments.has("set");
-  if (by_node == by_set) throw ModelError("give either 'node' or 'set'");
-  if (by_set) return deck.model().mesh().node_set(arguments.string("set"));
-  return {deck_node(deck, arguments.integer("node"))};
-}
+int component_of(const std::string& name) { return dof_component(name); }
 
 // ---- building --------------------------------------------------------------------
 
@@ -205,9 +184,14 @@ int dt_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
 }
 
 int push_step_summary(lua_State* L, const std::vector<StepRecord>& records) {
-  int iterations = 0;
-  for (const auto& record : records) iterations += record.newton_iterations;
-  lua_createtable(L, 0, 3);
+  int iterations = 0, cuts = 0;
+  for (const auto& record : records) {
+    iterations += record.newton_iterations;
+    cuts += record.cuts;
+  }
+  lua_createtable(L, 0, 4);
+  lua_pushinteger(L, cuts);
+  lua_setfield(L, -2, "cuts");
   lua_pushinteger(L, static_cast<lua_Integer>(records.size()));
   lua_setfield(L, -2, "steps");
   lua_pushinteger(L, iterations);
@@ -334,6 +318,35 @@ const ParameterSpec kQuantityKey{"quantity", VT::String, false, "", "nodal quant
 
 }  // namespace
 
+const std::vector<std::string>& dof_names() {
+  static const std::vector<std::string> names{"ux", "uy", "rz"};
+  return names;
+}
+
+int dof_component(const std::string& name) {
+  for (int c = 0; c < kDofsPerNode; ++c)
+    if (dof_names()[c] == name) return c;
+  throw ModelError("unknown DOF '" + name + "' (use ux, uy or rz)");
+}
+
+ParameterSpec node_key() { return {"node", VT::Integer, false, "", "node number (from 1)"}; }
+ParameterSpec set_key() { return {"set", VT::String, false, "", "name of a node set (instead of node)"}; }
+
+int deck_node(DeckModel& deck, long long number) {
+  const int count = deck.model().mesh().node_count();
+  if (number < 1 || number > count)
+    throw ModelError("node " + std::to_string(number) + " does not exist (the model has " + std::to_string(count) +
+                     " nodes, numbered from 1)");
+  return static_cast<int>(number) - 1;
+}
+
+std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments) {
+  const bool by_node = arguments.has("node"), by_set = arguments.has("set");
+  if (by_node == by_set) throw ModelError("give either 'node' or 'set'");
+  if (by_set) return deck.model().mesh().node_set(arguments.string("set"));
+  return {deck_node(deck, arguments.integer("node"))};
+}
+
 void add_model_macros(MacroTable& table) {
   table.module_macros.push_back(
       {{"model",
@@ -436,10 +449,10 @@ void add_model_macros(MacroTable& table) {
       dt_macro);
   add({"step",
        "Solves one step of dt with Newton iterations (FEAP's TIME + LOOP/TANG/NEXT), cutting it if needed. "
-       "Returns {steps, newton_iterations, time}.",
+       "Returns {steps, newton_iterations, cuts, time}.",
        {{"dt", VT::Number, false, "s", "new nominal step", std::nullopt, Range::Positive}}, "model:step()"},
       step_macro);
-  add({"solve", "Advances to time 'to' in steps of dt. Returns {steps, newton_iterations, time}.",
+  add({"solve", "Advances to time 'to' in steps of dt. Returns {steps, newton_iterations, cuts, time}.",
        {{"to", VT::Number, true, "s", "end time"}, {"dt", VT::Number, false, "s", "new nominal step", std::nullopt,
                                                      Range::Positive}},
        "model:solve{ to = 1.0, dt = 0.1 }"},
