@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "core/assembler.hpp"
+#include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
 #include "tire/tire_builder.hpp"
 
@@ -14,28 +15,6 @@ using namespace tirefe;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-TireParameters tire_145sr12() {
-  TireParameters p;
-  p.elements = 100;
-  p.outer_diameter = 0.543;
-  p.rim_diameter = 0.3048;
-  p.tread_width = 0.110;
-  p.pressure = 0.208e6;
-  p.sidewall.cord_length = 0.140;
-  p.tread.axial_stiffness = 3e6;
-  p.tread.shear_stiffness = 5e4;
-  p.tread.bending_stiffness = 20.0;
-  p.tread.mass_per_length = 2.2;
-  p.tread.rotary_inertia_per_length = 7e-5;
-  p.sidewall.bending_stiffness = 100.0;
-  p.sidewall.shear_stiffness = 2e4;
-  p.sidewall.radial_damping = 150.0;
-  p.sidewall.circumferential_damping = 150.0;
-  p.rim_mass = 8.0;
-  p.rim_rotary_inertia = 0.1;
-  return p;
-}
 
 template <class Work>
 double microseconds_per_call(int repetitions, Work&& work) {
@@ -49,7 +28,7 @@ double microseconds_per_call(int repetitions, Work&& work) {
 int main(int argc, char** argv) {
   const int repetitions = argc > 1 ? std::atoi(argv[1]) : 2000;
   Model model;
-  const Tire tire = build_tire(model, tire_145sr12(), LoadFunction::linear());
+  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
   model.fix(tire.spindle, kUx);
   model.fix(tire.spindle, kUy);
   Analysis analysis(model);

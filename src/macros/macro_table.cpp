@@ -108,6 +108,7 @@ const MacroTable& macro_table() {
     add_model_macros(built);
     add_dynamics_macros(built);
     add_tire_macros(built);
+    add_contact_macros(built);
     return built;
   }();
   return table;

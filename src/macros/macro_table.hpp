@@ -10,6 +10,10 @@
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_spec.hpp"
 
+namespace tirefe {
+struct TireParameters;
+}
+
 namespace tirefe::macros {
 
 class DeckModel;
@@ -38,6 +42,7 @@ const MacroTable& macro_table();
 void add_model_macros(MacroTable& table);
 void add_dynamics_macros(MacroTable& table);
 void add_tire_macros(MacroTable& table);
+void add_contact_macros(MacroTable& table);
 
 // Argument pieces shared by the macro groups.
 const std::vector<std::string>& dof_names();  // ux, uy, rz
@@ -48,6 +53,10 @@ ParameterSpec set_key();
 int deck_node(DeckModel& deck, long long number);
 /// 0-based nodes named by the 'node' or 'set' argument (exactly one of them).
 std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments);
+
+/// The tire parameters of a Lua module in lua/ (e.g. "tires.145SR12"), read with the
+/// tire macro's own spec: one source of truth for decks, tests and benchmarks.
+TireParameters load_tire_parameters(const std::string& module);
 
 /// Installs tirefe.* and the model methods into the sandbox's Lua state.
 void install_macros(LuaSandbox& sandbox, DeckSession& session);

@@ -10,7 +10,7 @@ namespace {
 
 using VT = ValueType;
 
-int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+TireParameters tire_parameters(const MacroArguments& arguments) {
   TireParameters parameters;
   parameters.elements = static_cast<int>(arguments.integer("elements"));
   parameters.outer_diameter = arguments.number("outer_diameter");
@@ -32,7 +32,11 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   parameters.rim_mass = arguments.number("rim_mass");
   parameters.rim_rotary_inertia = arguments.number("rim_rotary_inertia");
   parameters.centre = {arguments.number("x"), arguments.number("y")};
+  return parameters;
+}
 
+int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const TireParameters parameters = tire_parameters(arguments);
   const std::string name = arguments.string("name");
   const Tire tire = build_tire(deck.model(), parameters,
                                deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))),
@@ -60,7 +64,29 @@ ParameterSpec optional_non_negative(const char* key, const char* unit, const cha
   return {key, VT::Number, false, unit, doc, std::string("0"), Range::NonNegative};
 }
 
+/// Protected: parses the table at index 2 into the TireParameters at index 1.
+int parse_tire_table(lua_State* L) {
+  const MacroSpec* spec = nullptr;
+  for (const auto& macro : macro_table().model_macros)
+    if (macro.spec.name == "tire") spec = &macro.spec;
+  *static_cast<TireParameters*>(lua_touserdata(L, 1)) = tire_parameters(MacroArguments(L, 2, *spec));
+  return 0;
+}
+
 }  // namespace
+
+TireParameters load_tire_parameters(const std::string& module) {
+  LuaSandbox sandbox(TIREFE_LUA_DIR);
+  lua_State* L = sandbox.state();
+  TireParameters parameters;
+  lua_pushcfunction(L, parse_tire_table);
+  lua_pushlightuserdata(L, &parameters);
+  lua_getglobal(L, "require");
+  lua_pushstring(L, module.c_str());
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK || lua_pcall(L, 2, 0, 0) != LUA_OK)
+    throw ModelError("tire parameters '" + module + "': " + lua_tostring(L, -1));
+  return parameters;
+}
 
 void add_tire_macros(MacroTable& table) {
   table.model_macros.push_back(

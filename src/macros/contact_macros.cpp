@@ -1,0 +1,253 @@
+// The contact macros: rigid surfaces (flat road, drum with a cleat, road profile) with
+// their prescribed motion, node-to-surface contact blocks with friction, and queries of
+// the contact results (docs/contact.md).
+//
+// Surfaces are kept by name per model. The registry lives in a step observer of the
+// model's analysis, so it dies with the model (a new model at the same address starts
+// empty); contact blocks hold their surface themselves.
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "contact/contact_output.hpp"
+#include "contact/node_contact.hpp"
+#include "macros/deck_model.hpp"
+#include "macros/macro_table.hpp"
+
+namespace tirefe::macros {
+
+namespace {
+
+using VT = ValueType;
+
+struct SurfaceRegistry {
+  std::map<std::string, std::shared_ptr<const RigidSurface>> surfaces;
+};
+
+SurfaceRegistry& registry_of(DeckModel& deck) {
+  static std::map<const DeckModel*, std::weak_ptr<SurfaceRegistry>> registries;
+  if (auto live = registries[&deck].lock()) return *live;
+  auto created = std::make_shared<SurfaceRegistry>();
+  deck.analysis().add_step_observer([created](const Analysis&, const StepRecord&) {});  // owns the registry
+  registries[&deck] = created;
+  return *created;
+}
+
+std::shared_ptr<const RigidSurface> named_surface(DeckModel& deck, const std::string& name) {
+  const auto& surfaces = registry_of(deck).surfaces;
+  auto found = surfaces.find(name);
+  if (found != surfaces.end()) return found->second;
+  std::string known;
+  for (const auto& entry : surfaces) known += (known.empty() ? "" : ", ") + entry.first;
+  throw ModelError("no surface named '" + name + "' (" + (known.empty() ? "define one with model:surface{...}" : "defined: " + known) + ")");
+}
+
+Eigen::Vector2d pair_of(const MacroArguments& arguments, const std::string& key, const Eigen::Vector2d& fallback) {
+  if (!arguments.has(key)) return fallback;
+  const std::vector<double> values = arguments.number_list(key);
+  if (values.size() != 2) throw ModelError("'" + key + "' takes two numbers {x, y}");
+  return {values[0], values[1]};
+}
+
+std::vector<double> triple_of(const MacroArguments& arguments, const std::string& key, const char* names) {
+  const std::vector<double> values = arguments.number_list(key);
+  if (values.size() != 3) throw ModelError("'" + key + "' takes three numbers {" + names + "}");
+  return values;
+}
+
+/// The surface's motion along x (flat, profile) or its angle (drum).
+MotionFunction motion_of(DeckModel& deck, const MacroArguments& arguments) {
+  const bool by_speed = arguments.has("speed"), by_function = arguments.has("load_function");
+  if (by_speed && by_function) throw ModelError("give either 'speed' or 'load_function', not both");
+  if (by_function)
+    return MotionFunction::from_load_function(
+        deck.model().load_function(deck.load_function(arguments.string("load_function"))), arguments.number("amplitude"));
+  if (by_speed)
+    return MotionFunction::ramped_rate(arguments.number("speed"), arguments.number("ramp_time"),
+                                       arguments.number("start_time"));
+  for (const char* key : {"ramp_time", "start_time"})
+    if (arguments.has(key)) throw ModelError(std::string("'") + key + "' needs 'speed'");
+  return MotionFunction();
+}
+
+std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroArguments& arguments) {
+  const std::string type = arguments.string("type");
+  const double edge_radius = arguments.number("edge_radius");
+  const MotionFunction motion = motion_of(deck, arguments);
+  auto refuse = [&](std::initializer_list<const char*> keys) {
+    for (const char* key : keys)
+      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' does not apply to a " + type + " surface");
+  };
+  if (type == "flat") {
+    refuse({"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "file", "points", "pothole", "cleat",
+            "level", "edge_radius"});
+    return std::make_shared<FlatRoad>(pair_of(arguments, "point", Eigen::Vector2d::Zero()),
+                                      pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
+                                      RigidMotion::translation(motion));
+  }
+  if (type == "drum") {
+    refuse({"point", "direction", "file", "points", "pothole", "cleat", "level"});
+    if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
+    Cleat cleat;
+    cleat.height = arguments.number("cleat_height");
+    cleat.arc_length = arguments.number("cleat_length");
+    cleat.angle = arguments.number("cleat_angle");
+    cleat.edge_radius = edge_radius;
+    if ((cleat.height > 0.0) != (cleat.arc_length > 0.0))
+      throw ModelError("a cleat needs both 'cleat_height' and 'cleat_length'");
+    return std::make_shared<Drum>(arguments.number("diameter"), pair_of(arguments, "centre", Eigen::Vector2d::Zero()),
+                                  motion, cleat);
+  }
+  refuse({"point", "direction", "diameter", "centre", "cleat_height", "cleat_length", "cleat_angle"});
+  const int sources = arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
+  if (sources != 1) throw ModelError("a profile needs exactly one of 'file', 'points', 'pothole' or 'cleat'");
+  const double level = arguments.number("level");
+  std::vector<Eigen::Vector2d> points;
+  if (arguments.has("file")) {
+    // A relative path is taken beside the deck, like require.
+    std::filesystem::path file(arguments.string("file"));
+    if (file.is_relative() && !deck.session().deck_path.empty())
+      file = std::filesystem::path(deck.session().deck_path).parent_path() / file;
+    points = RoadProfile::read_points(file.string());
+  } else if (arguments.has("points")) {
+    for (const auto& row : arguments.number_matrix("points")) {
+      if (row.size() != 2) throw ModelError("each profile point is {x, y}");
+      points.emplace_back(row[0], row[1]);
+    }
+  } else if (arguments.has("pothole")) {
+    const auto p = triple_of(arguments, "pothole", "start, length, depth");
+    points = RoadProfile::pothole_points(p[0], p[1], p[2], level);
+  } else {
+    const auto c = triple_of(arguments, "cleat", "start, length, height");
+    points = RoadProfile::cleat_points(c[0], c[1], c[2], level);
+  }
+  return std::make_shared<RoadProfile>(points, edge_radius, RigidMotion::translation(motion));
+}
+
+int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
+  const std::string name = arguments.string("name");
+  auto& surfaces = registry_of(deck).surfaces;
+  if (surfaces.count(name)) throw ModelError("surface '" + name + "' is already defined");
+  surfaces[name] = build_surface(deck, arguments);
+  return 0;
+}
+
+int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const std::string surface_name = arguments.string("surface");
+  const std::shared_ptr<const RigidSurface> surface = named_surface(deck, surface_name);
+  const std::vector<int> nodes = target_nodes(deck, arguments);
+  const std::string name = arguments.string_or("name", "contact_" + surface_name);
+  for (const auto& block : deck.model().blocks())
+    if (block->name() == name) throw ModelError("an element block named '" + name + "' exists already (give 'name')");
+  ContactParameters parameters;
+  parameters.friction = arguments.number("friction");
+  parameters.normal_penalty = arguments.has("penalty")
+                                  ? arguments.number("penalty")
+                                  : structural_penalty(deck.analysis(), nodes, arguments.number("penalty_factor"));
+  parameters.tangential_penalty = arguments.number_or("tangential_penalty", 0.0);
+  parameters.penetration_tolerance = arguments.number("tolerance");
+  parameters.multiplier_tolerance = arguments.number("multiplier_tolerance");
+  parameters.penetration_limit = arguments.number("penetration_limit");
+  const ContactBlock& block =
+      add_contact_block(deck.model(), name, surface, nodes, parameters, deck.analysis().state().time);
+  const std::string prefix = arguments.string_or("history", "");
+  const int every = static_cast<int>(arguments.integer("output_every"));
+  if (!prefix.empty() || every > 0) add_contact_output(deck.output_or_default(), deck.analysis(), block, prefix, every);
+  lua_pushnumber(L, parameters.normal_penalty);
+  return 1;
+}
+
+const std::vector<std::string> kQuantities{"fx", "fy", "patch_length", "nodes_in_contact", "nodes_slipping",
+                                           "max_penetration"};
+
+int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const std::string name = arguments.string("name");
+  const auto* block = dynamic_cast<const ContactBlock*>(&deck.model().block(name));
+  if (!block) throw ModelError("block '" + name + "' is not a contact block");
+  const ContactSummary summary = summarize_contact(*block);
+  const std::string quantity = arguments.string("quantity");
+  const double values[] = {summary.force.x(),
+                           summary.force.y(),
+                           summary.patch_length,
+                           static_cast<double>(summary.nodes_in_contact),
+                           static_cast<double>(summary.nodes_slipping),
+                           summary.max_penetration};
+  for (size_t i = 0; i < kQuantities.size(); ++i)
+    if (kQuantities[i] == quantity) lua_pushnumber(L, values[i]);
+  return 1;
+}
+
+}  // namespace
+
+void add_contact_macros(MacroTable& table) {
+  auto add = [&table](MacroSpec spec, ModelHandler handler) { table.model_macros.push_back({std::move(spec), handler}); };
+  add({"surface",
+       "Defines a named rigid surface for contact (docs/contact.md): a flat road, a drum (optionally with a cleat) "
+       "or a road profile (points, a file, a pothole or a cleat on a level road). The solid lies on the right "
+       "when walking along the surface (below a road, inside a drum). Roads and profiles translate along x, drums "
+       "turn about their centre: by 'speed' (ramped from rest over 'ramp_time' from 'start_time') or by "
+       "'amplitude' times a load function.",
+       {{"name", VT::String, true, "", "surface name"},
+        {"type", VT::String, true, "", "kind of surface", std::nullopt, Range::Any, {"flat", "drum", "profile"}},
+        {"point", VT::NumberList, false, "m", "flat: a point of the road {x, y}", std::string("{0, 0}")},
+        {"direction", VT::NumberList, false, "", "flat: direction along the road {dx, dy}", std::string("{1, 0}")},
+        {"diameter", VT::Number, false, "m", "drum: diameter", std::nullopt, Range::Positive},
+        {"centre", VT::NumberList, false, "m", "drum: centre {x, y}", std::string("{0, 0}")},
+        {"cleat_height", VT::Number, false, "m", "drum: radial height of the cleat (0: none)", std::string("0"),
+         Range::NonNegative},
+        {"cleat_length", VT::Number, false, "m", "drum: length of the cleat along the drum surface", std::string("0"),
+         Range::NonNegative},
+        {"cleat_angle", VT::Number, false, "rad", "drum: angular position of the cleat's middle at rest, from +x",
+         std::string("1.5707963267948966")},
+        {"file", VT::String, false, "", "profile: two-column text file 'x y' ('#' comments), relative to the deck's folder"},
+        {"points", VT::NumberMatrix, false, "m", "profile: {x, y} points, x not decreasing"},
+        {"pothole", VT::NumberList, false, "m", "profile: a pothole {start, length, depth} in a level road"},
+        {"cleat", VT::NumberList, false, "m", "profile: a cleat {start, length, height} on a level road"},
+        {"level", VT::Number, false, "m", "profile: road height around a pothole or cleat", std::string("0")},
+        {"edge_radius", VT::Number, false, "m", "drum, profile: rounding radius of the convex edges",
+         std::string("0"), Range::NonNegative},
+        {"speed", VT::Number, false, "m/s or rad/s", "final speed along x (flat, profile) or spin (drum, ccw)"},
+        {"ramp_time", VT::Number, false, "s", "time to reach 'speed' from rest", std::string("0"), Range::NonNegative},
+        {"start_time", VT::Number, false, "s", "when the ramp starts", std::string("0")},
+        {"load_function", VT::String, false, "", "x offset (flat, profile) or angle (drum) = amplitude * f(t)"},
+        {"amplitude", VT::Number, false, "m or rad", "scale of the load function", std::string("1")}},
+       "model:surface{ name = \"drum\", type = \"drum\", diameter = 1.7, cleat_height = 0.025, cleat_length = 0.66,\n"
+       "               edge_radius = 0.005, speed = 16.8, ramp_time = 4.0, start_time = 2.0 }"},
+      surface_macro);
+  add({"contact",
+       "Node-to-surface contact with Coulomb friction by the augmented Lagrangian method, one element per node. "
+       "Without 'penalty' the normal penalty is penalty_factor times the largest diagonal stiffness of the "
+       "structure at the nodes (define the structure first). Returns the normal penalty used.",
+       {{"surface", VT::String, true, "", "surface name"},
+        node_key(),
+        set_key(),
+        {"name", VT::String, false, "", "element block name", std::string("contact_<surface>")},
+        {"friction", VT::Number, false, "", "Coulomb coefficient mu", std::string("0"), Range::NonNegative},
+        {"penalty", VT::Number, false, "N/m", "normal penalty eps_N", std::nullopt, Range::Positive},
+        {"penalty_factor", VT::Number, false, "", "eps_N / largest diagonal stiffness at the nodes", std::string("1"),
+         Range::Positive},
+        {"tangential_penalty", VT::Number, false, "N/m", "tangential penalty eps_T", std::string("eps_N"),
+         Range::Positive},
+        {"tolerance", VT::Number, false, "m", "penetration allowed after the Uzawa updates", std::string("5e-4"),
+         Range::NonNegative},
+        {"multiplier_tolerance", VT::Number, false, "", "relative multiplier change allowed", std::string("0.01"),
+         Range::NonNegative},
+        {"penetration_limit", VT::Number, false, "m", "deeper penetration fails the step", std::string("0.01"),
+         Range::Positive},
+        {"history", VT::String, false, "", "prefix of history channels <prefix>_fx, _fy, _patch_length, "
+                                           "_nodes_in_contact"},
+        {"output_every", VT::Integer, false, "", "write per-node rows (/contact/<name>/...) every n steps; 0: never",
+         std::string("0"), Range::NonNegative}},
+       "model:contact{ surface = \"drum\", set = \"tread\", friction = 0.3, history = \"patch\" }"},
+      contact_macro);
+  add({"contact_value",
+       "Returns a total of a contact block at the current time: force on the structure (fx, fy), patch length, "
+       "nodes in contact or slipping, or the largest penetration.",
+       {{"name", VT::String, true, "", "contact block name (contact_<surface> by default)"},
+        {"quantity", VT::String, true, "", "what to return", std::nullopt, Range::Any, kQuantities}},
+       "local fy = model:contact_value{ name = \"contact_drum\", quantity = \"fy\" }"},
+      contact_value_macro);
+}
+
+}  // namespace tirefe::macros
