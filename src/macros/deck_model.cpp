@@ -3,6 +3,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <stdexcept>
+
+#include "macros/interrupt.hpp"
 
 namespace tirefe::macros {
 
@@ -15,6 +18,13 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
     if (output_) output_->record(analysis, record);
     print_step(record);
+    if (const int signal = stop_signal().load()) {
+      if (output_) output_->flush();
+      throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                               " after step " + std::to_string(record.step) + " at t = " +
+                               std::to_string(record.time) +
+                               (output_ ? "; '" + output_->path() + "' holds every completed step" : ""));
+    }
   });
 }
 

@@ -1,7 +1,8 @@
 // tirefe: runs an input deck.
 //   tirefe deck.lua [key=value ...] [--output-dir DIR] [--quiet] [--verbose]
 //   tirefe --macros        prints the macro reference (Markdown)
-// Exit status: 0 success, 1 deck or model error, 2 usage error, 3 a self-check failed.
+// Exit status: 0 success, 1 deck or model error, 2 usage error, 3 a self-check failed,
+// 128 + signal when SIGINT or SIGTERM stopped the run (after closing its files).
 #include <cstdio>
 #include <exception>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "macros/deck_session.hpp"
+#include "macros/interrupt.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/version.hpp"
@@ -80,13 +82,14 @@ int main(int argc, char** argv) {
     session.deck_text.assign(std::istreambuf_iterator<char>(deck), std::istreambuf_iterator<char>());
   }
   LuaSandbox sandbox(TIREFE_LUA_DIR);
+  install_stop_handlers();
   try {
     install_macros(sandbox, session);
     sandbox.run_file(line.deck, line.overrides);
   } catch (const DeckError& error) {
     std::cerr << "tirefe: " << error.what() << "\n";
     if (line.verbose && !sandbox.last_traceback().empty()) std::cerr << sandbox.last_traceback() << "\n";
-    return 1;
+    return stop_signal().load() ? 128 + stop_signal().load() : 1;
   } catch (const std::exception& error) {
     std::cerr << "tirefe: " << line.deck << ": " << error.what() << "\n";
     return 1;
