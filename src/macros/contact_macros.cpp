@@ -40,7 +40,8 @@ std::shared_ptr<const RigidSurface> named_surface(DeckModel& deck, const std::st
   if (found != surfaces.end()) return found->second;
   std::string known;
   for (const auto& entry : surfaces) known += (known.empty() ? "" : ", ") + entry.first;
-  throw ModelError("no surface named '" + name + "' (" + (known.empty() ? "define one with model:surface{...}" : "defined: " + known) + ")");
+  throw ModelError("no surface named '" + name + "' (" +
+                   (known.empty() ? "define one with model:surface{...}" : "defined: " + known) + ")");
 }
 
 Eigen::Vector2d pair_of(const MacroArguments& arguments, const std::string& key, const Eigen::Vector2d& fallback) {
@@ -60,14 +61,19 @@ std::vector<double> triple_of(const MacroArguments& arguments, const std::string
 MotionFunction motion_of(DeckModel& deck, const MacroArguments& arguments) {
   const bool by_speed = arguments.has("speed"), by_function = arguments.has("load_function");
   if (by_speed && by_function) throw ModelError("give either 'speed' or 'load_function', not both");
+  auto refuse = [&](std::initializer_list<const char*> keys, const char* needs) {
+    for (const char* key : keys)
+      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' needs '" + needs + "'");
+  };
+  if (!by_speed) refuse({"ramp_time", "start_time"}, "speed");
+  if (!by_function) refuse({"amplitude"}, "load_function");
   if (by_function)
     return MotionFunction::from_load_function(
-        deck.model().load_function(deck.load_function(arguments.string("load_function"))), arguments.number("amplitude"));
+        deck.model().load_function(deck.load_function(arguments.string("load_function"))),
+        arguments.number("amplitude"));
   if (by_speed)
     return MotionFunction::ramped_rate(arguments.number("speed"), arguments.number("ramp_time"),
                                        arguments.number("start_time"));
-  for (const char* key : {"ramp_time", "start_time"})
-    if (arguments.has(key)) throw ModelError(std::string("'") + key + "' needs 'speed'");
   return MotionFunction();
 }
 
@@ -100,7 +106,8 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
                                   motion, cleat);
   }
   refuse({"point", "direction", "diameter", "centre", "cleat_height", "cleat_length", "cleat_angle"});
-  const int sources = arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
+  const int sources =
+      arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
   if (sources != 1) throw ModelError("a profile needs exactly one of 'file', 'points', 'pothole' or 'cleat'");
   const double level = arguments.number("level");
   std::vector<Eigen::Vector2d> points;
@@ -145,7 +152,10 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
   parameters.normal_penalty = arguments.has("penalty")
                                   ? arguments.number("penalty")
                                   : structural_penalty(deck.analysis(), nodes, arguments.number("penalty_factor"));
-  parameters.tangential_penalty = arguments.number_or("tangential_penalty", 0.0);
+  parameters.tangential_penalty =
+      arguments.has("tangential_penalty")
+          ? arguments.number("tangential_penalty")
+          : structural_tangential_penalty(deck.analysis(), nodes, *surface, arguments.number("tangential_factor"));
   parameters.penetration_tolerance = arguments.number("tolerance");
   parameters.multiplier_tolerance = arguments.number("multiplier_tolerance");
   parameters.penetration_limit = arguments.number("penetration_limit");
@@ -155,11 +165,12 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
   const int every = static_cast<int>(arguments.integer("output_every"));
   if (!prefix.empty() || every > 0) add_contact_output(deck.output_or_default(), deck.analysis(), block, prefix, every);
   lua_pushnumber(L, parameters.normal_penalty);
-  return 1;
+  lua_pushnumber(L, parameters.tangential_penalty);
+  return 2;
 }
 
-const std::vector<std::string> kQuantities{"fx", "fy", "patch_length", "nodes_in_contact", "nodes_slipping",
-                                           "max_penetration"};
+const std::vector<std::string> kQuantities{
+    "fx", "fy", "patch_length", "nodes_in_contact", "nodes_slipping", "max_penetration"};
 
 int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
@@ -181,7 +192,9 @@ int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
 }  // namespace
 
 void add_contact_macros(MacroTable& table) {
-  auto add = [&table](MacroSpec spec, ModelHandler handler) { table.model_macros.push_back({std::move(spec), handler}); };
+  auto add = [&table](MacroSpec spec, ModelHandler handler) {
+    table.model_macros.push_back({std::move(spec), handler});
+  };
   add({"surface",
        "Defines a named rigid surface for contact (docs/contact.md): a flat road, a drum (optionally with a cleat) "
        "or a road profile (points, a file, a pothole or a cleat on a level road). The solid lies on the right "
@@ -200,13 +213,14 @@ void add_contact_macros(MacroTable& table) {
          Range::NonNegative},
         {"cleat_angle", VT::Number, false, "rad", "drum: angular position of the cleat's middle at rest, from +x",
          std::string("1.5707963267948966")},
-        {"file", VT::String, false, "", "profile: two-column text file 'x y' ('#' comments), relative to the deck's folder"},
+        {"file", VT::String, false, "",
+         "profile: two-column text file 'x y' ('#' comments), relative to the deck's folder"},
         {"points", VT::NumberMatrix, false, "m", "profile: {x, y} points, x not decreasing"},
         {"pothole", VT::NumberList, false, "m", "profile: a pothole {start, length, depth} in a level road"},
         {"cleat", VT::NumberList, false, "m", "profile: a cleat {start, length, height} on a level road"},
         {"level", VT::Number, false, "m", "profile: road height around a pothole or cleat", std::string("0")},
-        {"edge_radius", VT::Number, false, "m", "drum, profile: rounding radius of the convex edges",
-         std::string("0"), Range::NonNegative},
+        {"edge_radius", VT::Number, false, "m", "drum, profile: rounding radius of the convex edges", std::string("0"),
+         Range::NonNegative},
         {"speed", VT::Number, false, "m/s or rad/s", "final speed along x (flat, profile) or spin (drum, ccw)"},
         {"ramp_time", VT::Number, false, "s", "time to reach 'speed' from rest", std::string("0"), Range::NonNegative},
         {"start_time", VT::Number, false, "s", "when the ramp starts", std::string("0")},
@@ -218,7 +232,9 @@ void add_contact_macros(MacroTable& table) {
   add({"contact",
        "Node-to-surface contact with Coulomb friction by the augmented Lagrangian method, one element per node. "
        "Without 'penalty' the normal penalty is penalty_factor times the largest diagonal stiffness of the "
-       "structure at the nodes (define the structure first). Returns the normal penalty used.",
+       "structure at the nodes; without 'tangential_penalty' the tangential one is tangential_factor times the "
+       "smallest stiffness of the structure along the surface at the nodes (define and support the structure "
+       "first). Returns the normal and tangential penalties used.",
        {{"surface", VT::String, true, "", "surface name"},
         node_key(),
         set_key(),
@@ -227,7 +243,9 @@ void add_contact_macros(MacroTable& table) {
         {"penalty", VT::Number, false, "N/m", "normal penalty eps_N", std::nullopt, Range::Positive},
         {"penalty_factor", VT::Number, false, "", "eps_N / largest diagonal stiffness at the nodes", std::string("1"),
          Range::Positive},
-        {"tangential_penalty", VT::Number, false, "N/m", "tangential penalty eps_T", std::string("eps_N"),
+        {"tangential_penalty", VT::Number, false, "N/m", "tangential penalty eps_T", std::nullopt, Range::Positive},
+        {"tangential_factor", VT::Number, false, "",
+         "eps_T / smallest tangential stiffness of the structure itself at the nodes", std::string("1"),
          Range::Positive},
         {"tolerance", VT::Number, false, "m", "penetration allowed after the Uzawa updates", std::string("5e-4"),
          Range::NonNegative},
@@ -235,8 +253,9 @@ void add_contact_macros(MacroTable& table) {
          Range::NonNegative},
         {"penetration_limit", VT::Number, false, "m", "deeper penetration fails the step", std::string("0.01"),
          Range::Positive},
-        {"history", VT::String, false, "", "prefix of history channels <prefix>_fx, _fy, _patch_length, "
-                                           "_nodes_in_contact"},
+        {"history", VT::String, false, "",
+         "prefix of history channels <prefix>_fx, _fy, _patch_length, "
+         "_nodes_in_contact"},
         {"output_every", VT::Integer, false, "", "write per-node rows (/contact/<name>/...) every n steps; 0: never",
          std::string("0"), Range::NonNegative}},
        "model:contact{ surface = \"drum\", set = \"tread\", friction = 0.3, history = \"patch\" }"},

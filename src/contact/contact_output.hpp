@@ -1,0 +1,25 @@
+// Contact results in the HDF5 result file (docs/output.md, docs/contact.md):
+//   /history/<prefix>_fx, _fy            total contact force on the structure [N]
+//   /history/<prefix>_patch_length       arc length spanned by the nodes in contact [m]
+//   /history/<prefix>_nodes_in_contact   count
+//   /contact/<block>/nodes               0-based node indices (fixed)
+//   /contact/<block>/time                one row per written step [s]
+//   /contact/<block>/gap, normal_force, tangential_force, state, coordinate, sliding_velocity
+//                                        one row per written step, one column per node
+// state is 0 open, 1 stick, 2 slip.
+#pragma once
+
+#include <string>
+
+#include "contact/node_contact.hpp"
+#include "io/result_file.hpp"
+
+namespace tirefe {
+
+/// Adds the history channels (unless channel_prefix is empty) and, when every > 0, the
+/// per-node rows written every 'every' accepted steps by an observer of the analysis. The
+/// block, file and analysis must outlive the run.
+void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactBlock& block,
+                        const std::string& channel_prefix, int every);
+
+}  // namespace tirefe

@@ -1,0 +1,269 @@
+#include "contact/node_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/assembler.hpp"
+#include "core/model.hpp"
+#include "solvers/analysis.hpp"
+#include "solvers/linear_solver.hpp"
+
+namespace tirefe {
+
+void ContactParameters::check() const {
+  auto require = [](bool ok, const std::string& what, double value) {
+    if (!ok) throw ModelError("contact: " + what + " (got " + std::to_string(value) + ")");
+  };
+  require(normal_penalty > 0.0 && std::isfinite(normal_penalty), "the normal penalty must be positive", normal_penalty);
+  require(tangential_penalty >= 0.0 && std::isfinite(tangential_penalty),
+          "the tangential penalty must be non-negative (0: the normal penalty)", tangential_penalty);
+  require(friction >= 0.0 && std::isfinite(friction), "the friction coefficient must be non-negative", friction);
+  require(penetration_tolerance >= 0.0 && std::isfinite(penetration_tolerance),
+          "the penetration tolerance must be non-negative", penetration_tolerance);
+  require(multiplier_tolerance >= 0.0 && std::isfinite(multiplier_tolerance),
+          "the multiplier tolerance must be non-negative", multiplier_tolerance);
+  require(penetration_limit > penetration_tolerance, "the penetration limit must exceed the penetration tolerance",
+          penetration_limit);
+}
+
+NodeSurfaceContact::NodeSurfaceContact(std::shared_ptr<const RigidSurface> surface,
+                                       const Eigen::Vector2d& reference_position, const ContactParameters& parameters,
+                                       int node, double start_time)
+    : surface_(std::move(surface)),
+      reference_position_(reference_position),
+      parameters_(parameters),
+      tangential_penalty_(parameters.effective_tangential_penalty()),
+      node_(node) {
+  if (!surface_) throw ModelError("contact: no surface");
+  parameters_.check();
+  reference_coordinate_ = surface_->project(reference_position_, start_time).coordinate;
+}
+
+void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& base,
+                                  History& trial, Vector& residual, Matrix* tangent) const {
+  residual.setZero();
+  if (tangent) tangent->setZero();
+  const Eigen::Vector2d x = reference_position_ + local.displacement.head<2>();
+  const SurfaceProjection p = surface_->project(x, context.time);
+  trial.coordinate = p.coordinate;
+  trial.gap = p.gap;
+
+  const double eps_n = parameters_.normal_penalty, eps_t = tangential_penalty_, mu = parameters_.friction;
+  const double normal_force = base.normal_multiplier - eps_n * p.gap;
+  if (!(normal_force >= 0.0)) {
+    // Open: no force; the multipliers lapse and a later touch-down sticks where it lands.
+    // (A node exactly touching counts as closed: its stiffness holds a structure that
+    // rests on the surface from the first iteration.)
+    trial.state = ContactState::Open;
+    trial.normal_multiplier = trial.tangential_multiplier = 0.0;
+    trial.stick_coordinate = p.coordinate;
+    trial.normal_force = trial.tangential_force = trial.sliding_velocity = 0.0;
+    trial.force.setZero();
+    return;
+  }
+
+  // A node open at the start of the step sticks to the surface point it was above then.
+  const bool touching_down = base.state == ContactState::Open;
+  const double anchor = !touching_down                ? base.stick_coordinate
+                        : std::isnan(base.coordinate) ? reference_coordinate_
+                                                      : base.coordinate;
+  const double tangential_multiplier = touching_down ? 0.0 : base.tangential_multiplier;
+  const double trial_traction = tangential_multiplier - eps_t * surface_->arc_difference(p.coordinate, anchor);
+  const double slip_limit = mu * normal_force;
+  const bool stick = mu > 0.0 && std::abs(trial_traction) <= slip_limit;
+  const double slip_sign = trial_traction >= 0.0 ? 1.0 : -1.0;
+  const double tangential_force = stick ? trial_traction : slip_sign * slip_limit;
+
+  trial.state = stick ? ContactState::Stick : ContactState::Slip;
+  trial.stick_coordinate = stick ? anchor : p.coordinate - (tangential_multiplier - tangential_force) / eps_t;
+  trial.normal_multiplier = base.normal_multiplier;
+  trial.tangential_multiplier = tangential_multiplier;
+  trial.normal_force = normal_force;
+  trial.tangential_force = tangential_force;
+  trial.force = normal_force * p.normal + tangential_force * p.tangent;
+  trial.sliding_velocity = (local.velocity.head<2>() - surface_->velocity_at(p.point, context.time)).dot(p.tangent);
+
+  residual.head<2>() = -context.factors.force_stiffness * trial.force;
+  if (!tangent) return;
+  const Eigen::Vector2d& nu = p.normal;
+  const Eigen::Vector2d& tau = p.tangent;
+  Eigen::Matrix2d stiffness = eps_n * nu * nu.transpose() - (normal_force * p.normal_rate) * tau * tau.transpose() +
+                              (tangential_force * p.normal_rate) * nu * tau.transpose();
+  if (stick)
+    stiffness += (eps_t * p.arc_rate) * tau * tau.transpose();
+  else
+    stiffness += (mu * slip_sign * eps_n) * tau * nu.transpose();
+  tangent->topLeftCorner<2, 2>() = context.factors.tangent_stiffness * stiffness;
+}
+
+ElementEnergy NodeSurfaceContact::energy(const LocalState<kDofs>&, const History& history) const {
+  ElementEnergy energy;
+  if (history.state == ContactState::Open) return energy;
+  const double normal = history.normal_force - history.normal_multiplier;
+  const double tangential = history.tangential_force - history.tangential_multiplier;
+  energy.strain = 0.5 * (normal * normal / parameters_.normal_penalty + tangential * tangential / tangential_penalty_);
+  return energy;
+}
+
+bool NodeSurfaceContact::augment(History& base, const History& trial) const {
+  if (trial.state == ContactState::Open) return false;
+  const double penetration = std::max(0.0, -trial.gap);
+  if (penetration > parameters_.penetration_limit) {
+    std::ostringstream message;
+    message << "contact with the " << surface_->kind() << " surface: node " << node_ << " (0-based) penetrates by "
+            << penetration << " m in a converged solve, more than the limit of " << parameters_.penetration_limit
+            << " m: the penalty is too small for the load, or the obstacle too high or too fast for the step";
+    throw ContactFailure(message.str());
+  }
+  // The constraints Uzawa enforces: impenetrability, and no relative motion while sticking.
+  // A slipping node's friction follows from t_N and its step's return map, so its
+  // tangential multiplier and stick point stay as the step began.
+  const bool stick = trial.state == ContactState::Stick;
+  const double change = std::hypot(trial.normal_force - trial.normal_multiplier,
+                                   stick ? trial.tangential_force - trial.tangential_multiplier : 0.0);
+  const double size = std::max({std::hypot(trial.normal_force, trial.tangential_force),
+                                std::hypot(trial.normal_multiplier, trial.tangential_multiplier),
+                                parameters_.normal_penalty * parameters_.penetration_tolerance});
+  if (penetration <= parameters_.penetration_tolerance && change <= parameters_.multiplier_tolerance * size)
+    return false;
+  base.normal_multiplier = trial.normal_force;
+  if (stick) {
+    base.state = ContactState::Stick;  // also for a node that touched down in this step
+    base.tangential_multiplier = trial.tangential_force;
+    base.stick_coordinate = trial.stick_coordinate;
+  }
+  return true;
+}
+
+ContactBlock& add_contact_block(Model& model, const std::string& name, std::shared_ptr<const RigidSurface> surface,
+                                const std::vector<int>& nodes, const ContactParameters& parameters, double start_time) {
+  if (nodes.empty()) throw ModelError("contact block '" + name + "': no nodes");
+  parameters.check();
+  auto& block = model.add_block<NodeSurfaceContact>(name);
+  for (int node : nodes)
+    block.add({model.mesh().checked(node)},
+              NodeSurfaceContact(surface, model.mesh().position(node), parameters, node, start_time));
+  return block;
+}
+
+namespace {
+
+/// The structure's static tangent dF_int/du at the analysis's current state, from the
+/// analysis's own assembler (a second assembler would rebind the blocks' tangent slots).
+const SparseMatrix& static_tangent(Analysis& analysis, State& state) {
+  Model& model = analysis.model();
+  Assembler& assembler = analysis.assembler();
+  if (assembler.update_pattern()) analysis.linear_solver().analyze(assembler.tangent());
+  state = analysis.state();
+  if (state.displacement.size() != model.mesh().dof_count()) state.resize(model.mesh().dof_count());
+  EvaluationContext context;  // static factors: dF_int/du alone
+  context.time = state.time;
+  Eigen::VectorXd residual;
+  assembler.assemble(context, state, residual);
+  model.revert_history();  // an evaluation between steps leaves no trial history behind
+  return assembler.tangent();
+}
+
+}  // namespace
+
+double structural_penalty(Analysis& analysis, const std::vector<int>& nodes, double factor) {
+  if (!(factor > 0.0)) throw ModelError("contact: the penalty factor must be positive");
+  State state;
+  const SparseMatrix& tangent = static_tangent(analysis, state);
+  const DofMap& dofs = analysis.model().dof_map();
+  double largest = 0.0;
+  for (int node : nodes)
+    for (int component : {kUx, kUy}) {
+      const int equation = dofs.equation(dof_index(node, component));
+      if (equation >= 0) largest = std::max(largest, std::abs(tangent.coeff(equation, equation)));
+    }
+  if (!(largest > 0.0) || !std::isfinite(largest))
+    throw ModelError(
+        "contact: the contact nodes carry no stiffness, so the penalty cannot be scaled from the "
+        "structure; give it explicitly");
+  return factor * largest;
+}
+
+double structural_tangential_penalty(Analysis& analysis, const std::vector<int>& nodes, const RigidSurface& surface,
+                                     double factor) {
+  if (!(factor > 0.0)) throw ModelError("contact: the penalty factor must be positive");
+  State state;
+  const SparseMatrix& tangent = static_tangent(analysis, state);
+  const Model& model = analysis.model();
+  const DofMap& dofs = model.dof_map();
+  // Unit loads along x and y at every node: the columns of the inverse at the nodes.
+  Eigen::MatrixXd unit_loads =
+      Eigen::MatrixXd::Zero(dofs.equation_count(), 2 * static_cast<Eigen::Index>(nodes.size()));
+  for (size_t n = 0; n < nodes.size(); ++n)
+    for (int component : {kUx, kUy}) {
+      const int equation = dofs.equation(dof_index(nodes[n], component));
+      if (equation >= 0) unit_loads(equation, 2 * n + component) = 1.0;
+    }
+  KluSolver solver;
+  try {
+    solver.analyze(tangent);
+    solver.factorize(tangent);
+  } catch (const SingularMatrix&) {
+    throw ModelError(
+        "contact: the structure is not supported without the contact, so the tangential penalty cannot be "
+        "scaled from it; support it while defining the contact, or give the tangential penalty");
+  }
+  solver.solve(unit_loads);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    Eigen::Matrix2d compliance = Eigen::Matrix2d::Zero();  // prescribed components: rigid
+    for (int row : {kUx, kUy})
+      for (int column : {kUx, kUy}) {
+        const int equation = dofs.equation(dof_index(nodes[n], row));
+        if (equation >= 0) compliance(row, column) = unit_loads(equation, 2 * n + column);
+      }
+    const Eigen::Vector2d position =
+        model.mesh().position(nodes[n]) + state.displacement.segment<2>(dof_index(nodes[n], kUx));
+    const Eigen::Vector2d tau = surface.project(position, state.time).tangent;
+    const double flexibility = tau.dot(compliance * tau);
+    if (flexibility > 0.0 && std::isfinite(flexibility)) smallest = std::min(smallest, 1.0 / flexibility);
+  }
+  if (!std::isfinite(smallest))
+    throw ModelError("contact: the contact nodes cannot move along the surface; give the tangential penalty");
+  return factor * smallest;
+}
+
+ContactSummary summarize_contact(const ContactBlock& block) {
+  ContactSummary summary;
+  double first = 0.0, low = 0.0, high = 0.0;
+  for (int e = 0; e < block.size(); ++e) {
+    const ContactHistory& history = block.committed_history(e);
+    if (history.state == ContactState::Open) continue;
+    summary.force += history.force;
+    summary.max_penetration = std::max(summary.max_penetration, -history.gap);
+    if (history.state == ContactState::Slip) ++summary.nodes_slipping;
+    // Arc length relative to the first node in contact (wrapped on a drum).
+    const double offset =
+        summary.nodes_in_contact == 0 ? 0.0 : block.kernel(e).surface().arc_difference(history.coordinate, first);
+    if (summary.nodes_in_contact++ == 0) first = history.coordinate;
+    low = std::min(low, offset);
+    high = std::max(high, offset);
+  }
+  summary.patch_length = high - low;
+  return summary;
+}
+
+void fill_contact_results(const ContactBlock& block, ContactNodeResults& results) {
+  const size_t count = static_cast<size_t>(block.size());
+  for (auto* column : {&results.gap, &results.normal_force, &results.tangential_force, &results.state,
+                       &results.coordinate, &results.sliding_velocity})
+    column->resize(count);
+  for (size_t e = 0; e < count; ++e) {
+    const ContactHistory& history = block.committed_history(static_cast<int>(e));
+    results.gap[e] = history.gap;
+    results.normal_force[e] = history.normal_force;
+    results.tangential_force[e] = history.tangential_force;
+    results.state[e] = static_cast<double>(history.state);
+    results.coordinate[e] = history.coordinate;
+    results.sliding_velocity[e] = history.sliding_velocity;
+  }
+}
+
+}  // namespace tirefe

@@ -1,0 +1,423 @@
+#include "contact/surface_curve.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "core/mesh.hpp"
+
+namespace tirefe {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
+/// k x v: the left normal.
+Eigen::Vector2d left_normal(const Eigen::Vector2d& v) { return {-v.y(), v.x()}; }
+
+std::string where(const Eigen::Vector2d& point) {
+  std::ostringstream text;
+  text << "(" << point.x() << ", " << point.y() << ")";
+  return text.str();
+}
+
+Eigen::Vector2d unit(const Eigen::Vector2d& direction, const char* what) {
+  const double norm = direction.norm();
+  if (!(norm > 0.0) || !std::isfinite(norm))
+    throw ModelError(std::string(what) + ": the direction must be a non-zero vector");
+  return direction / norm;
+}
+
+/// Angle in [0, 2 pi).
+double wrapped_angle(double angle) {
+  angle = std::fmod(angle, 2.0 * kPi);
+  return angle < 0.0 ? angle + 2.0 * kPi : angle;
+}
+
+}  // namespace
+
+// ---- pieces ------------------------------------------------------------------------
+
+SurfaceCurve::Piece SurfaceCurve::Piece::segment(const Eigen::Vector2d& start, const Eigen::Vector2d& end) {
+  Piece piece;
+  const double length = (end - start).norm();
+  if (!(length > 0.0)) throw ModelError("surface: zero-length segment at " + where(start) + " (repeated point)");
+  piece.origin_ = start;
+  piece.direction_ = (end - start) / length;
+  piece.end_ = length;
+  return piece;
+}
+
+SurfaceCurve::Piece SurfaceCurve::Piece::ray_to(const Eigen::Vector2d& end, const Eigen::Vector2d& direction) {
+  Piece piece;
+  piece.origin_ = end;
+  piece.direction_ = unit(direction, "surface ray");
+  piece.begin_ = -kInfinity;
+  return piece;
+}
+
+SurfaceCurve::Piece SurfaceCurve::Piece::ray_from(const Eigen::Vector2d& start, const Eigen::Vector2d& direction) {
+  Piece piece;
+  piece.origin_ = start;
+  piece.direction_ = unit(direction, "surface ray");
+  piece.end_ = kInfinity;
+  return piece;
+}
+
+SurfaceCurve::Piece SurfaceCurve::Piece::line(const Eigen::Vector2d& point, const Eigen::Vector2d& direction) {
+  Piece piece;
+  piece.origin_ = point;
+  piece.direction_ = unit(direction, "surface line");
+  piece.begin_ = -kInfinity;
+  piece.end_ = kInfinity;
+  return piece;
+}
+
+SurfaceCurve::Piece SurfaceCurve::Piece::arc(const Eigen::Vector2d& centre, double radius, double start_angle,
+                                             double sweep) {
+  if (!(radius > 0.0) || !std::isfinite(radius))
+    throw ModelError("surface arc: the radius must be positive (got " + std::to_string(radius) + ")");
+  if (!(std::abs(sweep) > 0.0) || std::abs(sweep) > 2.0 * kPi * (1.0 + 1e-12))
+    throw ModelError("surface arc: the sweep must be non-zero and at most 2 pi");
+  Piece piece;
+  piece.arc_ = true;
+  piece.origin_ = centre;
+  piece.radius_ = radius;
+  piece.start_angle_ = start_angle;
+  piece.orientation_ = sweep > 0.0 ? 1.0 : -1.0;
+  piece.end_ = radius * std::min(std::abs(sweep), 2.0 * kPi);
+  return piece;
+}
+
+Eigen::Vector2d SurfaceCurve::Piece::point(double l) const {
+  if (!arc_) return origin_ + l * direction_;
+  const double angle = start_angle_ + orientation_ * l / radius_;
+  return origin_ + radius_ * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+}
+
+Eigen::Vector2d SurfaceCurve::Piece::tangent(double l) const {
+  if (!arc_) return direction_;
+  const double angle = start_angle_ + orientation_ * l / radius_;
+  return orientation_ * Eigen::Vector2d(-std::sin(angle), std::cos(angle));
+}
+
+double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
+  if (!arc_) return std::clamp((x - origin_).dot(direction_), begin_, end_);
+  const Eigen::Vector2d radial = x - origin_;
+  if (radial.squaredNorm() == 0.0) return begin_;  // the centre: every point is as near
+  const double l = radius_ * wrapped_angle(orientation_ * (std::atan2(radial.y(), radial.x()) - start_angle_));
+  if (l <= end_) return l;
+  // Outside the arc's span: the nearer end.
+  return (x - point(begin_)).squaredNorm() <= (x - point(end_)).squaredNorm() ? begin_ : end_;
+}
+
+// ---- building ----------------------------------------------------------------------
+
+namespace {
+
+using Piece = SurfaceCurve::Piece;
+
+/// Unclamped local arc length of a point lying on the piece's line or circle (an arc's
+/// points just before its start come out slightly negative).
+double local_parameter(const Piece& piece, const Eigen::Vector2d& point) {
+  const Eigen::Vector2d start = piece.point(0.0);
+  if (!piece.is_arc()) return (point - start).dot(piece.tangent(0.0));
+  const Eigen::Vector2d from = start - piece.centre(), to = point - piece.centre();
+  // Travel angle from the start in the arc's own sense of rotation (clockwise when convex).
+  const double sense = piece.curvature() > 0.0 ? -1.0 : 1.0;
+  const double l = piece.radius() * wrapped_angle(sense * std::atan2(cross(from, to), from.dot(to)));
+  const double circumference = 2.0 * kPi * piece.radius();
+  return l > circumference * (1.0 - 1e-9) ? l - circumference : l;
+}
+
+/// Centre of the circle of radius r tangent to both pieces on their solid side, nearest the
+/// vertex: where the pieces, offset by r toward the solid, intersect.
+Eigen::Vector2d fillet_centre(const Piece& a, const Piece& b, double r, const Eigen::Vector2d& vertex) {
+  auto offset_line = [r](const Piece& line, Eigen::Vector2d& origin, Eigen::Vector2d& direction) {
+    direction = line.tangent(0.0);
+    origin = line.point(0.0) - r * left_normal(direction);
+  };
+  if (!a.is_arc() && !b.is_arc()) {
+    Eigen::Vector2d pa, da, pb, db;
+    offset_line(a, pa, da);
+    offset_line(b, pb, db);
+    Eigen::Matrix2d system;
+    system << da, -db;
+    const Eigen::Vector2d parameters = system.partialPivLu().solve(pb - pa);
+    return pa + parameters[0] * da;
+  }
+  if (a.is_arc() && b.is_arc())
+    throw ModelError("surface: rounding the corner at " + where(vertex) + " between two arcs is not supported");
+  const Piece& arc = a.is_arc() ? a : b;
+  Eigen::Vector2d origin, direction;
+  offset_line(a.is_arc() ? b : a, origin, direction);
+  // The solid lies inside a convex (clockwise) arc, outside a concave one.
+  const double radius = arc.radius() - std::copysign(r, arc.curvature());
+  const auto misfit = [&] {
+    return ModelError("surface: the edge radius " + std::to_string(r) + " does not fit the corner at " + where(vertex));
+  };
+  if (!(radius > 0.0)) throw misfit();
+  // |origin + t direction - centre| = radius
+  const Eigen::Vector2d f = origin - arc.centre();
+  const double half_b = direction.dot(f), c = f.squaredNorm() - radius * radius;
+  const double discriminant = half_b * half_b - c;
+  if (discriminant < 0.0) throw misfit();
+  const Eigen::Vector2d first = origin + (-half_b - std::sqrt(discriminant)) * direction;
+  const Eigen::Vector2d second = origin + (-half_b + std::sqrt(discriminant)) * direction;
+  return (first - vertex).squaredNorm() <= (second - vertex).squaredNorm() ? first : second;
+}
+
+/// Foot of the fillet centre on a piece's line or circle: the tangent point.
+Eigen::Vector2d tangent_point(const Piece& piece, const Eigen::Vector2d& centre, double r) {
+  if (!piece.is_arc()) return centre + r * left_normal(piece.tangent(0.0));
+  const Eigen::Vector2d radial = centre - piece.centre();
+  return piece.centre() + piece.radius() * radial / radial.norm();
+}
+
+}  // namespace
+
+SurfaceCurve::SurfaceCurve(std::vector<Piece> pieces, bool closed, double edge_radius)
+    : pieces_(std::move(pieces)), closed_(closed) {
+  if (pieces_.empty()) throw ModelError("surface: no pieces");
+  if (!(edge_radius >= 0.0) || !std::isfinite(edge_radius))
+    throw ModelError("surface: the edge radius must be non-negative (got " + std::to_string(edge_radius) + ")");
+  const int count = static_cast<int>(pieces_.size());
+  scale_ = 1.0;
+  for (const Piece& piece : pieces_) {
+    if (std::isfinite(piece.begin_)) scale_ = std::max(scale_, piece.point(piece.begin_).norm());
+    if (std::isfinite(piece.end_)) scale_ = std::max(scale_, piece.point(piece.end_).norm());
+  }
+  if (!closed_ && (std::isfinite(pieces_.front().begin_) || std::isfinite(pieces_.back().end_)))
+    throw ModelError("surface: an open surface must start and end with rays (no free ends)");
+  for (int i = 0; i < count; ++i) {
+    const bool last = i == count - 1;
+    if ((i > 0 || closed_) && !std::isfinite(pieces_[i].begin_))
+      throw ModelError("surface: only the first piece of an open surface may start at infinity");
+    if ((!last || closed_) && !std::isfinite(pieces_[i].end_))
+      throw ModelError("surface: only the last piece of an open surface may run to infinity");
+    if (last && !closed_) break;
+    const Piece& next = pieces_[last ? 0 : i + 1];
+    const Eigen::Vector2d end = pieces_[i].point(pieces_[i].end_), start = next.point(next.begin_);
+    if ((end - start).norm() > 1e-9 * scale_)
+      throw ModelError("surface: piece " + std::to_string(i + 1) + " ends at " + where(end) +
+                       " but the next one starts at " + where(start));
+    const Eigen::Vector2d t_end = pieces_[i].tangent(pieces_[i].end_), t_start = next.tangent(next.begin_);
+    if (t_end.dot(t_start) < 0.0 && std::abs(cross(t_end, t_start)) < 1e-9)
+      throw ModelError("surface: the surface folds back on itself at " + where(end));
+  }
+  if (edge_radius > 0.0) round_convex_corners(edge_radius);
+  number_arc_length();
+}
+
+void SurfaceCurve::round_convex_corners(double radius) {
+  const int count = static_cast<int>(pieces_.size());
+  const int joints = closed_ ? count : count - 1;
+  std::vector<std::optional<Piece>> fillet_after(count);
+  for (int i = 0; i < joints; ++i) {
+    Piece& a = pieces_[i];
+    Piece& b = pieces_[(i + 1) % count];
+    const Eigen::Vector2d vertex = a.point(a.end_);
+    const Eigen::Vector2d t_a = a.tangent(a.end_), t_b = b.tangent(b.begin_);
+    const double turn = std::atan2(cross(t_a, t_b), t_a.dot(t_b));
+    if (turn > -1e-9) continue;  // smooth, or concave: not rounded
+    const Eigen::Vector2d centre = fillet_centre(a, b, radius, vertex);
+    const Eigen::Vector2d on_a = tangent_point(a, centre, radius), on_b = tangent_point(b, centre, radius);
+    const double l_a = local_parameter(a, on_a), l_b = local_parameter(b, on_b);
+    const double slack = 1e-12 * scale_;
+    if (!(l_a > a.begin_ + slack && l_a <= a.end_ + slack && l_b >= b.begin_ - slack && l_b < b.end_ - slack))
+      throw ModelError("surface: the edge radius " + std::to_string(radius) + " does not fit the corner at " +
+                       where(vertex) + " (the pieces next to it are too short)");
+    // Trim a to end at on_a and b to start at on_b.
+    a.end_ = std::min(l_a, a.end_);
+    if (b.arc_) {
+      const double cut = std::max(l_b, 0.0);
+      b.start_angle_ += b.orientation_ * cut / b.radius_;
+      b.end_ -= cut;
+    } else {
+      b.begin_ = std::max(l_b, b.begin_);
+    }
+    const Eigen::Vector2d from = on_a - centre;
+    const Eigen::Vector2d tangent_a = a.tangent(a.end_), tangent_b = b.tangent(b.begin_);
+    const double sweep = std::atan2(cross(tangent_a, tangent_b), tangent_a.dot(tangent_b));
+    fillet_after[i] = Piece::arc(centre, radius, std::atan2(from.y(), from.x()), sweep);
+  }
+  std::vector<Piece> rounded;
+  rounded.reserve(pieces_.size() * 2);
+  for (int i = 0; i < count; ++i) {
+    rounded.push_back(pieces_[i]);
+    if (fillet_after[i]) rounded.push_back(*fillet_after[i]);
+  }
+  pieces_ = std::move(rounded);
+}
+
+void SurfaceCurve::number_arc_length() {
+  const int count = static_cast<int>(pieces_.size());
+  Piece& first = pieces_[0];
+  first.shift_ = std::isfinite(first.begin_) ? -first.begin_ : (std::isfinite(first.end_) ? -first.end_ : 0.0);
+  for (int i = 1; i < count; ++i) pieces_[i].shift_ = pieces_[i - 1].shift_ + pieces_[i - 1].end_ - pieces_[i].begin_;
+  const Piece& last = pieces_.back();
+  length_ = (last.shift_ + last.end_) - (first.shift_ + first.begin_);
+  if (!std::isfinite(length_)) length_ = kInfinity;
+
+  // Joints that stay corners (concave ones, or all when not rounded) follow the vertex rule.
+  const int joints = closed_ ? count : count - 1;
+  joints_.assign(count, Joint{});
+  corners_.clear();
+  for (int i = 0; i < joints; ++i) {
+    const Piece& a = pieces_[i];
+    const Piece& b = pieces_[(i + 1) % count];
+    const Eigen::Vector2d t_a = a.tangent(a.end_), t_b = b.tangent(b.begin_);
+    Joint& joint = joints_[i];
+    joint.corner = std::atan2(std::abs(cross(t_a, t_b)), t_a.dot(t_b)) > 1e-9;
+    joint.convex = cross(t_a, t_b) < 0.0;
+    joint.mean_normal = (left_normal(t_a) + left_normal(t_b)).normalized();
+    if (joint.corner) corners_.push_back({a.point(a.end_), a.shift_ + a.end_, joint.convex});
+  }
+
+  // Search window: on a curve whose pieces advance in x, the pieces near a point are a
+  // contiguous run found by bisection (long road profiles).
+  x_min_.resize(count);
+  x_max_.resize(count);
+  for (int i = 0; i < count; ++i) {
+    const Piece& p = pieces_[i];
+    double low = kInfinity, high = -kInfinity;
+    auto include = [&](double x) { low = std::min(low, x), high = std::max(high, x); };
+    if (p.arc_) {
+      include(p.point(p.begin_).x());
+      include(p.point(p.end_).x());
+      // Leftmost and rightmost points of the circle, if the arc passes them.
+      for (double extreme : {0.0, kPi}) {
+        const double l = p.radius_ * wrapped_angle(p.orientation_ * (extreme - p.start_angle_));
+        if (l <= p.end_) include(p.origin_.x() + p.radius_ * std::cos(extreme));
+      }
+    } else {
+      // A ray runs to x = +-infinity unless it is vertical.
+      for (double l : {p.begin_, p.end_})
+        include(std::isfinite(l) || p.direction_.x() == 0.0 ? p.point(std::isfinite(l) ? l : 0.0).x()
+                                                            : l * p.direction_.x());
+    }
+    x_min_[i] = low;
+    x_max_[i] = high;
+  }
+  x_monotone_ = !closed_;
+  for (int i = 1; i < count && x_monotone_; ++i) x_monotone_ = x_min_[i] >= x_min_[i - 1] && x_max_[i] >= x_max_[i - 1];
+}
+
+// ---- queries -----------------------------------------------------------------------
+
+const SurfaceCurve::Joint* SurfaceCurve::joint_after(int piece) const {
+  const int count = static_cast<int>(pieces_.size());
+  if (piece == count - 1 && !closed_) return nullptr;
+  return &joints_[piece];
+}
+
+const SurfaceCurve::Joint* SurfaceCurve::joint_before(int piece) const {
+  const int count = static_cast<int>(pieces_.size());
+  if (piece == 0) return closed_ ? &joints_[count - 1] : nullptr;
+  return &joints_[piece - 1];
+}
+
+void SurfaceCurve::candidate_range(const Eigen::Vector2d& x, int& first, int& last) const {
+  const int count = static_cast<int>(pieces_.size());
+  first = 0;
+  last = count - 1;
+  if (!x_monotone_ || count < 8) return;
+  // The piece above or below x, then every piece whose x-range comes within that distance.
+  const int below = std::min<int>(
+      static_cast<int>(std::lower_bound(x_max_.begin(), x_max_.end(), x.x()) - x_max_.begin()), count - 1);
+  const double reach = (x - pieces_[below].point(pieces_[below].closest(x))).norm();
+  first = static_cast<int>(std::lower_bound(x_max_.begin(), x_max_.end(), x.x() - reach) - x_max_.begin());
+  last = static_cast<int>(std::upper_bound(x_min_.begin(), x_min_.end(), x.x() + reach) - x_min_.begin()) - 1;
+  first = std::clamp(first, 0, below);
+  last = std::clamp(last, below, count - 1);
+}
+
+SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
+  int first = 0, last = 0;
+  candidate_range(x, first, last);
+  int nearest = first;
+  double nearest_l = 0.0, nearest_distance = kInfinity;
+  for (int i = first; i <= last; ++i) {
+    const double l = pieces_[i].closest(x);
+    const double distance = (x - pieces_[i].point(l)).squaredNorm();
+    if (distance < nearest_distance) {
+      nearest = i;
+      nearest_l = l;
+      nearest_distance = distance;
+    }
+  }
+  const Piece& piece = pieces_[nearest];
+  SurfaceProjection p;
+  p.point = piece.point(nearest_l);
+  p.coordinate = piece.shift_ + nearest_l;
+
+  // At a corner, the vertex rule (header comment).
+  const Joint* joint = nullptr;
+  if (nearest_l <= piece.begin_)
+    joint = joint_before(nearest);
+  else if (nearest_l >= piece.end_)
+    joint = joint_after(nearest);
+  if (joint && joint->corner) {
+    const Eigen::Vector2d from_vertex = x - p.point;
+    const double distance = from_vertex.norm();
+    const double side = joint->convex ? 1.0 : -1.0;
+    // Only points on the corner's own side: round-off can bring a point just across a face to its vertex.
+    if (side * from_vertex.dot(joint->mean_normal) >= 0.0) {
+      p.at_vertex = true;
+      p.arc_rate = 0.0;
+      p.curvature = side * kInfinity;
+      if (distance <= 1e-14 * scale_) {  // on the vertex: its mean normal, no rotation rate
+        p.normal = joint->mean_normal;
+        p.gap = 0.0;
+        p.normal_rate = 0.0;
+      } else {
+        p.normal = side * from_vertex / distance;
+        p.gap = side * distance;
+        p.normal_rate = 1.0 / p.gap;
+      }
+      p.tangent = Eigen::Vector2d(p.normal.y(), -p.normal.x());
+      return p;
+    }
+  }
+  p.tangent = piece.tangent(nearest_l);
+  p.normal = left_normal(p.tangent);
+  p.gap = (x - p.point).dot(p.normal);
+  p.curvature = piece.curvature();
+  // Past the centre of curvature the projection is meaningless; keep the rates finite.
+  const double stretch = std::max(1.0 + p.curvature * p.gap, 1e-9);
+  p.arc_rate = 1.0 / stretch;
+  p.normal_rate = p.curvature / stretch;
+  return p;
+}
+
+int SurfaceCurve::piece_at(double s) const {
+  // The last piece starting at or before s (pieces start at increasing s).
+  const auto after = std::upper_bound(pieces_.begin() + 1, pieces_.end(), s, [](double value, const Piece& piece) {
+    return value < piece.shift_ + piece.begin_;
+  });
+  return static_cast<int>(after - pieces_.begin()) - 1;
+}
+
+Eigen::Vector2d SurfaceCurve::point(double s) const {
+  if (closed_) s = std::fmod(s, length_) + (s < 0.0 ? length_ : 0.0);
+  const Piece& piece = pieces_[piece_at(s)];
+  return piece.point(s - piece.shift_);
+}
+
+Eigen::Vector2d SurfaceCurve::tangent(double s) const {
+  if (closed_) s = std::fmod(s, length_) + (s < 0.0 ? length_ : 0.0);
+  const Piece& piece = pieces_[piece_at(s)];
+  return piece.tangent(s - piece.shift_);
+}
+
+double SurfaceCurve::arc_difference(double to, double from) const {
+  const double difference = to - from;
+  return closed_ ? std::remainder(difference, length_) : difference;
+}
+
+}  // namespace tirefe

@@ -1,0 +1,129 @@
+// SurfaceCurve: the boundary of a rigid body in its own (material) frame, a chain of
+// straight pieces and circular arcs parametrised by arc length s, with the closest-point
+// projection that node-to-surface contact needs (MODEL.md eq. 14).
+//
+// Orientation: walking along increasing s the solid lies on the right, so the outward unit
+// normal is nu = k x tau (k out of the plane, tau the unit tangent). The curvature kappa is
+// defined by d(tau)/ds = -kappa nu: positive where the body is convex (a drum seen from
+// outside: kappa = 1/R), negative in hollows, zero on straight pieces.
+//
+// Projection of a point x onto a smooth part, with y the closest point and g = (x - y).nu:
+//     dg/dx = nu^T,   ds/dx = tau^T / (1 + kappa g),   dnu/dx = kappa/(1 + kappa g) tau tau^T.
+// Vertex rule: where two pieces meet at an angle (a corner) the closest point of every x in
+// the corner's wedge is the vertex v itself. There the normal is the unit vector from the
+// vertex to the node, with the gap its distance,
+//     nu = sigma (x - v)/|x - v|,   g = sigma |x - v|,   sigma = +1 at a convex corner
+//                                                               (-1 at a concave one),
+// which turns continuously from one face's normal to the other's as x passes around the
+// corner (gap and normal are continuous). This is the limit of a fillet of radius -> 0:
+//     ds/dx = 0,   dnu/dx = tau tau^T / g.
+// Inside a sharp convex corner (a penetrating node) the nearer face wins: the normal jumps
+// on the corner's bisector. Rounding the convex corners (edge_radius > 0) with tangent
+// circular fillets removes that jump for penetrations smaller than the radius.
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+namespace tirefe {
+
+/// Closest-point projection of a point onto a surface, and what the contact tangent needs.
+struct SurfaceProjection {
+  double gap = 0.0;                                    // g = (x - y).nu [m]; negative: penetration
+  double coordinate = 0.0;                             // s of y: arc length in the surface's own frame [m]
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();     // y
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitY();   // nu, outward
+  Eigen::Vector2d tangent = Eigen::Vector2d::UnitX();  // tau, toward increasing s; nu = k x tau
+  double curvature = 0.0;                              // kappa at y [1/m] (+-infinity at a vertex)
+  double arc_rate = 1.0;                               // ds/dx = arc_rate tau^T:  1/(1 + kappa g); 0 at a vertex
+  double normal_rate = 0.0;  // dnu/dx = normal_rate tau tau^T:  kappa/(1 + kappa g); 1/g at a vertex
+  bool at_vertex = false;
+};
+
+class SurfaceCurve {
+ public:
+  /// One straight piece or circular arc. Pieces are given in order along the curve, each
+  /// starting where the previous one ends.
+  class Piece {
+   public:
+    static Piece segment(const Eigen::Vector2d& start, const Eigen::Vector2d& end);
+    /// Comes from infinitely far back along 'direction' and ends at 'end'.
+    static Piece ray_to(const Eigen::Vector2d& end, const Eigen::Vector2d& direction);
+    /// Starts at 'start' and runs to infinity along 'direction'.
+    static Piece ray_from(const Eigen::Vector2d& start, const Eigen::Vector2d& direction);
+    /// An infinite straight line through 'point' (s = 0 there).
+    static Piece line(const Eigen::Vector2d& point, const Eigen::Vector2d& direction);
+    /// Arc of a circle from start_angle, sweeping 'sweep' radians (negative: clockwise).
+    static Piece arc(const Eigen::Vector2d& centre, double radius, double start_angle, double sweep);
+
+    bool is_arc() const { return arc_; }
+    double length() const { return end_ - begin_; }
+    /// An arc's centre and radius.
+    const Eigen::Vector2d& centre() const { return origin_; }
+    double radius() const { return radius_; }
+    /// Point, unit tangent and curvature at local arc length l (l = 0 at the line's
+    /// anchor point or the arc's start).
+    Eigen::Vector2d point(double l) const;
+    Eigen::Vector2d tangent(double l) const;
+    double curvature() const { return arc_ ? -orientation_ / radius_ : 0.0; }
+    /// Local arc length of the point of this piece closest to x.
+    double closest(const Eigen::Vector2d& x) const;
+
+   private:
+    friend class SurfaceCurve;
+    bool arc_ = false;
+    Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();             // line: anchor point; arc: centre
+    Eigen::Vector2d direction_ = Eigen::Vector2d::UnitX();         // line: unit direction
+    double radius_ = 0.0, start_angle_ = 0.0, orientation_ = 1.0;  // arc (+1 counter-clockwise)
+    double begin_ = 0.0, end_ = 0.0;                               // local range of l (lines may reach +-infinity)
+    double shift_ = 0.0;                                           // s = shift + l on the finished curve
+  };
+
+  /// A corner left after rounding: where the vertex rule applies.
+  struct Corner {
+    Eigen::Vector2d point;
+    double coordinate;
+    bool convex;
+  };
+
+  /// Chains the pieces (each must start where the previous ends; a closed curve's last
+  /// piece ends where the first starts, an open one starts and ends with rays), rounds every convex corner with a
+  /// tangent fillet of edge_radius (> 0), and numbers the arc length from the first piece's start (from the end of a
+  /// leading ray). Throws ModelError for gaps, fold-backs, or a radius that does not fit.
+  SurfaceCurve(std::vector<Piece> pieces, bool closed, double edge_radius = 0.0);
+
+  SurfaceProjection project(const Eigen::Vector2d& x) const;
+  /// Point and tangent at arc length s (taken modulo length() on a closed curve).
+  Eigen::Vector2d point(double s) const;
+  Eigen::Vector2d tangent(double s) const;
+  bool closed() const { return closed_; }
+  /// Total arc length (infinite for a curve with rays).
+  double length() const { return length_; }
+  /// to - from, wrapped into [-length/2, length/2] on a closed curve.
+  double arc_difference(double to, double from) const;
+  const std::vector<Piece>& pieces() const { return pieces_; }
+  const std::vector<Corner>& corners() const { return corners_; }
+
+ private:
+  struct Joint {  // between piece i and the next one
+    bool corner = false, convex = false;
+    Eigen::Vector2d mean_normal = Eigen::Vector2d::UnitY();
+  };
+  void round_convex_corners(double radius);
+  void number_arc_length();
+  int piece_at(double s) const;
+  const Joint* joint_after(int piece) const;
+  const Joint* joint_before(int piece) const;
+  void candidate_range(const Eigen::Vector2d& x, int& first, int& last) const;
+
+  std::vector<Piece> pieces_;
+  std::vector<Joint> joints_;  // joints_[i] follows pieces_[i]; the last one only when closed
+  std::vector<Corner> corners_;
+  std::vector<double> x_min_, x_max_;  // per piece, for the search window of x-monotone curves
+  bool closed_ = false;
+  bool x_monotone_ = false;
+  double length_ = 0.0;
+  double scale_ = 1.0;  // size of the curve, for round-off thresholds
+};
+
+}  // namespace tirefe
