@@ -77,7 +77,7 @@ int main() {
   context.time_step = time_step;
   context.factors = analysis.integrator().factors(time_step);
   Assembler& assembler = analysis.assembler();
-  KluSolver& solver = analysis.linear_solver();
+  LinearSolver& solver = analysis.linear_solver();
   Eigen::VectorXd residual, right_hand_side(model.dof_map().equation_count());
   const double assembly =
       microseconds_per_call(repetitions, [&] { assembler.assemble(context, analysis.state(), residual); });

@@ -1,6 +1,10 @@
 // Cost of one Newton iteration on the 100-element 145 SR-12 tire (303 DOFs), split into
-// assembly (all element kernels), KLU refactorisation and triangular solves, at the
-// inflated state with a free-spinning hub, Newmark factors of a 1e-4 s step.
+// assembly (all element kernels), factorisation and triangular solves, for the general
+// KLU solver and the structured RingSolver side by side, plus the RingSolver's spindle
+// condensation (Schur complement H and condensed right-hand side f_b). The tire is
+// inflated quasi-statically, then the effective tangent of a Newmark step of 1e-4 s is
+// timed, for the spindle free (3 border equations), a dead axle (ux, uy fixed: 1) and a
+// fixed spindle (0). The spindle is condensed (numbered last).
 //   build/bench_tire_iteration [repetitions]
 #include <chrono>
 #include <cstdio>
@@ -9,6 +13,7 @@
 #include "core/assembler.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
+#include "solvers/ring_solver.hpp"
 #include "tire/tire_builder.hpp"
 
 using namespace tirefe;
@@ -18,50 +23,132 @@ namespace {
 
 template <class Work>
 double microseconds_per_call(int repetitions, Work&& work) {
+  work();  // warm the caches and any first-call set-up
   const auto start = Clock::now();
   for (int i = 0; i < repetitions; ++i) work();
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count() / repetitions;
 }
 
-}  // namespace
+struct Timings {
+  int equations = 0, border = 0;
+  long nonzeros = 0;
+  double assembly = 0, residual_only = 0;
+  double klu_factorize = 0, klu_solve = 0, klu_schur = 0;
+  double ring_factorize = 0, ring_solve = 0, ring_interior = 0, ring_condense = 0;
+  double difference = 0;  // |x_ring - x_klu| / |x_klu|
+};
 
-int main(int argc, char** argv) {
-  const int repetitions = argc > 1 ? std::atoi(argv[1]) : 2000;
+Timings time_tire(int fixed_components, int repetitions) {
   Model model;
   const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
-  model.fix(tire.spindle, kUx);
-  model.fix(tire.spindle, kUy);
+  for (int c = 0; c < fixed_components; ++c) model.fix(tire.spindle, c);
+  model.condense_node(tire.spindle);
   Analysis analysis(model);
   analysis.set_time_step(0.5);
-  analysis.advance(1.0);  // inflate quasi-statically
-  std::printf("tire: %d nodes, %d equations, inflated in %d steps\n", model.mesh().node_count(),
-              model.dof_map().equation_count(), analysis.accepted_steps());
+  if (fixed_components < 3) {  // hold the hub while inflating, so the static tangent is regular
+    for (int c = fixed_components; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
+    analysis.advance(1.0);
+    for (int c = fixed_components; c < kDofsPerNode; ++c) model.release(tire.spindle, c);
+  } else {
+    analysis.advance(1.0);
+  }
 
+  Timings timings;
   Assembler& assembler = analysis.assembler();
-  KluSolver& solver = analysis.linear_solver();
+  assembler.update_pattern();
   EvaluationContext context;
   context.time = 1.0;
   const double h = 1e-4;
   context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
   Eigen::VectorXd residual;
   const State& state = analysis.state();
-  assembler.assemble(context, state, residual);
-  solver.factorize(assembler.tangent());
-  Eigen::VectorXd rhs = Eigen::VectorXd::Ones(model.dof_map().equation_count());
-
   context.want_tangent = true;
-  const double assembly = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
+  timings.assembly = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
   context.want_tangent = false;
-  const double residual_only = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
-  const double refactor = microseconds_per_call(repetitions, [&] { solver.factorize(assembler.tangent()); });
-  const double solve = microseconds_per_call(repetitions, [&] { solver.solve(rhs); });
+  timings.residual_only = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
+  model.revert_history();
+  const SparseMatrix& tangent = assembler.tangent();
+  const int n = static_cast<int>(tangent.rows());
+  timings.equations = n;
+  timings.nonzeros = static_cast<long>(tangent.nonZeros());
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
 
-  std::printf("nonzeros %ld, repetitions %d\n", static_cast<long>(assembler.tangent().nonZeros()), repetitions);
-  std::printf("%-36s %10s\n", "per Newton iteration", "us");
-  std::printf("%-36s %10.1f\n", "assembly (residual + tangent)", assembly);
-  std::printf("%-36s %10.1f\n", "assembly (residual only)", residual_only);
-  std::printf("%-36s %10.1f\n", "KLU refactorisation", refactor);
-  std::printf("%-36s %10.1f\n", "triangular solve", solve);
-  std::printf("%-36s %10.1f\n", "total", assembly + refactor + solve);
+  KluSolver klu;
+  klu.analyze(tangent);
+  Eigen::VectorXd x_klu = rhs;
+  timings.klu_factorize = microseconds_per_call(repetitions, [&] { klu.factorize(tangent); });
+  timings.klu_solve = microseconds_per_call(repetitions, [&] {
+    x_klu = rhs;
+    klu.solve(x_klu);
+  });
+
+  RingSolver ring(model.dof_map(), tire.tread_nodes, {tire.spindle});
+  ring.analyze(tangent);
+  const int border = ring.border_size();
+  timings.border = border;
+  Eigen::VectorXd x_ring = rhs, condensed;
+  timings.ring_factorize = microseconds_per_call(repetitions, [&] { ring.factorize(tangent); });
+  timings.ring_solve = microseconds_per_call(repetitions, [&] {
+    x_ring = rhs;
+    ring.solve(x_ring);
+  });
+  timings.ring_interior = microseconds_per_call(repetitions, [&] { ring.factorize_interior(tangent); });
+  timings.ring_condense = microseconds_per_call(repetitions, [&] { ring.condense(rhs, condensed); });
+  timings.difference = (x_ring - x_klu).norm() / x_klu.norm();
+
+  // The KLU route to H: factor K, solve for the border's unit columns, H = ((K^-1)_bb)^-1.
+  if (border > 0) {
+    Eigen::MatrixXd columns(n, border);
+    Eigen::MatrixXd schur(border, border);
+    timings.klu_schur = microseconds_per_call(repetitions, [&] {
+      klu.factorize(tangent);
+      columns.setZero();
+      for (int i = 0; i < border; ++i) columns(n - border + i, i) = 1.0;
+      klu.solve(columns);
+      schur = columns.bottomRows(border).inverse();
+    });
+  }
+  return timings;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::atoi(argv[1]) : 2000;
+  const char* cases[] = {"spindle free", "dead axle", "spindle fixed"};
+  const int fixed[] = {0, 2, 3};
+  Timings all[3];
+  for (int i = 0; i < 3; ++i) all[i] = time_tire(fixed[i], repetitions);
+
+  std::printf("145 SR-12, 100 elements, Newmark effective tangent (h = 1e-4 s), %d repetitions, times in us\n",
+              repetitions);
+  std::printf("%-40s %14s %14s %14s\n", "", cases[0], cases[1], cases[2]);
+  auto row = [&](const char* label, double Timings::*field, const char* format = "%14.1f") {
+    std::printf("%-40s", label);
+    for (const Timings& t : all) std::printf(format, t.*field);
+    std::printf("\n");
+  };
+  auto count_row = [&](const char* label, int Timings::*field) {
+    std::printf("%-40s", label);
+    for (const Timings& t : all) std::printf("%14d", t.*field);
+    std::printf("\n");
+  };
+  count_row("equations", &Timings::equations);
+  count_row("border (spindle) equations", &Timings::border);
+  row("assembly (residual + tangent)", &Timings::assembly);
+  row("assembly (residual only)", &Timings::residual_only);
+  row("KLU refactorisation", &Timings::klu_factorize);
+  row("KLU solve", &Timings::klu_solve);
+  row("ring factorisation", &Timings::ring_factorize);
+  row("ring solve", &Timings::ring_solve);
+  row("ring partial factorisation -> H", &Timings::ring_interior);
+  row("ring condensed rhs f_b", &Timings::ring_condense);
+  row("KLU route to H (factor, b solves, inv)", &Timings::klu_schur);
+  std::printf("%-40s", "KLU factor + solve");
+  for (const Timings& t : all) std::printf("%14.1f", t.klu_factorize + t.klu_solve);
+  std::printf("\n%-40s", "ring factor + solve");
+  for (const Timings& t : all) std::printf("%14.1f", t.ring_factorize + t.ring_solve);
+  std::printf("\n");
+  row("|x_ring - x_KLU| / |x_KLU|", &Timings::difference, "%14.1e");
   return 0;
 }

@@ -7,7 +7,10 @@
 #include <new>
 
 #include "elements/tread_beam.hpp"
+#include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
+#include "solvers/ring_solver.hpp"
+#include "tire/tire_builder.hpp"
 
 namespace {
 std::atomic<long> allocations{0};
@@ -50,5 +53,45 @@ TEST_CASE("steps after the first allocate no memory in assembly, Newton and KLU 
   for (const auto& record : records) iterations += record.newton_iterations;
   INFO(records.size() << " steps, " << iterations << " Newton iterations, " << during << " allocations");
   CHECK(iterations >= 5);
+  CHECK(during == 0);
+}
+
+TEST_CASE("Newmark steps of the tire with the ring solver allocate no memory, nor do its factorisations, solves "
+          "and condensations",
+          "[kernel][allocation][ring_solver]") {
+  using namespace tirefe;
+  Model model;
+  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"),
+                               LoadFunction::table({{0.0, 0.0}, {1e-3, 1.0}}));
+  model.condense_node(tire.spindle);
+  model.fix(tire.spindle, kUx);  // a dead axle: the spin is free, the border has one equation
+  model.fix(tire.spindle, kUy);
+  model.add_nodal_load(tire.spindle, kRz, 20.0, Model::kRampLoadFunction);
+  Analysis analysis(model);
+  analysis.use_ring_solver(tire.tread_nodes, {tire.spindle});
+  analysis.set_integrator(Integrator::newmark());
+  analysis.set_time_step(1e-4);
+  analysis.advance(5e-4);  // warm-up
+
+  long before = allocations.load();
+  const auto& records = analysis.advance(5e-4);
+  long during = allocations.load() - before;
+  int iterations = 0;
+  for (const auto& record : records) iterations += record.newton_iterations;
+  INFO(records.size() << " steps, " << iterations << " Newton iterations, " << during << " allocations");
+  CHECK(iterations >= 5);
+  CHECK(during == 0);
+
+  auto& ring = dynamic_cast<RingSolver&>(analysis.linear_solver());
+  const SparseMatrix& tangent = analysis.assembler().tangent();
+  Eigen::VectorXd rhs = Eigen::VectorXd::Ones(tangent.rows()), condensed(ring.border_size());
+  Eigen::MatrixXd columns = Eigen::MatrixXd::Ones(tangent.rows(), 3);
+  before = allocations.load();
+  ring.factorize(tangent);
+  ring.solve(rhs);
+  ring.solve(columns);
+  ring.factorize_interior(tangent);
+  ring.condense(rhs, condensed);
+  during = allocations.load() - before;
   CHECK(during == 0);
 }

@@ -7,7 +7,23 @@
 
 namespace tirefe {
 
-Analysis::Analysis(Model& model) : model_(model), assembler_(model) {}
+Analysis::Analysis(Model& model)
+    : model_(model), assembler_(model), linear_solver_(std::make_unique<KluSolver>()) {}
+
+void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes) {
+  for (const std::vector<int>* nodes : {&ring_nodes, &border_nodes})
+    for (int node : *nodes) model_.mesh().checked(node);
+  auto solver = std::make_unique<RingSolver>(model_.dof_map(), std::move(ring_nodes), std::move(border_nodes));
+  assembler_.update_pattern();
+  solver->analyze(assembler_.tangent());  // throws for a model that does not fit, before anything changes
+  linear_solver_ = std::move(solver);
+  analyzed_pattern_ = assembler_.pattern_version();
+}
+
+void Analysis::use_klu_solver() {
+  linear_solver_ = std::make_unique<KluSolver>();
+  analyzed_pattern_ = -1;
+}
 
 void Analysis::set_integrator(const Integrator& integrator) {
   // Entering dynamics needs accelerations in equilibrium with the current state; a
@@ -30,7 +46,13 @@ void Analysis::set_log(std::ostream* log) {
 }
 
 void Analysis::prepare() {
-  if (assembler_.update_pattern()) linear_solver_.analyze(assembler_.tangent());
+  // By version rather than update_pattern()'s answer: others (contact set-up) may have
+  // rebuilt the pattern through assembler() since the last step.
+  assembler_.update_pattern();
+  if (assembler_.pattern_version() != analyzed_pattern_) {
+    linear_solver_->analyze(assembler_.tangent());
+    analyzed_pattern_ = assembler_.pattern_version();
+  }
   size_state();
 }
 
@@ -101,14 +123,14 @@ bool Analysis::try_step(double step, StepRecord& record) {
     old_forces_valid_ = true;
   }
   try {
-    const NewtonReport* report = &newton_.solve(*this, linear_solver_);
+    const NewtonReport* report = &newton_.solve(*this, *linear_solver_);
     record.newton_iterations = report->iterations;
     record.augmentations = 0;
     // Augmented Lagrangian: update the multipliers and solve again until the
     // constraints are met to their tolerance (or the augmentation budget is spent).
     while (record.augmentations < control_.max_augmentations && model_.augment()) {
       ++record.augmentations;
-      report = &newton_.solve(*this, linear_solver_);
+      report = &newton_.solve(*this, *linear_solver_);
       record.newton_iterations += report->iterations;
     }
     record.residual = report->residual_norms.back();
@@ -312,11 +334,11 @@ void Analysis::initialize_acceleration() {
     unbalanced[equation] = external_new_[dof] - residual_all_[dof];
   }
   try {
-    linear_solver_.factorize(assembler_.tangent());
+    linear_solver_->factorize(assembler_.tangent());
   } catch (const SingularMatrix&) {
     throw ModelError("the mass matrix is singular: every free DOF needs mass (or rotary inertia) for dynamics");
   }
-  linear_solver_.solve(unbalanced);
+  linear_solver_->solve(unbalanced);
   for (int equation = 0; equation < dofs.equation_count(); ++equation)
     committed_.acceleration[dofs.dof(equation)] = unbalanced[equation];
   external_old_ = external_new_;

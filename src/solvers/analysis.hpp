@@ -2,7 +2,8 @@
 // quasi-statically) in steps, solves each step with Newton, commits the state and
 // the element history on success, and on failure reverts, cuts the step and retries.
 // Steps grow back after easy convergence. Observers hear of every accepted step
-// (output writers, logs).
+// (output writers, logs). The linear solver is KLU unless use_ring_solver() picks the
+// structured RingSolver; either is (re)analysed whenever the tangent's pattern changes.
 //
 // Energy bookkeeping (docs/dynamics.md), once per accepted step n -> n+1:
 //   W_{n+1} = W_n + (F_n + F_{n+1})/2 . (u_{n+1} - u_n) + (R_n + R_{n+1})/2 . (u_{n+1} - u_n)|prescribed,
@@ -15,6 +16,7 @@
 
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,6 +26,7 @@
 #include "solvers/integrator.hpp"
 #include "solvers/linear_solver.hpp"
 #include "solvers/newton.hpp"
+#include "solvers/ring_solver.hpp"
 
 namespace tirefe {
 
@@ -106,7 +109,19 @@ class Analysis : private StepEquations {
   int accepted_steps() const { return accepted_steps_; }
   const NewtonReport& last_newton_report() const { return newton_.last_report(); }
   Assembler& assembler() { return assembler_; }
-  KluSolver& linear_solver() { return linear_solver_; }
+  /// The solver of the Newton iterations (KLU by default).
+  LinearSolver& linear_solver() { return *linear_solver_; }
+  /// Solves with the RingSolver (ring_solver.hpp): ring_nodes in ring order (a tire's
+  /// tread nodes), border_nodes coupled to everything (its spindle; mark it with
+  /// Model::condense_node so that its equations come last, as H's rows do). The model's
+  /// current tangent pattern is checked at once: a model that does not fit throws
+  /// ModelError and keeps the current solver. Later changes of structure are checked
+  /// again before the next step.
+  void use_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes);
+  /// Back to the general sparse solver.
+  void use_klu_solver();
+  /// The RingSolver in use, for its border Schur complement; null while KLU solves.
+  RingSolver* ring_solver() { return dynamic_cast<RingSolver*>(linear_solver_.get()); }
 
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
     observers_.push_back(std::move(observer));
@@ -129,7 +144,8 @@ class Analysis : private StepEquations {
 
   Model& model_;
   Assembler assembler_;
-  KluSolver linear_solver_;
+  std::unique_ptr<LinearSolver> linear_solver_;
+  int analyzed_pattern_ = -1;  // the Assembler's pattern_version() the solver last analysed
   NewtonSolver newton_;
   Integrator integrator_ = Integrator::quasi_static();
   StepControl control_;

@@ -37,12 +37,12 @@ struct KluSolver::Klu {
 KluSolver::KluSolver() : klu_(std::make_unique<Klu>()) {}
 KluSolver::~KluSolver() = default;
 
-void KluSolver::analyze(const Matrix& matrix) {
+void KluSolver::analyze(const Matrix& pattern) {
   klu_->release_numeric();
   if (klu_->symbolic) klu_free_symbolic(&klu_->symbolic, &klu_->common);
-  size_ = static_cast<int>(matrix.rows());
-  klu_->symbolic = klu_analyze(size_, const_cast<int*>(matrix.outerIndexPtr()),
-                               const_cast<int*>(matrix.innerIndexPtr()), &klu_->common);
+  size_ = static_cast<int>(pattern.rows());
+  klu_->symbolic = klu_analyze(size_, const_cast<int*>(pattern.outerIndexPtr()),
+                               const_cast<int*>(pattern.innerIndexPtr()), &klu_->common);
   if (!klu_->symbolic) klu_->check_status("symbolic analysis");
 }
 

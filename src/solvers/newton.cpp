@@ -16,7 +16,7 @@ std::string format_norms(int iteration, double norm, double relative, double inc
 }
 }  // namespace
 
-const NewtonReport& NewtonSolver::solve(StepEquations& equations, KluSolver& linear_solver) {
+const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& linear_solver) {
   report_.iterations = 0;
   report_.residual_norms.clear();
   report_.residual_norms.reserve(settings_.max_iterations + 1);

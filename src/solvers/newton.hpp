@@ -56,7 +56,7 @@ class NewtonSolver {
   const NewtonSettings& settings() const { return settings_; }
 
   /// Iterates to convergence; throws ConvergenceFailure. The report stays valid until the next call.
-  const NewtonReport& solve(StepEquations& equations, KluSolver& linear_solver);
+  const NewtonReport& solve(StepEquations& equations, LinearSolver& linear_solver);
   const NewtonReport& last_report() const { return report_; }
 
  private:

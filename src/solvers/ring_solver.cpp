@@ -1,0 +1,373 @@
+#include "solvers/ring_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <type_traits>
+
+#include "core/mesh.hpp"
+
+namespace tirefe {
+
+namespace {
+
+const char* const kComponentNames[kDofsPerNode] = {"ux", "uy", "rz"};
+
+// LU factorization with partial pivoting in place, LAPACK style: step j swaps row j with
+// the row p >= j holding the largest |a(p, j)| (swaps[j] = p) and eliminates below the
+// pivot; L (unit diagonal) is left below the diagonal, U on and above it. The row scales
+// travel with their rows so that each pivot is judged against its own row. Returns the
+// position of the first pivot not above RingSolver::kPivotTolerance times its row's
+// scale (NaN included), or -1.
+template <class Factors>
+int lu_factor(Factors&& a, int* swaps, double* row_scale) {
+  const Eigen::Index size = a.rows();
+  for (Eigen::Index j = 0; j < size; ++j) {
+    Eigen::Index pivot_row = j;
+    for (Eigen::Index i = j + 1; i < size; ++i)
+      if (std::abs(a(i, j)) > std::abs(a(pivot_row, j))) pivot_row = i;
+    swaps[j] = static_cast<int>(pivot_row);
+    if (pivot_row != j) {
+      a.row(j).swap(a.row(pivot_row));
+      std::swap(row_scale[j], row_scale[pivot_row]);
+    }
+    const double pivot = a(j, j);
+    if (!(std::abs(pivot) > RingSolver::kPivotTolerance * row_scale[j])) return static_cast<int>(j);
+    for (Eigen::Index i = j + 1; i < size; ++i) {
+      a(i, j) /= pivot;
+      for (Eigen::Index c = j + 1; c < size; ++c) a(i, c) -= a(i, j) * a(j, c);
+    }
+  }
+  return -1;
+}
+
+// B <- A^-1 B with the factors of lu_factor(), for any number of columns of B.
+template <class Factors, class Columns>
+void lu_solve(const Factors& lu, const int* swaps, Columns&& b) {
+  const Eigen::Index size = lu.rows();
+  for (Eigen::Index j = 0; j < size; ++j)
+    if (swaps[j] != j) b.row(j).swap(b.row(swaps[j]));
+  for (Eigen::Index j = 0; j < size; ++j)
+    for (Eigen::Index i = j + 1; i < size; ++i) b.row(i) -= lu(i, j) * b.row(j);
+  for (Eigen::Index j = size - 1; j >= 0; --j) {
+    b.row(j) /= lu(j, j);
+    for (Eigen::Index i = 0; i < j; ++i) b.row(i) -= lu(i, j) * b.row(j);
+  }
+}
+
+using Block = Eigen::Map<Eigen::Matrix3d>;
+using ConstBlock = Eigen::Map<const Eigen::Matrix3d>;
+using Vector3 = Eigen::Map<Eigen::Vector3d>;
+using ConstVector3 = Eigen::Map<const Eigen::Vector3d>;
+
+}  // namespace
+
+RingSolver::RingSolver(const DofMap& dofs, std::vector<int> ring_nodes, std::vector<int> border_nodes)
+    : dofs_(dofs), ring_nodes_(std::move(ring_nodes)), border_nodes_(std::move(border_nodes)) {
+  if (ring_nodes_.empty()) throw ModelError("ring solver: the ring needs at least one node");
+  std::vector<int> all = ring_nodes_;
+  all.insert(all.end(), border_nodes_.begin(), border_nodes_.end());
+  std::sort(all.begin(), all.end());
+  if (all.front() < 0) throw ModelError("ring solver: node " + std::to_string(all.front()) + " does not exist");
+  const auto repeated = std::adjacent_find(all.begin(), all.end());
+  if (repeated != all.end())
+    throw ModelError("ring solver: node " + std::to_string(*repeated) +
+                     " is listed twice (each node belongs to the ring or to the border, once)");
+}
+
+int RingSolver::entry_offset(int row, int column) const {
+  // Blocks are stored column-major: D, U, L 3x3; W 3 x e; V e x 3; S e x e.
+  const int border_start = 3 * chain_;
+  if (row < border_start && column < border_start) {
+    const int row_node = row / 3, column_node = column / 3, within = row % 3 + 3 * (column % 3);
+    if (row_node == column_node) return diagonal_offset(row_node) + within;
+    if (column_node == row_node + 1) return upper_offset(row_node) + within;
+    if (row_node == column_node + 1) return lower_offset(column_node) + within;
+    return -1;  // chain nodes that are not ring neighbours
+  }
+  // r_0 (the first 3 columns/rows of E) neighbours c_0 = r_1 and c_{m-1} = r_{n-1} only.
+  if (row < border_start) {
+    const int node = row / 3, e = column - border_start;
+    if (e < 3 && node != 0 && node != chain_ - 1) return -1;
+    return border_column_offset(node) + row % 3 + 3 * e;
+  }
+  if (column < border_start) {
+    const int node = column / 3, e = row - border_start;
+    if (e < 3 && node != 0 && node != chain_ - 1) return -1;
+    return border_row_offset(node) + e + width_ * (column % 3);
+  }
+  return border_block_offset() + (row - border_start) + width_ * (column - border_start);
+}
+
+std::string RingSolver::describe_node(int position) const {
+  const int border_start = 3 * chain_;
+  const int ring_size = static_cast<int>(ring_nodes_.size());
+  if (position >= border_start + 3)
+    return "border node " + std::to_string(border_nodes_[(position - border_start - 3) / 3]);
+  const int ring_position = position < border_start ? position / 3 + 1 : 0;
+  return "ring node " + std::to_string(ring_nodes_[ring_position]) + " (position " + std::to_string(ring_position) +
+         " of " + std::to_string(ring_size) + " in the ring)";
+}
+
+void RingSolver::analyze(const Matrix& pattern) {
+  interior_factored_ = border_factored_ = false;
+  const int equations = dofs_.equation_count();
+  if (!pattern.isCompressed() || pattern.rows() != equations || pattern.cols() != equations)
+    throw ModelError("ring solver: the matrix is " + std::to_string(pattern.rows()) + " x " +
+                     std::to_string(pattern.cols()) + " but the model numbers " + std::to_string(equations) +
+                     " free equations (analyse the assembled, compressed tangent after Model::finalize)");
+  chain_ = static_cast<int>(ring_nodes_.size()) - 1;
+  width_ = 3 + 3 * static_cast<int>(border_nodes_.size());
+  padded_size_ = 3 * chain_ + width_;
+
+  // Equations -> padded positions; DOFs without an equation become identity padding.
+  position_of_equation_.assign(equations, -1);
+  padding_.clear();
+  border_equations_.clear();
+  border_slots_.clear();
+  auto place = [&](int node, int first_position, bool border) {
+    if (dof_index(node, 0) >= dofs_.dof_count())
+      throw ModelError("ring solver: node " + std::to_string(node) + " does not exist (the model has " +
+                       std::to_string(dofs_.dof_count() / kDofsPerNode) + " nodes)");
+    for (int c = 0; c < kDofsPerNode; ++c) {
+      const int equation = dofs_.equation(dof_index(node, c)), position = first_position + c;
+      if (equation == DofMap::kPrescribed) {
+        padding_.push_back(position);
+        continue;
+      }
+      position_of_equation_[equation] = position;
+      if (border) {
+        border_equations_.push_back(equation);
+        border_slots_.push_back(position - 3 * chain_ - 3);
+      }
+    }
+  };
+  for (int k = 0; k < chain_; ++k) place(ring_nodes_[k + 1], 3 * k, false);
+  place(ring_nodes_[0], 3 * chain_, false);
+  for (size_t j = 0; j < border_nodes_.size(); ++j) place(border_nodes_[j], 3 * chain_ + 3 + 3 * static_cast<int>(j), true);
+  for (int equation = 0; equation < equations; ++equation)
+    if (position_of_equation_[equation] < 0) {
+      const int dof = dofs_.dof(equation);
+      throw ModelError("ring solver: equation " + std::to_string(equation) + " (node " +
+                       std::to_string(dof / kDofsPerNode) + ", " + kComponentNames[dof % kDofsPerNode] +
+                       ") belongs to neither a ring nor a border node; the ring solver takes models made of "
+                       "one ring of nodes plus border nodes only (use the KLU solver for this one)");
+    }
+
+  // Every stored entry must land in a block of the structure.
+  destination_.resize(pattern.nonZeros());
+  const int* starts = pattern.outerIndexPtr();
+  const int* rows = pattern.innerIndexPtr();
+  for (int column = 0; column < equations; ++column)
+    for (int entry = starts[column]; entry < starts[column + 1]; ++entry) {
+      const int row_position = position_of_equation_[rows[entry]];
+      const int column_position = position_of_equation_[column];
+      destination_[entry] = entry_offset(row_position, column_position);
+      if (destination_[entry] < 0)
+        throw ModelError("ring solver: the tangent couples " + describe_node(row_position) + " (" +
+                         kComponentNames[row_position % 3] + ") to " + describe_node(column_position) + " (" +
+                         kComponentNames[column_position % 3] +
+                         "), which are not ring neighbours; give the ring nodes in ring order, the nodes "
+                         "coupled to everything as border nodes, or use the KLU solver");
+    }
+  pattern_starts_.assign(starts, starts + equations + 1);
+  pattern_rows_.assign(rows, rows + pattern.nonZeros());
+
+  blocks_.assign(border_block_offset() + width_ * width_, 0.0);
+  row_scale_.assign(padded_size_, 0.0);
+  swaps_.assign(padded_size_, 0);
+  border_schur_.setZero(border_size(), border_size());
+  work_.setZero(padded_size_);
+}
+
+void RingSolver::check_same_pattern(const Matrix& matrix) const {
+  const bool same = matrix.isCompressed() && matrix.rows() + 1 == static_cast<Eigen::Index>(pattern_starts_.size()) &&
+                    matrix.cols() == matrix.rows() &&
+                    std::equal(pattern_starts_.begin(), pattern_starts_.end(), matrix.outerIndexPtr()) &&
+                    std::equal(pattern_rows_.begin(), pattern_rows_.end(), matrix.innerIndexPtr());
+  if (!same)
+    throw std::logic_error("ring solver: the matrix's sparsity pattern is not the one analyze() saw "
+                           "(analyse again after the model's structure changes)");
+}
+
+template <class Work>
+void RingSolver::with_width(Work&& work) const {
+  // A one-node border (the spindle) gets fixed-size blocks; other widths run the same
+  // code on dynamic-size blocks.
+  if (width_ == 6)
+    work(std::integral_constant<int, 6>{});
+  else
+    work(std::integral_constant<int, Eigen::Dynamic>{});
+}
+
+[[noreturn]] void RingSolver::throw_singular(int position, double pivot, double scale) const {
+  char size[96];
+  if (scale > 0.0 && std::isfinite(scale))
+    std::snprintf(size, sizeof size, "a pivot %.1e times its row's largest entry", std::abs(pivot) / scale);
+  else
+    std::snprintf(size, sizeof size, "a %s row", scale == 0.0 ? "zero" : "non-finite");
+  throw SingularMatrix(std::string("ring solver: ") + size + " at " + describe_node(position) +
+                       ": the tangent matrix is singular (a mechanism, an unconstrained rigid-body motion, or a DOF "
+                       "no element stiffens; check the boundary conditions)");
+}
+
+void RingSolver::factorize_interior(const Matrix& matrix) {
+  if (pattern_starts_.empty()) analyze(matrix);
+  check_same_pattern(matrix);
+  interior_factored_ = border_factored_ = false;
+
+  // Scatter the values into the padded blocks and note each row's largest entry.
+  std::fill(blocks_.begin(), blocks_.end(), 0.0);
+  std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
+  const double* values = matrix.valuePtr();
+  const int* rows = matrix.innerIndexPtr();
+  const int stored = static_cast<int>(matrix.nonZeros());
+  for (int entry = 0; entry < stored; ++entry) {
+    blocks_[destination_[entry]] = values[entry];
+    double& scale = row_scale_[position_of_equation_[rows[entry]]];
+    scale = std::max(scale, std::abs(values[entry]));
+  }
+  for (int position : padding_) {
+    blocks_[entry_offset(position, position)] = 1.0;
+    row_scale_[position] = 1.0;
+  }
+
+  with_width([this](auto width) { eliminate_chain<decltype(width)::value>(); });
+  eliminate_first_ring_node();
+  Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
+  for (int i = 0; i < border_size(); ++i)
+    for (int j = 0; j < border_size(); ++j) border_schur_(i, j) = s(3 + border_slots_[i], 3 + border_slots_[j]);
+  interior_factored_ = true;
+  ++fresh_factorizations_;
+}
+
+template <int Width>
+void RingSolver::eliminate_chain() {
+  // Coefficient-based (lazy) products throughout: the blocks are far too small for
+  // GEMM's packing, and they never allocate.
+  using Columns = Eigen::Map<Eigen::Matrix<double, 3, Width>>;  // W_k, then Y_k
+  using Rows = Eigen::Map<Eigen::Matrix<double, Width, 3>>;     // V_k
+  double* base = blocks_.data();
+  Eigen::Map<Eigen::Matrix<double, Width, Width>> s(base + border_block_offset(), width_, width_);
+  for (int k = 0; k < chain_; ++k) {
+    Block d(base + diagonal_offset(k));
+    Columns w(base + border_column_offset(k), 3, width_);
+    Rows v(base + border_row_offset(k), width_, 3);
+    if (k > 0) {
+      const ConstBlock lower(base + lower_offset(k - 1)), x(base + upper_offset(k - 1));
+      d -= lower.lazyProduct(x);
+      w -= lower.lazyProduct(Columns(base + border_column_offset(k - 1), 3, width_));
+      v -= Rows(base + border_row_offset(k - 1), width_, 3).lazyProduct(x);
+    }
+    const int failed = lu_factor(d, &swaps_[3 * k], &row_scale_[3 * k]);
+    if (failed >= 0) throw_singular(3 * k + failed, d(failed, failed), row_scale_[3 * k + failed]);
+    lu_solve(d, &swaps_[3 * k], w);
+    s -= v.lazyProduct(w);
+    if (k + 1 < chain_) lu_solve(d, &swaps_[3 * k], Block(base + upper_offset(k)));
+  }
+}
+
+void RingSolver::eliminate_first_ring_node() {
+  Eigen::Map<Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
+  const int first = 3 * chain_, border = width_ - 3;
+  auto s00 = s.topLeftCorner<3, 3>();
+  const int failed = lu_factor(s00, &swaps_[first], &row_scale_[first]);
+  if (failed >= 0) throw_singular(first + failed, s00(failed, failed), row_scale_[first + failed]);
+  auto s0b = s.topRightCorner(3, border);
+  lu_solve(s00, &swaps_[first], s0b);
+  s.bottomRightCorner(border, border) -= s.bottomLeftCorner(border, 3).lazyProduct(s0b);
+}
+
+void RingSolver::factorize(const Matrix& matrix) {
+  factorize_interior(matrix);
+  const int first = 3 * chain_ + 3, border = width_ - 3;
+  Eigen::Map<Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
+  const int failed = lu_factor(s.bottomRightCorner(border, border), &swaps_[first], &row_scale_[first]);
+  if (failed >= 0) throw_singular(first + failed, s(3 + failed, 3 + failed), row_scale_[first + failed]);
+  border_factored_ = true;
+}
+
+void RingSolver::check_size(Eigen::Index size) const {
+  if (size != static_cast<Eigen::Index>(position_of_equation_.size()))
+    throw std::invalid_argument("ring solver: a right-hand side of " + std::to_string(size) + " entries for " +
+                                std::to_string(position_of_equation_.size()) + " equations");
+}
+
+void RingSolver::gather(const double* values) const {
+  work_.setZero();
+  for (size_t equation = 0; equation < position_of_equation_.size(); ++equation)
+    work_[position_of_equation_[equation]] = values[equation];
+}
+
+template <int Width>
+void RingSolver::forward(double* y) const {
+  using ConstRows = Eigen::Map<const Eigen::Matrix<double, Width, 3>>;
+  const double* base = blocks_.data();
+  Eigen::Map<Eigen::Matrix<double, Width, 1>> y_border(y + 3 * chain_, width_);
+  for (int k = 0; k < chain_; ++k) {
+    Vector3 z(y + 3 * k);
+    if (k > 0) z -= ConstBlock(base + lower_offset(k - 1)).lazyProduct(ConstVector3(y + 3 * k - 3));
+    lu_solve(ConstBlock(base + diagonal_offset(k)), &swaps_[3 * k], z);
+    y_border -= ConstRows(base + border_row_offset(k), width_, 3).lazyProduct(z);
+  }
+  Eigen::Map<const Eigen::MatrixXd> s(base + border_block_offset(), width_, width_);
+  const int border = width_ - 3;
+  Vector3 z0(y + 3 * chain_);
+  lu_solve(s.topLeftCorner<3, 3>(), &swaps_[3 * chain_], z0);
+  if (border > 0) Eigen::Map<Eigen::VectorXd>(y + 3 * chain_ + 3, border) -= s.bottomLeftCorner(border, 3).lazyProduct(z0);
+}
+
+template <int Width>
+void RingSolver::back(double* x) const {
+  using ConstColumns = Eigen::Map<const Eigen::Matrix<double, 3, Width>>;
+  const double* base = blocks_.data();
+  Eigen::Map<const Eigen::MatrixXd> s(base + border_block_offset(), width_, width_);
+  const int border = width_ - 3;
+  if (border > 0)
+    Vector3(x + 3 * chain_) -=
+        s.topRightCorner(3, border).lazyProduct(Eigen::Map<const Eigen::VectorXd>(x + 3 * chain_ + 3, border));
+  const Eigen::Map<const Eigen::Matrix<double, Width, 1>> x_border(x + 3 * chain_, width_);
+  for (int k = chain_ - 1; k >= 0; --k) {
+    Vector3 xk(x + 3 * k);
+    xk -= ConstColumns(base + border_column_offset(k), 3, width_).lazyProduct(x_border);
+    if (k + 1 < chain_) xk -= ConstBlock(base + upper_offset(k)).lazyProduct(ConstVector3(x + 3 * k + 3));
+  }
+}
+
+void RingSolver::solve_in_place(double* values) const {
+  if (!border_factored_) throw std::logic_error("ring solver: solve() needs a successful factorize() first");
+  gather(values);
+  double* y = work_.data();
+  with_width([this, y](auto width) { forward<decltype(width)::value>(y); });
+  const int first = 3 * chain_ + 3, border = width_ - 3;
+  Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
+  lu_solve(s.bottomRightCorner(border, border), &swaps_[first], Eigen::Map<Eigen::VectorXd>(y + first, border));
+  with_width([this, y](auto width) { back<decltype(width)::value>(y); });
+  for (size_t equation = 0; equation < position_of_equation_.size(); ++equation)
+    values[equation] = y[position_of_equation_[equation]];
+}
+
+void RingSolver::solve(Eigen::VectorXd& right_hand_side) const {
+  check_size(right_hand_side.size());
+  solve_in_place(right_hand_side.data());
+}
+
+void RingSolver::solve(Eigen::MatrixXd& right_hand_sides) const {
+  check_size(right_hand_sides.rows());
+  for (Eigen::Index column = 0; column < right_hand_sides.cols(); ++column)
+    solve_in_place(right_hand_sides.col(column).data());
+}
+
+void RingSolver::condense(const Eigen::VectorXd& right_hand_side, Eigen::VectorXd& condensed_border_rhs) const {
+  if (!interior_factored_)
+    throw std::logic_error("ring solver: condense() needs factorize() or factorize_interior() first");
+  check_size(right_hand_side.size());
+  gather(right_hand_side.data());
+  double* y = work_.data();
+  with_width([this, y](auto width) { forward<decltype(width)::value>(y); });
+  condensed_border_rhs.resize(border_size());
+  for (int i = 0; i < border_size(); ++i) condensed_border_rhs[i] = y[3 * chain_ + 3 + border_slots_[i]];
+}
+
+}  // namespace tirefe

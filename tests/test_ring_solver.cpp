@@ -1,0 +1,346 @@
+// The structured RingSolver against KLU and against dense linear algebra on the real
+// 145 SR-12 tire: solutions, the border Schur complement H = K_bb - K_bu K_uu^-1 K_ub
+// and the condensed right-hand side f_b = R_b - K_bu K_uu^-1 R_u, with the spindle free,
+// on a dead axle (ux, uy fixed) and fixed; patterns that do not fit are refused; whole
+// analyses (quasi-static inflation, then Newmark steps) agree with both solvers.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "core/assembler.hpp"
+#include "elements/tread_beam.hpp"
+#include "macros/macro_table.hpp"
+#include "solvers/analysis.hpp"
+#include "solvers/ring_solver.hpp"
+#include "tire/tire_builder.hpp"
+
+using namespace tirefe;
+
+namespace {
+
+const char* const kSpindleCases[] = {"spindle free", "dead axle (ux, uy fixed)", "spindle fixed"};
+const int kFixedComponents[] = {0, 2, 3};
+
+/// The tire with its spindle condensed, inflated quasi-statically with the hub held
+/// (a free hub has rigid-body modes, quasi-statically), then the first 'fixed' spindle
+/// components stay prescribed and the others are released.
+struct InflatedTire {
+  Model model;
+  Tire tire;
+  std::unique_ptr<Analysis> analysis;
+
+  InflatedTire(int fixed, bool ring_solver) {
+    tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"),
+                      LoadFunction::table({{0.0, 0.0}, {1.0, 1.0}}));
+    model.condense_node(tire.spindle);
+    for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
+    analysis = std::make_unique<Analysis>(model);
+    if (ring_solver) analysis->use_ring_solver(tire.tread_nodes, {tire.spindle});
+    analysis->set_time_step(0.25);
+    analysis->advance(1.0);
+    for (int c = fixed; c < kDofsPerNode; ++c) model.release(tire.spindle, c);
+    analysis->assembler().update_pattern();
+  }
+
+  /// The tangent at the inflated state: Newmark's effective tangent for step h, or the static one (h = 0).
+  const SparseMatrix& tangent(double h) {
+    EvaluationContext context;
+    context.time = analysis->state().time;
+    if (h > 0.0) context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
+    Eigen::VectorXd residual;
+    analysis->assembler().assemble(context, analysis->state(), residual);
+    model.revert_history();
+    return analysis->assembler().tangent();
+  }
+};
+
+double relative_difference(const Eigen::MatrixXd& value, const Eigen::MatrixXd& reference) {
+  return (value - reference).norm() / reference.norm();
+}
+
+Eigen::MatrixXd random_columns(int rows, int columns, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::MatrixXd values(rows, columns);
+  for (int j = 0; j < columns; ++j)
+    for (int i = 0; i < rows; ++i) values(i, j) = uniform(random);
+  return values;
+}
+
+/// Solves with both solvers and checks the RingSolver against KLU.
+void check_against_klu(RingSolver& ring, const SparseMatrix& matrix, double tolerance = 1e-10) {
+  KluSolver klu;
+  klu.analyze(matrix);
+  klu.factorize(matrix);
+  ring.analyze(matrix);
+  ring.factorize(matrix);
+  const Eigen::MatrixXd rhs = random_columns(static_cast<int>(matrix.rows()), 3, 7);
+  Eigen::MatrixXd x_klu = rhs, x_ring = rhs;
+  klu.solve(x_klu);
+  ring.solve(x_ring);
+  CHECK(relative_difference(x_ring, x_klu) <= tolerance);
+  Eigen::VectorXd single = rhs.col(1);
+  ring.solve(single);
+  CHECK(relative_difference(single, x_klu.col(1)) <= tolerance);
+  // And the residual of the ring solution itself.
+  CHECK((matrix * x_ring - rhs).norm() <= 1e-10 * matrix.norm() * x_ring.norm());
+}
+
+}  // namespace
+
+TEST_CASE("ring solver: solutions, spindle Schur complement and condensed rhs of the inflated tire", "[ring_solver]") {
+  for (int c = 0; c < 3; ++c) {
+    DYNAMIC_SECTION(kSpindleCases[c]) {
+      const int fixed = kFixedComponents[c];
+      InflatedTire inflated(fixed, false);
+      const SparseMatrix& tangent = inflated.tangent(1e-4);
+      const int n = static_cast<int>(tangent.rows());
+      const int border = kDofsPerNode - fixed;
+      RingSolver ring(inflated.model.dof_map(), inflated.tire.tread_nodes, {inflated.tire.spindle});
+      check_against_klu(ring, tangent);
+
+      // The condensed spindle is numbered last: H's rows are the last 'border' equations.
+      REQUIRE(ring.border_size() == border);
+      for (int i = 0; i < border; ++i) CHECK(ring.border_equations()[i] == n - border + i);
+      const int interior = n - border;
+      const Eigen::MatrixXd dense = Eigen::MatrixXd(tangent);
+      const Eigen::PartialPivLU<Eigen::MatrixXd> k_uu(dense.topLeftCorner(interior, interior));
+      const Eigen::MatrixXd k_ub = dense.topRightCorner(interior, border);
+      const Eigen::MatrixXd k_bu = dense.bottomLeftCorner(border, interior);
+      const Eigen::MatrixXd schur = dense.bottomRightCorner(border, border) - k_bu * k_uu.solve(k_ub);
+      const Eigen::VectorXd rhs = random_columns(n, 1, 11);
+      const Eigen::VectorXd condensed_rhs = rhs.tail(border) - k_bu * k_uu.solve(rhs.head(interior));
+
+      REQUIRE(ring.border_schur_complement().rows() == border);
+      REQUIRE(ring.border_schur_complement().cols() == border);
+      Eigen::VectorXd condensed;
+      ring.condense(rhs, condensed);
+      REQUIRE(condensed.size() == border);
+      if (border > 0) {
+        CHECK(relative_difference(ring.border_schur_complement(), schur) <= 1e-9);
+        CHECK(relative_difference(condensed, condensed_rhs) <= 1e-9);
+      }
+
+      // The partial factorisation alone gives the same H and f_b.
+      RingSolver partial(inflated.model.dof_map(), inflated.tire.tread_nodes, {inflated.tire.spindle});
+      partial.analyze(tangent);
+      partial.factorize_interior(tangent);
+      Eigen::VectorXd partial_condensed;
+      partial.condense(rhs, partial_condensed);
+      if (border > 0) {
+        CHECK(relative_difference(partial.border_schur_complement(), schur) <= 1e-9);
+        CHECK(relative_difference(partial_condensed, condensed_rhs) <= 1e-9);
+      }
+      Eigen::VectorXd unsolvable = rhs;
+      CHECK_THROWS_AS(partial.solve(unsolvable), std::logic_error);  // H is not factored
+
+      // The static tangent where it is regular (hub fixed); any ring start and direction.
+      if (fixed == 3) {
+        const SparseMatrix& stiffness = inflated.tangent(0.0);
+        check_against_klu(ring, stiffness);
+        std::vector<int> turned(inflated.tire.tread_nodes.rbegin(), inflated.tire.tread_nodes.rend());
+        std::rotate(turned.begin(), turned.begin() + 37, turned.end());
+        RingSolver clockwise(inflated.model.dof_map(), turned, {inflated.tire.spindle});
+        check_against_klu(clockwise, stiffness);
+      }
+    }
+  }
+}
+
+TEST_CASE("ring solver: an uncondensed spindle and a two-node border give the same solutions and H",
+          "[ring_solver]") {
+  // Spindle numbered first (not condensed): H follows border_equations().
+  Model model;
+  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
+  model.fix(tire.spindle, kUx);
+  Analysis analysis(model);
+  analysis.assembler().update_pattern();
+  EvaluationContext context;
+  const double h = 1e-3;
+  context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
+  State uninflated;
+  uninflated.resize(model.mesh().dof_count());
+  Eigen::VectorXd residual;
+  analysis.assembler().assemble(context, uninflated, residual);
+  const SparseMatrix& tangent = analysis.assembler().tangent();
+  RingSolver ring(model.dof_map(), tire.tread_nodes, {tire.spindle});
+  check_against_klu(ring, tangent);
+  REQUIRE(ring.border_equations() == std::vector<int>{0, 1});
+
+  // H by the dense route with the border equations permuted last.
+  const int n = static_cast<int>(tangent.rows());
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(tangent);
+  const Eigen::MatrixXd k_uu = dense.bottomRightCorner(n - 2, n - 2);
+  const Eigen::MatrixXd schur =
+      dense.topLeftCorner(2, 2) - dense.topRightCorner(2, n - 2) * k_uu.partialPivLu().solve(dense.bottomLeftCorner(n - 2, 2));
+  CHECK(relative_difference(ring.border_schur_complement(), schur) <= 1e-9);
+
+  // Spindle and tread node 10 as the border (width 9: the dynamic-size path); the ring
+  // then skips node 10, whose neighbours are not coupled to each other, which is allowed.
+  std::vector<int> ring_nodes = tire.tread_nodes;
+  ring_nodes.erase(ring_nodes.begin() + 10);
+  RingSolver wide(model.dof_map(), ring_nodes, {tire.spindle, tire.tread_nodes[10]});
+  check_against_klu(wide, tangent);
+  CHECK(wide.border_size() == 5);
+}
+
+TEST_CASE("ring solver: a cantilever is an open ring; in the wrong node order it is refused", "[ring_solver]") {
+  auto build = [](Model& model) {
+    BeamSection section;
+    section.axial_stiffness = 1e6;
+    section.shear_stiffness = 1e6;
+    section.bending_stiffness = 10.0;
+    const int elements = 10;
+    for (int i = 0; i <= elements; ++i) model.mesh().add_node({0.1 * i, 0.0});
+    auto& beams = model.add_block<TreadBeam>("beam");
+    for (int i = 0; i < elements; ++i)
+      beams.add({i, i + 1}, TreadBeam(model.mesh().position(i), model.mesh().position(i + 1), section));
+    for (int c = 0; c < kDofsPerNode; ++c) model.fix(0, c);
+    model.add_nodal_load(elements, kUy, -50.0, Model::kRampLoadFunction);
+    std::vector<int> nodes;
+    for (int i = 0; i <= elements; ++i) nodes.push_back(i);
+    return nodes;
+  };
+  Model scrambled_model;
+  const std::vector<int> nodes = build(scrambled_model);
+  std::vector<int> scrambled;
+  for (int i = 0; i < static_cast<int>(nodes.size()); i += 2) scrambled.push_back(i);
+  for (int i = 1; i < static_cast<int>(nodes.size()); i += 2) scrambled.push_back(i);
+  Analysis refused(scrambled_model);
+  CHECK_THROWS_AS(refused.use_ring_solver(scrambled, {}), ModelError);
+  CHECK_THROWS_WITH(refused.use_ring_solver(scrambled, {}), Catch::Contains("not ring neighbours"));
+  CHECK(std::string(refused.linear_solver().name()) == "KLU");  // a refused solver is not installed
+
+  // In node order: large-deflection Newton steps give KLU's answer (no border, the
+  // clamped node 0 all padding).
+  Model klu_model, ring_model;
+  build(klu_model);
+  build(ring_model);
+  Analysis klu_analysis(klu_model), ring_analysis(ring_model);
+  ring_analysis.use_ring_solver(nodes, {});
+  for (Analysis* analysis : {&klu_analysis, &ring_analysis}) {
+    analysis->set_time_step(0.25);
+    analysis->advance(1.0);
+  }
+  const Eigen::VectorXd& reference = klu_analysis.state().displacement;
+  CHECK(reference.norm() > 0.01);
+  CHECK(relative_difference(ring_analysis.state().displacement, reference) <= 1e-9);
+  CHECK(ring_analysis.linear_solver().factorization_count() >= 4);
+}
+
+TEST_CASE("ring solver: analyze() refuses tires that do not fit and misuse of the factors", "[ring_solver]") {
+  Model model;
+  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
+  model.condense_node(tire.spindle);
+  Analysis analysis(model);
+
+  SECTION("a node in no list") {
+    CHECK_THROWS_WITH(analysis.use_ring_solver(tire.tread_nodes, {}),
+                      Catch::Contains("belongs to neither a ring nor a border node"));
+  }
+  SECTION("a node listed twice") {
+    CHECK_THROWS_WITH(analysis.use_ring_solver(tire.tread_nodes, {tire.spindle, tire.tread_nodes[3]}),
+                      Catch::Contains("listed twice"));
+  }
+  SECTION("an extra coupling across the ring") {
+    BeamSection section;
+    section.axial_stiffness = section.shear_stiffness = 1e5;
+    section.bending_stiffness = 1.0;
+    const int a = tire.tread_nodes[0], b = tire.tread_nodes[50];
+    model.add_block<TreadBeam>("spoke").add({a, b}, TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
+    CHECK_THROWS_WITH(analysis.use_ring_solver(tire.tread_nodes, {tire.spindle}),
+                      Catch::Contains("not ring neighbours"));
+  }
+  SECTION("a structure change after the choice is checked before the next step") {
+    analysis.use_ring_solver(tire.tread_nodes, {tire.spindle});
+    const int a = tire.tread_nodes[0], b = tire.tread_nodes[50];
+    BeamSection section;
+    section.axial_stiffness = section.shear_stiffness = 1e5;
+    section.bending_stiffness = 1.0;
+    model.add_block<TreadBeam>("spoke").add({a, b}, TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
+    CHECK_THROWS_AS(analysis.advance(0.1), ModelError);
+  }
+  SECTION("factors of another pattern, solves before factoring") {
+    model.fix(tire.spindle, kUx);
+    analysis.assembler().update_pattern();
+    RingSolver ring(model.dof_map(), tire.tread_nodes, {tire.spindle});
+    ring.analyze(analysis.assembler().tangent());
+    Eigen::VectorXd rhs = Eigen::VectorXd::Ones(model.dof_map().equation_count());
+    CHECK_THROWS_AS(ring.solve(rhs), std::logic_error);
+    SparseMatrix other = analysis.assembler().tangent();
+    other.insert(0, model.dof_map().equation_count() - 2) = 1.0;  // a new entry: another pattern
+    other.makeCompressed();
+    CHECK_THROWS_AS(ring.factorize(other), std::logic_error);
+  }
+}
+
+TEST_CASE("ring solver: a singular tangent throws SingularMatrix; the partial factorisation still gives H",
+          "[ring_solver]") {
+  // Quasi-statically, a tire free on its spindle moves as a rigid body: K is singular,
+  // K_uu (the tread with the spindle held) is not, and H (the spindle stiffness through
+  // the tire) is zero up to round-off.
+  InflatedTire inflated(0, false);
+  const SparseMatrix& stiffness = inflated.tangent(0.0);
+  RingSolver ring(inflated.model.dof_map(), inflated.tire.tread_nodes, {inflated.tire.spindle});
+  ring.analyze(stiffness);
+  CHECK_THROWS_AS(ring.factorize(stiffness), SingularMatrix);
+  CHECK_THROWS_WITH(ring.factorize(stiffness), Catch::Contains("border node"));
+  ring.factorize_interior(stiffness);
+  const int n = static_cast<int>(stiffness.rows());
+  const Eigen::MatrixXd dense = Eigen::MatrixXd(stiffness);
+  const double spindle_scale = dense.bottomRightCorner(3, 3).norm();
+  CHECK(ring.border_schur_complement().norm() <= 1e-8 * spindle_scale);
+
+  // A zero row (a DOF no element stiffens) is caught on the ring too.
+  SparseMatrix zeroed = stiffness;
+  const int row = 40;
+  for (int column = 0; column < n; ++column)
+    for (SparseMatrix::InnerIterator entry(zeroed, column); entry; ++entry)
+      if (entry.row() == row) entry.valueRef() = 0.0;
+  CHECK_THROWS_WITH(ring.factorize(zeroed), Catch::Contains("zero row") && Catch::Contains("ring node 14"));
+
+  // Newton turns it into a step cut, and the analysis fails with the reason.
+  Model model;
+  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
+  Analysis analysis(model);
+  analysis.use_ring_solver(tire.tread_nodes, {tire.spindle});
+  analysis.step_control().max_cuts = 1;
+  CHECK_THROWS_WITH(analysis.advance(0.5), Catch::Contains("singular"));
+}
+
+TEST_CASE("ring solver: inflation and Newmark steps of the tire match KLU's with the spindle free, on a dead "
+          "axle and fixed",
+          "[ring_solver]") {
+  for (int c = 0; c < 3; ++c) {
+    DYNAMIC_SECTION(kSpindleCases[c]) {
+      const int fixed = kFixedComponents[c];
+      std::unique_ptr<InflatedTire> runs[2];
+      for (int solver = 0; solver < 2; ++solver) {
+        runs[solver] = std::make_unique<InflatedTire>(fixed, solver == 1);
+        InflatedTire& run = *runs[solver];
+        // After the inflation: a push on the bottom of the tread, a torque and a pull on the hub.
+        Model& model = run.model;
+        const int kick = model.add_load_function(LoadFunction::table({{1.0, 0.0}, {1.0005, 1.0}}));
+        model.add_nodal_load(run.tire.tread_nodes[75], kUy, 800.0, kick);
+        model.add_nodal_load(run.tire.spindle, kRz, 60.0, kick);
+        model.add_nodal_load(run.tire.spindle, kUx, -300.0, kick);
+        run.analysis->set_integrator(Integrator::newmark());
+        run.analysis->set_time_step(1e-4);
+        run.analysis->advance(2e-3);
+      }
+      const Analysis& klu = *runs[0]->analysis;
+      const Analysis& ring = *runs[1]->analysis;
+      CHECK(std::string(runs[1]->analysis->linear_solver().name()) == "ring");
+      CHECK(runs[1]->analysis->linear_solver().factorization_count() >= 24);
+      CHECK(ring.accepted_steps() == klu.accepted_steps());
+      const Eigen::VectorXd& u = klu.state().displacement;
+      INFO("|u| = " << u.norm() << ", spindle rotation " << u[dof_index(runs[0]->tire.spindle, kRz)]);
+      CHECK(relative_difference(ring.state().displacement, u) <= 1e-9);
+      CHECK(relative_difference(ring.state().velocity, klu.state().velocity) <= 1e-9);
+      if (fixed < 3) CHECK(std::abs(u[dof_index(runs[0]->tire.spindle, kRz)]) > 1e-6);  // the hub did turn
+    }
+  }
+}
