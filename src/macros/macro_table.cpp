@@ -109,6 +109,7 @@ const MacroTable& macro_table() {
     add_dynamics_macros(built);
     add_tire_macros(built);
     add_contact_macros(built);
+    add_fitting_macros(built);
     return built;
   }();
   return table;

@@ -1,0 +1,115 @@
+#include "fitting/curve_data.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace tirefe::fitting {
+
+namespace {
+
+std::string trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
+
+std::vector<std::string> split_fields(const std::string& line) {
+  std::vector<std::string> fields;
+  size_t start = 0;
+  for (size_t comma = line.find(','); ; comma = line.find(',', start)) {
+    fields.push_back(trimmed(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if (comma == std::string::npos) return fields;
+    start = comma + 1;
+  }
+}
+
+DataColumn column_from_header(const std::string& header) {
+  DataColumn column{header, header, "", "", {}};
+  const auto underscore = header.rfind('_');
+  if (underscore == std::string::npos || underscore == 0) return column;
+  const std::string suffix = header.substr(underscore + 1);
+  for (const UnitSuffix& unit : unit_suffixes())
+    if (suffix == unit.suffix) {
+      column.name = header.substr(0, underscore);
+      column.unit = suffix;
+      column.si_unit = unit.si_unit;
+    }
+  return column;
+}
+
+double to_si(const std::string& unit) {
+  for (const UnitSuffix& known : unit_suffixes())
+    if (unit == known.suffix) return known.to_si;
+  return 1.0;
+}
+
+std::string header_list(const std::vector<DataColumn>& columns) {
+  std::string out;
+  for (const auto& column : columns) out += (out.empty() ? "" : ", ") + column.header;
+  return out;
+}
+
+}  // namespace
+
+const std::vector<UnitSuffix>& unit_suffixes() {
+  static const std::vector<UnitSuffix> units{
+      {"m", 1.0, "m"},      {"mm", 1e-3, "m"},      {"cm", 1e-2, "m"},
+      {"N", 1.0, "N"},      {"kN", 1e3, "N"},       {"N/m", 1.0, "N/m"},
+      {"N/mm", 1e3, "N/m"}, {"Pa", 1.0, "Pa"},      {"kPa", 1e3, "Pa"},
+      {"MPa", 1e6, "Pa"},   {"bar", 1e5, "Pa"},     {"psi", 6894.757293168, "Pa"},
+      {"s", 1.0, "s"},      {"ms", 1e-3, "s"},      {"Hz", 1.0, "Hz"},
+      {"rad", 1.0, "rad"},  {"deg", 3.14159265358979323846 / 180.0, "rad"},
+      {"kg", 1.0, "kg"},    {"m/s", 1.0, "m/s"},    {"km/h", 1.0 / 3.6, "m/s"}};
+  return units;
+}
+
+CurveData CurveData::read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw CurveDataError("cannot open '" + path + "'");
+  CurveData data;
+  data.path_ = path;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string content = trimmed(line.substr(0, line.find('#')));
+    if (content.empty()) continue;
+    const std::string where = path + ":" + std::to_string(number) + ": ";
+    const std::vector<std::string> fields = split_fields(content);
+    if (data.columns_.empty()) {  // the header
+      for (const std::string& header : fields) {
+        if (header.empty()) throw CurveDataError(where + "empty column name in the header");
+        DataColumn column = column_from_header(header);
+        for (const auto& existing : data.columns_)
+          if (existing.name == column.name)
+            throw CurveDataError(where + "two columns named '" + column.name + "' ('" + existing.header + "', '" +
+                                 header + "')");
+        data.columns_.push_back(column);
+      }
+      continue;
+    }
+    if (fields.size() != data.columns_.size())
+      throw CurveDataError(where + "expected " + std::to_string(data.columns_.size()) + " values (" +
+                           header_list(data.columns_) + "), found " + std::to_string(fields.size()));
+    for (size_t c = 0; c < fields.size(); ++c) {
+      DataColumn& column = data.columns_[c];
+      char* end = nullptr;
+      errno = 0;
+      const double value = std::strtod(fields[c].c_str(), &end);
+      if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+        throw CurveDataError(where + "column '" + column.header + "': '" + fields[c] + "' is not a finite number");
+      column.values.push_back(value * to_si(column.unit));
+    }
+  }
+  if (data.columns_.empty()) throw CurveDataError(path + ": no header line (column names) found");
+  if (data.rows() == 0) throw CurveDataError(path + ": no data rows after the header");
+  return data;
+}
+
+const DataColumn& CurveData::column(const std::string& name) const {
+  for (const auto& column : columns_)
+    if (column.name == name || column.header == name) return column;
+  throw CurveDataError(path_ + ": no column '" + name + "' (columns: " + header_list(columns_) + ")");
+}
+
+}  // namespace tirefe::fitting

@@ -1,0 +1,59 @@
+// Measured curves read from CSV files (a force-deflection curve, say), for fits and decks.
+//
+//   # 145 SR-12, flat road           <- '#' starts a comment, on its own line or after values
+//   deflection_mm, force_N, pressure_kPa
+//   5.0, 960, 208
+//
+// The first line that is not blank or a comment is the header: comma-separated column
+// names, each usually ending in a unit suffix (_mm, _N, _kPa, ...; unit_suffixes()). Every
+// value is converted to SI on reading and the column is known by its name without the
+// suffix (deflection_mm -> "deflection" in m); a header without a known suffix is taken
+// as is, without conversion. A row with the wrong number of values or a value that is not
+// a finite number is an error naming the file and the line.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tirefe::fitting {
+
+class CurveDataError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct UnitSuffix {
+  const char* suffix;  // as written after the last '_' of a header, e.g. "kPa"
+  double to_si;        // SI value of one unit
+  const char* si_unit;
+};
+
+/// The recognised unit suffixes (case-sensitive).
+const std::vector<UnitSuffix>& unit_suffixes();
+
+struct DataColumn {
+  std::string header;  // as written, e.g. deflection_mm
+  std::string name;    // without the unit suffix, e.g. deflection
+  std::string unit;    // the suffix ("" if none)
+  std::string si_unit;  // the unit of 'values' ("" if none)
+  std::vector<double> values;  // SI
+};
+
+class CurveData {
+ public:
+  /// Reads a CSV file (CurveDataError with "file:LINE: ..." on a malformed row).
+  static CurveData read_csv(const std::string& path);
+
+  const std::string& path() const { return path_; }
+  const std::vector<DataColumn>& columns() const { return columns_; }
+  size_t rows() const { return columns_.empty() ? 0 : columns_.front().values.size(); }
+  /// A column by its name or its full header; CurveDataError listing the columns otherwise.
+  const DataColumn& column(const std::string& name) const;
+
+ private:
+  std::string path_;
+  std::vector<DataColumn> columns_;
+};
+
+}  // namespace tirefe::fitting
