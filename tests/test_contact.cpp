@@ -861,6 +861,40 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
   CHECK(file.read_ints("/contact/road/nodes") == std::vector<long long>{0, 1, 2});
 }
 
+TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "[contact][output]") {
+  // A contact defined after inflation adds its channels after steps were recorded.
+  TempDir folder;
+  Model model;
+  SpringMassProperties properties;
+  properties.stiffness = {1e3, 1e3, 0.0};
+  auto& springs = model.add_block<NodalSpringMass>("springs");
+  const int node = model.mesh().add_node(Eigen::Vector2d(0.0, 0.0));
+  springs.add({node}, NodalSpringMass(properties));
+  model.fix(node, kRz);
+  model.add_nodal_load(node, kUy, -10.0, Model::kRampLoadFunction);
+  Analysis analysis(model);
+  int steps_before = 0;
+  {
+    io::ResultFile file(folder.path("late.h5"), io::RunMetadata{"late", "", ""});
+    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.set_time_step(0.5);
+    analysis.advance(1.0);
+    steps_before = file.steps_recorded();
+    file.add_channel("late_uy", "m", [node](const Analysis& run, const StepRecord&) {
+      return run.state().displacement[dof_index(node, kUy)];
+    });
+    analysis.advance(1.5);
+  }
+  const io::Hdf5File file = io::Hdf5File::open_read_only(folder.path("late.h5"));
+  const std::vector<double> late = file.read_doubles("/history/late_uy");
+  REQUIRE(late.size() == file.read_doubles("/history/time").size());
+  REQUIRE(steps_before >= 1);
+  REQUIRE(late.size() > static_cast<size_t>(steps_before));
+  for (int row = 0; row < steps_before; ++row) CHECK(std::isnan(late[row]));
+  CHECK(!std::isnan(late[steps_before]));
+  CHECK(late.back() == Approx(-2.5 * 10.0 / 1e3).epsilon(1e-9));  // u = F / k at t = 1 + 1.5
+}
+
 // ======================================================================================
 // Deck macros
 // ======================================================================================

@@ -212,6 +212,7 @@ double structural_tangential_penalty(Analysis& analysis, const std::vector<int>&
   }
   solver.solve(unit_loads);
   double smallest = std::numeric_limits<double>::infinity();
+  bool unstable = false;
   for (size_t n = 0; n < nodes.size(); ++n) {
     Eigen::Matrix2d compliance = Eigen::Matrix2d::Zero();  // prescribed components: rigid
     for (int row : {kUx, kUy})
@@ -224,7 +225,15 @@ double structural_tangential_penalty(Analysis& analysis, const std::vector<int>&
     const Eigen::Vector2d tau = surface.project(position, state.time).tangent;
     const double flexibility = tau.dot(compliance * tau);
     if (flexibility > 0.0 && std::isfinite(flexibility)) smallest = std::min(smallest, 1.0 / flexibility);
+    if (flexibility < 0.0) unstable = true;
   }
+  // A negative compliance is a structure that is not stable in its current state (the
+  // uninflated tire with the printed sign of k_sw): no stiffness to scale from.
+  if (unstable)
+    throw ModelError(
+        "contact: the structure has a negative stiffness along the surface in its current state, so the "
+        "tangential penalty cannot be scaled from it; define the contact after loading the structure into a "
+        "stable state (after inflating a tire), or give tangential_penalty");
   if (!std::isfinite(smallest))
     throw ModelError("contact: the contact nodes cannot move along the surface; give the tangential penalty");
   return factor * smallest;

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <ctime>
+#include <limits>
 
 #include "tirefe/version.hpp"
 
@@ -45,10 +46,16 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata) : f
 void ResultFile::add_channel(const std::string& name, const std::string& unit, Channel channel) {
   for (const auto& existing : channel_names_)
     if (existing.first == name) throw IoError("history channel '" + name + "' is defined twice");
-  if (!channels_.empty())
-    throw IoError("history channel '" + name + "' must be defined before the first step is recorded");
   channel_names_.emplace_back(name, unit);
-  pending_channels_.push_back(std::move(channel));
+  if (channels_.empty()) {
+    pending_channels_.push_back(std::move(channel));
+    return;
+  }
+  // A channel defined mid-run (a contact added after inflation) has no value for the
+  // steps before it existed: those rows hold NaN, so every channel keeps one row per step.
+  ExtendibleDataset& dataset = file_.create_extendible("/history/" + name, {}, unit);
+  for (int row = 0; row < steps_recorded_; ++row) dataset.append(std::numeric_limits<double>::quiet_NaN());
+  channels_.push_back({&dataset, std::move(channel)});
 }
 
 void ResultFile::start_history() {

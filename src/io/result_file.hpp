@@ -40,7 +40,8 @@ class ResultFile {
   const std::string& path() const { return file_.path(); }
   Hdf5File& file() { return file_; }
 
-  /// Adds a history channel (one value per accepted step); before the first step only.
+  /// Adds a history channel (one value per accepted step). A channel added after steps were
+  /// recorded holds NaN for those earlier steps.
   void add_channel(const std::string& name, const std::string& unit, Channel channel);
   /// Writes displacement (and velocity) fields every 'interval' accepted steps (0: never).
   void set_field_interval(int interval) { field_interval_ = interval; }
