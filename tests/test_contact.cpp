@@ -839,7 +839,7 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
       add_contact_block(model, "road", std::make_shared<FlatRoad>(), nodes, penalties(1e6, 1e6, 0.5));
   Analysis analysis(model);
   {
-    io::ResultFile file(folder.path("contact.h5"), io::RunMetadata{"contact", "", ""});
+    io::ResultFile file(folder.path("contact.h5"), io::RunMetadata{"contact", "", "", {}});
     add_contact_output(file, analysis, contact, "road", 1);
     analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
     analysis.set_time_step(0.5);
@@ -875,7 +875,7 @@ TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "
   Analysis analysis(model);
   int steps_before = 0;
   {
-    io::ResultFile file(folder.path("late.h5"), io::RunMetadata{"late", "", ""});
+    io::ResultFile file(folder.path("late.h5"), io::RunMetadata{"late", "", "", {}});
     analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);

@@ -19,6 +19,16 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactB
     file.add_channel(channel_prefix + "_nodes_in_contact", "", [source](const Analysis&, const StepRecord&) {
       return static_cast<double>(summarize_contact(*source).nodes_in_contact);
     });
+    // The surface's prescribed motion (a drum's angle, a road's travel), to place events
+    // such as a cleat passage on the time axis.
+    if (block.size() > 0) {
+      const RigidMotion* motion = &block.kernel(0).surface().motion();
+      file.add_channel(channel_prefix + "_surface_angle", "rad",
+                       [motion](const Analysis& run, const StepRecord&) { return motion->angle_at(run.state().time); });
+      file.add_channel(channel_prefix + "_surface_x", "m", [motion](const Analysis& run, const StepRecord&) {
+        return motion->translation_at(run.state().time).x();
+      });
+    }
   }
   if (every <= 0) return;
 

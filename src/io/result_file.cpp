@@ -1,6 +1,10 @@
 #include "io/result_file.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <ctime>
 #include <limits>
 
@@ -25,6 +29,15 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata) : f
   file_.write_attribute("/", "deck_path", metadata.deck_path);
   file_.write_attribute("/", "units", std::string("SI: m, N, s, rad, kg, Pa"));
   file_.write_string_dataset("/deck", metadata.deck_text);
+  // Numbers as numbers (post-processing reads the drum size or the speed from here).
+  for (const auto& [name, text] : metadata.parameters) {
+    char* end = nullptr;
+    const double number = std::strtod(text.c_str(), &end);
+    if (!text.empty() && end && *end == '\0')
+      file_.write_attribute("/parameters", name, number);
+    else
+      file_.write_attribute("/parameters", name, text);
+  }
   // The built-in step channels come first in every history.
   add_channel("time", "s", [](const Analysis&, const StepRecord& step) { return step.time; });
   add_channel("step_size", "s", [](const Analysis&, const StepRecord& step) { return step.step_size; });
@@ -41,6 +54,21 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata) : f
   add_channel("external_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.external_work; });
   add_channel("energy_dissipated", "J", [](const Analysis&, const StepRecord& step) { return step.energy.dissipated; });
   file_.flush();
+}
+
+ResultFile::~ResultFile() {
+  if (field_index_.frame_times.empty()) return;
+  try {
+    write_field_index();
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "tirefe: warning: %s\n", error.what());
+  }
+}
+
+void ResultFile::write_field_index() const {
+  std::filesystem::path index(path());
+  index.replace_extension(".xmf");
+  write_xdmf(index.string(), field_index_);
 }
 
 void ResultFile::add_channel(const std::string& name, const std::string& unit, Channel channel) {
@@ -81,7 +109,10 @@ void ResultFile::write_mesh(const Model& model) {
       for (int node : block->element_nodes(e)) connectivity.push_back(node);
     const std::string path = "/mesh/blocks/" + block->name();
     file_.write_int_matrix(path, block->size(), per_element, connectivity.data());
+    field_index_.blocks.push_back({block->name(), block->size(), per_element});
   }
+  field_index_.hdf5_file_name = std::filesystem::path(file_.path()).filename().string();
+  field_index_.nodes = mesh.node_count();
   for (const auto& [name, nodes] : mesh.node_sets())
     file_.write_int_vector("/mesh/node_sets/" + name, std::vector<long long>(nodes.begin(), nodes.end()));
   const std::vector<hsize_t> node_field{static_cast<hsize_t>(mesh.node_count()), 3};
@@ -118,6 +149,7 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   if (state.displacement.size() != static_cast<Eigen::Index>(field_displacement_->row_size()))
     throw IoError("the mesh changed after output started; fields cannot be written to '" + path() + "'");
   field_time_->append(state.time);
+  field_index_.frame_times.push_back(state.time);
   field_step_->append(static_cast<double>(step));
   field_displacement_->append(state.displacement.data());
   field_velocity_->append(state.velocity.data());
@@ -129,8 +161,16 @@ void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
   if (channels_.empty()) start_history();
   for (auto& channel : channels_) channel.dataset->append(channel.value(analysis, record));
   ++steps_recorded_;
-  if (field_interval_ > 0 && record.step % field_interval_ == 0)
+  const bool frame_due = (field_interval_ > 0 && record.step % field_interval_ == 0) ||
+                         (field_time_interval_ > 0.0 && record.time >= next_field_time_);
+  if (frame_due) {
     write_fields(analysis, record.step);  // flushes
+    if (field_time_interval_ > 0.0) {
+      // The next multiple of the interval after this frame (a tiny margin absorbs round-off in t).
+      const double margin = 1e-9 * field_time_interval_;
+      next_field_time_ = (std::floor((record.time + margin) / field_time_interval_) + 1.0) * field_time_interval_ - margin;
+    }
+  }
   else
     flush_if_due();
 }

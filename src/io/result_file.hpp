@@ -1,6 +1,7 @@
 // ResultFile: one run's HDF5 output. Layout (docs/output.md):
 //   /                 attributes: tirefe_version, git_commit, created, deck_path, units, title
 //   /deck             the deck's full text
+//   /parameters       attributes: the deck's parameters after command-line overrides
 //   /mesh/coordinates             node reference positions, nodes x 2 [m]
 //   /mesh/blocks/<name>           element connectivity (0-based node indices), attribute "type"
 //   /mesh/node_sets/<name>        0-based node indices
@@ -10,6 +11,7 @@
 //   /fields/time, /fields/step    one row per field frame
 //   /fields/displacement          frames x nodes x 3 (u_x, u_y, theta_z)
 //   /fields/velocity              frames x nodes x 3 (dynamic runs)
+// <stem>.xmf beside the file indexes the fields for ParaView (io/xdmf.hpp).
 // Rows are flushed at field frames and at least every quarter second of wall time, and
 // when the file closes, so a run that fails leaves a file readable up to its last step
 // and a killed run one readable up to its last flush.
@@ -17,11 +19,14 @@
 
 #include <chrono>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/hdf5_file.hpp"
+#include "io/xdmf.hpp"
 #include "solvers/analysis.hpp"
 
 namespace tirefe::io {
@@ -30,6 +35,7 @@ struct RunMetadata {
   std::string title;
   std::string deck_path;
   std::string deck_text;
+  std::vector<std::pair<std::string, std::string>> parameters;  // the deck's parameters, as text
 };
 
 class ResultFile {
@@ -37,6 +43,10 @@ class ResultFile {
   using Channel = std::function<double(const Analysis&, const StepRecord&)>;
 
   ResultFile(const std::string& path, const RunMetadata& metadata);
+  /// Closes the file, and writes the XDMF index of its fields beside it (<stem>.xmf).
+  ~ResultFile();
+  ResultFile(const ResultFile&) = delete;
+  ResultFile& operator=(const ResultFile&) = delete;
   const std::string& path() const { return file_.path(); }
   Hdf5File& file() { return file_; }
 
@@ -45,6 +55,9 @@ class ResultFile {
   void add_channel(const std::string& name, const std::string& unit, Channel channel);
   /// Writes displacement (and velocity) fields every 'interval' accepted steps (0: never).
   void set_field_interval(int interval) { field_interval_ = interval; }
+  /// Writes fields at the first accepted step at or after every multiple of 'interval'
+  /// seconds (0: never), whatever the step sizes.
+  void set_field_time_interval(double interval) { field_time_interval_ = interval; }
   int field_interval() const { return field_interval_; }
 
   /// Records one accepted step (writes the mesh first if it has not been written).
@@ -63,6 +76,7 @@ class ResultFile {
     Channel value;
   };
   void write_mesh(const Model& model);
+  void write_field_index() const;
   void start_history();
   void flush_if_due();
 
@@ -72,12 +86,15 @@ class ResultFile {
   std::vector<HistoryChannel> channels_;
   bool mesh_written_ = false;
   int field_interval_ = 0;
+  double field_time_interval_ = 0.0;
+  double next_field_time_ = -std::numeric_limits<double>::infinity();
   int steps_recorded_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   ExtendibleDataset* field_time_ = nullptr;
   ExtendibleDataset* field_step_ = nullptr;
   ExtendibleDataset* field_displacement_ = nullptr;
   ExtendibleDataset* field_velocity_ = nullptr;
+  XdmfFields field_index_;  // what the XDMF file points at
 };
 
 }  // namespace tirefe::io

@@ -54,15 +54,16 @@ int DeckModel::load_function(const std::string& name) const {
   return found->second;
 }
 
-void DeckModel::open_output(const std::string& file, int field_interval) {
+void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval) {
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
   fs::path path(file);
   if (path.is_relative()) path = fs::path(session_.output_dir) / path;
   std::error_code ignored;
   if (path.has_parent_path()) fs::create_directories(path.parent_path(), ignored);
   output_ = std::make_unique<io::ResultFile>(path.string(),
-                                             io::RunMetadata{title_, session_.deck_path, session_.deck_text});
+                                             io::RunMetadata{title_, session_.deck_path, session_.deck_text, session_.parameters});
   output_->set_field_interval(field_interval);
+  output_->set_field_time_interval(field_time_interval);
 }
 
 io::ResultFile& DeckModel::output_or_default() {

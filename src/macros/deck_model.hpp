@@ -30,7 +30,7 @@ class DeckModel {
   int load_function(const std::string& name) const;
 
   /// Opens the result file (a relative path is taken inside the session's output folder).
-  void open_output(const std::string& file, int field_interval);
+  void open_output(const std::string& file, int field_interval, double field_time_interval = 0.0);
   io::ResultFile* output() { return output_.get(); }
   /// The result file, opened under a default name if the deck named none.
   io::ResultFile& output_or_default();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tirefe::macros {
@@ -18,6 +19,9 @@ struct DeckSession {
   std::string deck_text;
   bool quiet = false;
   std::vector<CheckResult> checks;
+  // The deck's tirefe.parameters{...} after command-line overrides, as text, for the
+  // result file's /parameters (a run's file says which case it is).
+  std::vector<std::pair<std::string, std::string>> parameters;
   int default_outputs_opened = 0;
 
   int failed_checks() const {

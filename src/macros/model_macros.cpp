@@ -216,7 +216,8 @@ int solve_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) 
 // ---- output and queries ----------------------------------------------------------
 
 int output_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
-  deck.open_output(arguments.string("file"), static_cast<int>(arguments.integer("fields_every")));
+  deck.open_output(arguments.string("file"), static_cast<int>(arguments.integer("fields_every")),
+                   arguments.number("fields_interval"));
   return 0;
 }
 
@@ -254,10 +255,11 @@ int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   const int component = component_of(arguments.string("dof"));
   const std::string quantity = arguments.string("quantity");
   const NodalQuantity reader = quantity_reader(quantity);
+  const double scale = arguments.number("scale");
   deck.output_or_default().add_channel(
       arguments.string("name"), quantity_unit(quantity, component),
-      [nodes, component, reader](const Analysis& analysis, const StepRecord&) {
-        return summed_quantity(analysis, reader, nodes, component);
+      [nodes, component, reader, scale](const Analysis& analysis, const StepRecord&) {
+        return scale * summed_quantity(analysis, reader, nodes, component);
       });
   return 0;
 }
@@ -462,11 +464,16 @@ void add_model_macros(MacroTable& table) {
        "(--output-dir, default results/). Without this call the first step opens <deck name>.h5.",
        {{"file", VT::String, true, "", "file name"},
         {"fields_every", VT::Integer, false, "", "write displacement fields every n steps (0: never)",
-         std::string("0"), Range::NonNegative}},
+         std::string("0"), Range::NonNegative},
+        {"fields_interval", VT::Number, false, "s",
+         "write displacement fields every this much time, whatever the step sizes (0: never)", std::string("0"),
+         Range::NonNegative}},
        "model:output{ file = \"cantilever.h5\", fields_every = 1 }"},
       output_macro);
   add({"history", "Adds a history channel: a nodal quantity (summed over a set) written at every step.",
-       {{"name", VT::String, true, "", "channel name (/history/<name>)"}, kNodeKey, kSetKey, kDofKey, kQuantityKey},
+       {{"name", VT::String, true, "", "channel name (/history/<name>)"}, kNodeKey, kSetKey, kDofKey, kQuantityKey,
+        {"scale", VT::Number, false, "", "factor on the value (-1: the force on a support instead of its reaction)",
+         std::string("1")}},
        "model:history{ name = \"root_force_y\", set = \"root\", dof = \"uy\", quantity = \"reaction\" }"},
       history_macro);
   add({"value", "Returns a nodal quantity at the current time (summed over a set).",

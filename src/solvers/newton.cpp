@@ -18,9 +18,14 @@ std::string format_norms(int iteration, double norm, double relative, double inc
 
 const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& linear_solver) {
   report_.iterations = 0;
+  report_.backtracks = 0;
   report_.residual_norms.clear();
-  report_.residual_norms.reserve(settings_.max_iterations + 1);
+  report_.residual_norms.reserve(settings_.max_iterations * (settings_.max_backtracks + 1) + 1);
   double relative_increment = 0.0;
+  double previous_norm = 0.0;  // at the start of the current increment
+  double norm_two_back = 0.0;  // at the start of the one before
+  double step_fraction = 1.0;  // of the current increment applied so far
+  int halvings = 0;
   for (;;) {
     double force_level = 0.0;
     equations.evaluate(true, residual_, force_level);
@@ -30,12 +35,24 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     const double relative = norm / report_.reference_force;
     if (settings_.log) *settings_.log << format_norms(report_.iterations, norm, relative, relative_increment);
 
+    const bool converged = relative <= settings_.residual_tolerance ||
+                           (report_.iterations > 0 && relative_increment <= settings_.increment_tolerance);
+    // A cycle: the residual grows and has not halved over the last two increments.
+    const bool cycling = report_.iterations >= settings_.line_search_from && !(norm < previous_norm) &&
+                         !(norm < 0.5 * norm_two_back);
+    if (!converged && cycling && halvings < settings_.max_backtracks) {
+      // Back along the increment to half the fraction applied.
+      step_back_ = -0.5 * step_fraction * increment_;  // no allocation once sized
+      relative_increment = equations.apply_increment(step_back_);
+      step_fraction *= 0.5;
+      ++halvings;
+      ++report_.backtracks;
+      continue;
+    }
     if (!std::isfinite(norm))
       throw ConvergenceFailure("the residual is not finite (NaN or infinity) at Newton iteration " +
                                std::to_string(report_.iterations));
-    if (relative <= settings_.residual_tolerance ||
-        (report_.iterations > 0 && relative_increment <= settings_.increment_tolerance))
-      return report_;
+    if (converged) return report_;
     if (relative > settings_.divergence_ratio)
       throw ConvergenceFailure("Newton iterations diverge (|R|/Rref = " + std::to_string(relative) +
                                " at iteration " + std::to_string(report_.iterations) + ")");
@@ -53,6 +70,10 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     if (!increment_.allFinite())
       throw ConvergenceFailure("the Newton increment is not finite at iteration " +
                                std::to_string(report_.iterations));
+    norm_two_back = previous_norm;
+    previous_norm = norm;
+    step_fraction = 1.0;
+    halvings = 0;
     relative_increment = equations.apply_increment(increment_);
     ++report_.iterations;
   }

@@ -5,6 +5,12 @@
 // the step, or on an increment at round-off level. A NaN, a residual growing past
 // divergence_ratio * R_ref, or running out of iterations throws ConvergenceFailure so
 // that the driver can cut the step.
+//
+// Backtracking: from the line_search_from-th increment on, an increment that makes the
+// residual grow, when the residual has not halved over the last two increments either, is
+// halved (up to max_backtracks times) before the next solve. Contact nodes that open and
+// close in turn otherwise trap full Newton in a two-cycle. A residual that grows while
+// Newton converges (large rotations, a node landing) is left alone.
 #pragma once
 
 #include <Eigen/Dense>
@@ -27,11 +33,14 @@ struct NewtonSettings {
   double residual_tolerance = 1e-9;  // on |R| / R_ref
   double increment_tolerance = 1e-13;  // on |du|_inf / (1 + |u|_inf): round-off level
   double divergence_ratio = 1e8;
+  int line_search_from = 2;  // increments taken whole before backtracking starts
+  int max_backtracks = 4;
   std::ostream* log = nullptr;  // per-iteration lines when set
 };
 
 struct NewtonReport {
   int iterations = 0;   // linear solves performed
+  int backtracks = 0;   // halvings of an increment
   double reference_force = 0.0;
   std::vector<double> residual_norms;  // |R| at each evaluation, the last one converged
 };
@@ -62,7 +71,7 @@ class NewtonSolver {
  private:
   NewtonSettings settings_;
   NewtonReport report_;
-  Eigen::VectorXd residual_, increment_;
+  Eigen::VectorXd residual_, increment_, step_back_;
 };
 
 }  // namespace tirefe

@@ -1,0 +1,246 @@
+-- Drum-cleat test (Mousseau, Laursen, Lidberg, Taylor 1999, section 3.1; docs/drum_cleat.md).
+--
+-- A 145 SR-12 tire on a dead axle rolls on a 1.7 m drum carrying a cleat 25 mm high and
+-- 660 mm long, friction 0.3. 0-1 s: inflation on a fixed hub; 1-2 s: pressed onto the drum
+-- to the spindle load (quasi-static); 2-6 s: the drum spins up from rest to 51.3 km/h and
+-- friction makes the tire roll; then the speed is held to 8 s. The cleat comes round every
+-- pi D / v (0.375 s at full speed). The spindle forces, spin rate, drum angle, contact
+-- totals and energies are written every step, the deformed tire every fields_interval.
+-- The deck ends with a summary of the last cleat passage at full speed: peak-to-peak
+-- spindle forces and the ringing frequencies of Fx and Fz on top of the cleat and after it.
+--
+--   tirefe inputs/drum_cleat.lua [speed_kmh=51.3] [cleat_height=0.025] [integrator=newmark] ...
+--
+-- Signs: x to the right, y up; the tire sits on top of the drum; the drum turns clockwise,
+-- so its top and the cleat move in +x under the tire. Fz below is the vertical spindle force
+-- (y), positive pressing the tire onto the drum; Fx the longitudinal one, positive along +x.
+
+local p = tirefe.parameters{
+  tire = "tires.145SR12",      -- parameter set in lua/tires/
+  elements = 100,              -- wedges around the tire
+  pressure_kpa = 208,          -- inflation pressure [kPa]
+  load = 3800,                 -- spindle load on the drum [N]
+  drum_diameter = 1.7,         -- [m]
+  cleat_height = 0.025,        -- [m]
+  cleat_length = 0.66,         -- along the drum surface [m]
+  cleat_edge_radius = 0.005,   -- rounding of the cleat's top edges [m]
+  cleat_start_deg = -90,       -- where the cleat's middle is at rest (degrees from +x; -90: bottom)
+  friction = 0.3,
+  speed_kmh = 51.3,            -- final drum surface speed
+  spin_up_time = 4.0,          -- [s] from rest, starting at t = 2 s
+  end_time = 8.0,              -- [s]
+  integrator = "hht",          -- hht or newmark (average acceleration)
+  alpha = -0.1,                -- HHT alpha
+  dt = 5e-4,                   -- time step while the cleat is away from the tire [s]
+  dt_cleat = 2.5e-4,           -- time step from just before the cleat reaches the tire until ring_time after it left [s]
+  ring_time = 0.1,             -- [s]
+  fields_interval = 0.005,     -- time between deformed-shape frames [s]
+  output = "drum_cleat.h5",
+  check = false,               -- self-checks of the run (the test suite's short version sets it)
+}
+
+local function require_positive(name)
+  if not (p[name] > 0) then error(string.format("parameter %s = %g must be positive", name, p[name]), 2) end
+end
+for _, name in ipairs{ "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time",
+                       "dt", "dt_cleat", "ring_time", "fields_interval" } do
+  require_positive(name)
+end
+if p.cleat_height < 0 then error("parameter cleat_height must not be negative") end
+if p.end_time <= 2.0 + p.dt then error("parameter end_time must be later than the 2 s of inflation and pressing") end
+
+local R = p.drum_diameter / 2
+local speed = p.speed_kmh / 3.6                -- drum surface speed [m/s]
+local omega = speed / R                         -- drum spin [rad/s]
+local dynamic_start = 2.0
+
+-- The drum's clockwise angle at time t, and its inverse.
+local function drum_angle(t)
+  local running = t - dynamic_start
+  if running <= 0 then return 0 end
+  local ramp = math.min(running, p.spin_up_time)
+  return 0.5 * omega * ramp * ramp / p.spin_up_time + omega * math.max(running - p.spin_up_time, 0)
+end
+local function time_at_angle(angle)
+  local ramp_angle = 0.5 * omega * p.spin_up_time
+  if angle <= ramp_angle then return dynamic_start + math.sqrt(2 * angle * p.spin_up_time / omega) end
+  return dynamic_start + p.spin_up_time + (angle - ramp_angle) / omega
+end
+
+local cleat_angle = math.rad(p.cleat_start_deg)
+local cleat_half_angle = p.cleat_length / (2 * R)
+if cleat_half_angle >= math.pi / 2 then error("parameter cleat_length is too long for the drum") end
+
+-- Passages of the cleat under the tire: the times its leading edge and its trailing edge
+-- pass the top of the drum (the middle of the contact patch).
+local passages = {}
+do
+  local lead = (cleat_angle - cleat_half_angle) - math.pi / 2 -- clockwise turn that brings the leading edge to the top
+  local trail = (cleat_angle + cleat_half_angle) - math.pi / 2
+  while lead < 0 do lead, trail = lead + 2 * math.pi, trail + 2 * math.pi end
+  while time_at_angle(lead) < p.end_time do
+    passages[#passages + 1] = { on = time_at_angle(lead), off = time_at_angle(trail) }
+    lead, trail = lead + 2 * math.pi, trail + 2 * math.pi
+  end
+end
+
+-- Fine steps from shortly before a passage until ring_time after it.
+local function near_cleat(t)
+  for _, passage in ipairs(passages) do
+    if t > passage.on - 0.01 and t < passage.off + p.ring_time then return true end
+  end
+  return false
+end
+
+-- Model: the tire on top of the drum, touching it at rest.
+local model = tirefe.model{ title = "drum-cleat test, " .. p.tire }
+local tire_parameters = require(p.tire)
+tire_parameters.elements = p.elements
+tire_parameters.pressure = p.pressure_kpa * 1e3
+tire_parameters.pressure_load_function = "inflation"
+tire_parameters.y = R + tire_parameters.outer_diameter / 2
+model:load_function{ name = "inflation", points = { { 0, 0 }, { 1, 1 }, { 1e9, 1 } } }
+local tire = model:tire(tire_parameters)
+
+-- Spindle: held during inflation and pressing. Its height follows the press path, a list
+-- of (time, depth) points that the pressing phase extends until the spindle carries the
+-- load; the last depth is then kept (the dead axle).
+local press_path = { { 0.0, 0.0 } }
+local function press_depth(t)
+  for i = #press_path, 1, -1 do
+    local t1, d1 = press_path[i][1], press_path[i][2]
+    if t >= t1 then
+      local following = press_path[i + 1]
+      if not following then return d1 end
+      return d1 + (following[2] - d1) * (t - t1) / (following[1] - t1)
+    end
+  end
+  return 0.0
+end
+model:load_function{ name = "press", fn = press_depth }
+model:fix{ node = tire.spindle, dofs = { "ux", "rz" } }
+model:prescribe{ node = tire.spindle, dof = "uy", value = -1.0, load_function = "press" }
+
+model:output{ file = p.output, fields_interval = p.fields_interval }
+model:history{ name = "spindle_fx", node = tire.spindle, dof = "ux", quantity = "reaction", scale = -1 }
+model:history{ name = "spindle_fz", node = tire.spindle, dof = "uy", quantity = "reaction", scale = -1 }
+model:history{ name = "spin_rate", node = tire.spindle, dof = "rz", quantity = "velocity" }
+model:history{ name = "spindle_height", node = tire.spindle, dof = "uy" }
+
+-- 0-1 s: inflation. The drum is defined after it: automatic contact penalties are scaled
+-- from the structure's stiffness, and the uninflated tire has none to speak of.
+model:solve{ to = 1.0, dt = 0.25 }
+model:surface{ name = "drum", type = "drum", diameter = p.drum_diameter, cleat_height = p.cleat_height,
+               cleat_length = p.cleat_length, cleat_angle = cleat_angle, edge_radius = p.cleat_edge_radius,
+               speed = -omega, ramp_time = p.spin_up_time, start_time = dynamic_start }
+model:contact{ surface = "drum", set = tire.tread_set, friction = p.friction, history = "drum", output_every = 20 }
+
+-- 1-2 s: press. Five steps toward a first guess of the deflection, then secant steps on the
+-- measured force-deflection curve until the spindle carries the load to 0.1 %.
+-- Spindle forces are the forces the tire puts on the axle: Fz > 0 presses it down onto the drum.
+local function spindle_fx() return -model:value{ node = tire.spindle, dof = "ux", quantity = "reaction" } end
+local function spindle_fz() return -model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" } end
+local function press_to(depth, dt)
+  press_path[#press_path + 1] = { model:time() + dt, depth }
+  model:step{ dt = dt }
+end
+press_path[#press_path + 1] = { 1.0, 0.0 }
+local guess = p.load / 170e3                    -- a passenger tire's vertical stiffness, about 170 N/mm
+for k = 1, 5 do press_to(guess * k / 5, 0.1) end
+local previous_depth, previous_load = 0.0, 0.0
+for _ = 1, 8 do
+  local depth, load = press_depth(model:time()), spindle_fz()
+  if math.abs(load - p.load) < 1e-3 * p.load then break end
+  local stiffness = (load - previous_load) / (depth - previous_depth)
+  previous_depth, previous_load = depth, load
+  press_to(depth + (p.load - load) / stiffness, 0.05)
+end
+if math.abs(spindle_fz() - p.load) > 1e-3 * p.load then
+  error(string.format("pressing did not reach the load %g N (spindle force %g N)", p.load, spindle_fz()))
+end
+model:solve{ to = dynamic_start, dt = 0.1 }
+local loaded_deflection = press_depth(model:time())
+print(string.format("pressed: deflection %.2f mm for %.1f N, contact patch %.1f mm", loaded_deflection * 1e3,
+                    spindle_fz(), model:contact_value{ name = "contact_drum", quantity = "patch_length" } * 1e3))
+
+-- 2-8 s: the drum spins up; the spindle turns freely on the dead axle.
+model:release{ node = tire.spindle, dofs = { "rz" } }
+if p.integrator == "hht" then
+  model:integrator{ type = "hht", alpha = p.alpha }
+elseif p.integrator == "newmark" then
+  model:integrator{ type = "newmark" }
+else
+  error("parameter integrator must be hht or newmark, not '" .. p.integrator .. "'")
+end
+
+local record = { time = {}, fx = {}, fz = {}, spin = {} }
+local totals = { steps = 0, newton = 0, cuts = 0 }
+local wall_start = os.clock()
+while model:time() < p.end_time - 1e-9 do
+  local t = model:time()
+  local dt = math.min(near_cleat(t) and p.dt_cleat or p.dt, p.end_time - t)
+  local step = model:step{ dt = dt }
+  totals.steps, totals.newton, totals.cuts = totals.steps + step.steps, totals.newton + step.newton_iterations,
+                                             totals.cuts + step.cuts
+  t = model:time()
+  record.time[#record.time + 1] = t
+  record.fx[#record.fx + 1] = spindle_fx()
+  record.fz[#record.fz + 1] = spindle_fz()
+  record.spin[#record.spin + 1] = model:value{ node = tire.spindle, dof = "rz", quantity = "velocity" }
+end
+local wall = os.clock() - wall_start
+print(string.format("dynamic run: %d steps, %d Newton iterations (%.2f per step), %d cuts, %.2f s CPU, "
+                    .. "%.1f us per iteration", totals.steps, totals.newton, totals.newton / totals.steps, totals.cuts,
+                    wall, 1e6 * wall / totals.newton))
+
+-- Summary of the last passage at full speed with its ringing recorded.
+local function window_values(series, from, to)
+  local low, high = math.huge, -math.huge
+  for i, t in ipairs(record.time) do
+    if t >= from and t <= to then low, high = math.min(low, series[i]), math.max(high, series[i]) end
+  end
+  return low, high
+end
+local full_speed = dynamic_start + p.spin_up_time
+local last
+for _, passage in ipairs(passages) do
+  if passage.on >= full_speed and passage.off + p.ring_time <= p.end_time then last = passage end
+end
+local summary = {}
+if last then
+  local fx_low, fx_high = window_values(record.fx, last.on - 0.01, last.off + p.ring_time)
+  local fz_low, fz_high = window_values(record.fz, last.on - 0.01, last.off + p.ring_time)
+  local function ringing(series, from, to, low, high)
+    return tirefe.oscillation{ time = record.time, values = series, from = from, to = to, min_frequency = low,
+                               max_frequency = high }
+  end
+  -- On top: from when the whole patch has climbed the cleat to when its front reaches the far edge.
+  local patch_time = 0.08 / speed
+  summary.fz_on_top = ringing(record.fz, last.on + patch_time, last.off - patch_time, 40, 300)
+  summary.fz_leaving = ringing(record.fz, last.off + patch_time, last.off + p.ring_time, 40, 300)
+  summary.fx_ringing = ringing(record.fx, last.off + patch_time, last.off + p.ring_time, 10, 150)
+  summary.fx_peak_to_peak, summary.fz_peak_to_peak = fx_high - fx_low, fz_high - fz_low
+  print(string.format("cleat passage at %.3f-%.3f s (%.1f km/h), every %.3f s at full speed", last.on, last.off,
+                      p.speed_kmh, math.pi * p.drum_diameter / speed))
+  print(string.format("  peak to peak: Fx %.0f N, Fz %.0f N", summary.fx_peak_to_peak, summary.fz_peak_to_peak))
+  print(string.format("  Fz on top of the cleat %.1f Hz, leaving it %.1f Hz; Fx %.1f Hz (measured: 88, 85, 35 Hz)",
+                      summary.fz_on_top.frequency, summary.fz_leaving.frequency, summary.fx_ringing.frequency))
+else
+  print("no complete cleat passage at full speed before end_time: no impact summary")
+end
+
+-- Steady rolling just before the last passage: effective rolling radius = drum surface
+-- speed / spin rate, averaged over 20 ms.
+local rolling_radius
+if last then
+  local sum, count = 0, 0
+  for i, t in ipairs(record.time) do
+    if t > last.on - 0.03 and t <= last.on - 0.01 then sum, count = sum + speed / record.spin[i], count + 1 end
+  end
+  rolling_radius = sum / count
+  print(string.format("rolling radius before the cleat %.2f mm (unloaded %.2f mm, loaded %.2f mm)",
+                      rolling_radius * 1e3, tire_parameters.outer_diameter / 2 * 1e3,
+                      (tire_parameters.outer_diameter / 2 - loaded_deflection) * 1e3))
+end
+
+return { summary = summary, rolling_radius = rolling_radius, passages = passages, record = record }
