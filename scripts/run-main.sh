@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The main job: installs what is needed, builds, runs the main deck and plots its results.
+# The main job: installs what is needed, builds, runs the drum-cleat deck on its default
+# parameters (results/drum_cleat.h5 + .xmf) and plots it (results/drum_cleat_*.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-./build/tirefe inputs/cantilever_elastica.lua
-/usr/bin/python3 post/plot_results.py results/cantilever_elastica.h5
+./build/tirefe inputs/drum_cleat.lua --quiet
+/usr/bin/python3 post/plot_drum_cleat.py results/drum_cleat.h5

@@ -8,13 +8,15 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <string>
 
 #include "io/hdf5_file.hpp"
-#include <string>
 
 namespace fs = std::filesystem;
 
@@ -95,6 +97,35 @@ TEST_CASE("the self-checking decks in inputs/ pass their checks", "[decks]") {
     INFO("errors: " << result.errors);
     CHECK(result.exit_status == 0);
   }
+}
+
+TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF index and plots", "[decks][drum]") {
+  // A 0.5 s spin-up instead of 4 s: the passage at full speed that follows is the same
+  // impact as in the full run (docs/drum_cleat.md).
+  const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
+  const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "drum_cleat.lua").string();
+  const RunResult result = run_tirefe(deck + " spin_up_time=0.5 end_time=2.95 check=true output=drum_short.h5");
+  INFO("errors: " << result.errors);
+  REQUIRE(result.exit_status == 0);
+
+  const fs::path file = output / "drum_short.h5";
+  const tirefe::io::Hdf5File hdf5 = tirefe::io::Hdf5File::open_read_only(file.string());
+  const std::vector<double> time = hdf5.read_doubles("/history/time");
+  const std::vector<double> fz = hdf5.read_doubles("/history/spindle_fz");
+  REQUIRE(fz.size() == time.size());
+  CHECK(time.back() == Approx(2.95).epsilon(1e-9));
+  // The drum channels exist from the contact's definition on (after inflation), NaN before.
+  const std::vector<double> angle = hdf5.read_doubles("/history/drum_surface_angle");
+  CHECK(std::isnan(angle.front()));
+  CHECK(angle.back() < -10.0);  // clockwise, several turns
+  CHECK(hdf5.read_double_attribute("/parameters", "spin_up_time") == 0.5);
+  CHECK(fs::exists(output / "drum_short.xmf"));
+
+  const std::string plot = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_drum_cleat.py").string() +
+                           " " + file.string() + " > /dev/null";
+  REQUIRE(std::system(plot.c_str()) == 0);
+  for (const char* suffix : {"_forces.png", "_impact.png", "_spectrum.png", "_snapshots.png"})
+    CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
 }
 
 TEST_CASE("a deck whose self-check fails exits with status 3", "[decks]") {

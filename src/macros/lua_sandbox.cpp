@@ -329,6 +329,15 @@ int lua_parameters(lua_State* L) {
     }
     lua_setfield(L, 2, key.c_str());
   }
+  if (self->parameters_observer_) {
+    std::vector<std::pair<std::string, std::string>> resolved;
+    for (const std::string& name : declared) {
+      lua_getfield(L, 2, name.c_str());
+      resolved.emplace_back(name, luaL_tolstring(L, -1, nullptr));
+      lua_pop(L, 2);
+    }
+    self->parameters_observer_(resolved);
+  }
   return 1;
 }
 

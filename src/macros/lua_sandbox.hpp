@@ -8,10 +8,13 @@
 // extern "C" (nm -D shows unmangled symbols). <lua.hpp> therefore matches the library.
 #include <lua.hpp>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace tirefe::macros {
 
@@ -37,6 +40,11 @@ class LuaSandbox {
   // Sets tirefe[name] = f (creating the global 'tirefe' table if needed).
   void register_function(const char* name, lua_CFunction f);
 
+  // Called by tirefe.parameters{...} with the resolved parameters (name, value as text),
+  // sorted by name: the result file records which case a run is.
+  using ParametersObserver = std::function<void(const std::vector<std::pair<std::string, std::string>>&)>;
+  void set_parameters_observer(ParametersObserver observer) { parameters_observer_ = std::move(observer); }
+
   const std::string& deck_path() const { return deck_path_; }
   const std::string& deck_text() const { return deck_text_; }
   const std::string& lua_dir() const { return lua_dir_; }
@@ -59,6 +67,7 @@ class LuaSandbox {
   std::map<std::string, std::string> overrides_;
   std::string last_traceback_;
   bool parameters_called_ = false;
+  ParametersObserver parameters_observer_;
 
   friend int lua_parameters(lua_State* L);
 };

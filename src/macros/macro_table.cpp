@@ -129,28 +129,6 @@ DeckModel& push_new_model(lua_State* L, const std::string& title, DeckSession& s
   return **owner;
 }
 
-namespace {
-
-// tirefe.parameters, recording the resolved values into the session.
-int parameters_recorded(lua_State* L) {
-  lua_parameters(L);
-  DeckSession& session = session_of(L);
-  session.parameters.clear();
-  lua_pushnil(L);
-  while (lua_next(L, -2)) {
-    if (lua_type(L, -2) == LUA_TSTRING) {
-      const std::string name = lua_tostring(L, -2);
-      session.parameters.emplace_back(name, luaL_tolstring(L, -1, nullptr));
-      lua_pop(L, 1);
-    }
-    lua_pop(L, 1);
-  }
-  std::sort(session.parameters.begin(), session.parameters.end());
-  return 1;
-}
-
-}  // namespace
-
 void install_macros(LuaSandbox& sandbox, DeckSession& session) {
   lua_State* L = sandbox.state();
   lua_pushlightuserdata(L, &session);
@@ -173,7 +151,8 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
   lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);
 
-  sandbox.register_function("parameters", parameters_recorded);
+  sandbox.set_parameters_observer(
+      [&session](const std::vector<std::pair<std::string, std::string>>& resolved) { session.parameters = resolved; });
   lua_getglobal(L, "tirefe");
   for (size_t i = 0; i < table.module_macros.size(); ++i) {
     lua_pushinteger(L, static_cast<lua_Integer>(i));
