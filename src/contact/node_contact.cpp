@@ -26,6 +26,7 @@ void ContactParameters::check() const {
           "the multiplier tolerance must be non-negative", multiplier_tolerance);
   require(penetration_limit > penetration_tolerance, "the penetration limit must exceed the penetration tolerance",
           penetration_limit);
+  require(search_distance > 0.0, "the search distance must be positive", search_distance);
 }
 
 NodeSurfaceContact::NodeSurfaceContact(std::shared_ptr<const RigidSurface> surface,
@@ -46,6 +47,21 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
   residual.setZero();
   if (tangent) tangent->setZero();
   const Eigen::Vector2d x = reference_position_ + local.displacement.head<2>();
+  if (base.state == ContactState::Open) {
+    // Far from the surface: open, and no projection (most of a tire's nodes). The gap
+    // reported is the clearance, a lower bound; the coordinate stays the last projected.
+    const double clearance = surface_->clearance(x, context.time);
+    if (clearance > parameters_.search_distance) {
+      trial.state = ContactState::Open;
+      trial.coordinate = base.coordinate;
+      trial.gap = clearance;
+      trial.normal_multiplier = trial.tangential_multiplier = 0.0;
+      trial.stick_coordinate = base.coordinate;
+      trial.normal_force = trial.tangential_force = trial.sliding_velocity = 0.0;
+      trial.force.setZero();
+      return;
+    }
+  }
   const SurfaceProjection p = surface_->project(x, context.time);
   trial.coordinate = p.coordinate;
   trial.gap = p.gap;

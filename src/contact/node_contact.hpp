@@ -62,6 +62,7 @@ struct ContactParameters {
   double penetration_tolerance = 5e-4;  // [m], Uzawa stops below it ...
   double multiplier_tolerance = 1e-2;   // ... and below this relative multiplier change
   double penetration_limit = 1e-2;      // [m], deeper after a converged solve is a failure
+  double search_distance = 0.05;        // [m], open nodes farther than this skip the projection
 
   /// Throws ModelError naming the first non-physical value.
   void check() const;

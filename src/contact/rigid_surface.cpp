@@ -1,5 +1,7 @@
 #include "contact/rigid_surface.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -136,6 +138,11 @@ std::vector<Eigen::Vector2d> RoadProfile::pothole_points(double start, double le
 std::vector<Eigen::Vector2d> RoadProfile::cleat_points(double start, double length, double height, double level) {
   require(length > 0.0 && height > 0.0, "cleat: length and height must be positive");
   return {{start, level}, {start, level + height}, {start + length, level + height}, {start + length, level}};
+}
+
+double Drum::clearance(const Eigen::Vector2d& x, double time) const {
+  const Eigen::Vector2d axis = centre() + motion().translation_at(time);
+  return (x - axis).norm() - (radius_ + std::max(cleat_.height, 0.0));
 }
 
 }  // namespace tirefe

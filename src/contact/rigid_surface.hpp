@@ -17,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,11 @@ class RigidSurface {
   /// Velocity of the material point that occupies 'spatial' at time t (no projection).
   Eigen::Vector2d velocity_at(const Eigen::Vector2d& spatial, double time) const {
     return motion_.velocity(spatial, time);
+  }
+  /// A lower bound of the distance from x (outside the solid) to the surface at time t,
+  /// cheap enough to skip the projection of nodes far away; -infinity when unknown.
+  virtual double clearance(const Eigen::Vector2d& /*x*/, double /*time*/) const {
+    return -std::numeric_limits<double>::infinity();
   }
   /// Slip measure s_to - s_from (wrapped around a closed surface).
   double arc_difference(double to, double from) const { return curve_.arc_difference(to, from); }
@@ -76,6 +82,8 @@ class Drum : public RigidSurface {
   Drum(double diameter, const Eigen::Vector2d& centre, MotionFunction angle, const Cleat& cleat = {});
   double radius() const { return radius_; }
   const Eigen::Vector2d& centre() const { return motion().centre(); }
+  /// Distance from x to the circle through the cleat's top: no trigonometry.
+  double clearance(const Eigen::Vector2d& x, double time) const override;
   const Cleat& cleat() const { return cleat_; }
 
  private:

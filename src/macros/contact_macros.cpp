@@ -159,6 +159,7 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
   parameters.penetration_tolerance = arguments.number("tolerance");
   parameters.multiplier_tolerance = arguments.number("multiplier_tolerance");
   parameters.penetration_limit = arguments.number("penetration_limit");
+  parameters.search_distance = arguments.number("search_distance");
   const ContactBlock& block =
       add_contact_block(deck.model(), name, surface, nodes, parameters, deck.analysis().state().time);
   const std::string prefix = arguments.string_or("history", "");
@@ -253,9 +254,12 @@ void add_contact_macros(MacroTable& table) {
          Range::NonNegative},
         {"penetration_limit", VT::Number, false, "m", "deeper penetration fails the step", std::string("0.01"),
          Range::Positive},
+        {"search_distance", VT::Number, false, "m",
+         "open nodes farther from the surface than this skip the projection (more than a step's approach)",
+         std::string("0.05"), Range::Positive},
         {"history", VT::String, false, "",
          "prefix of history channels <prefix>_fx, _fy, _patch_length, "
-         "_nodes_in_contact"},
+         "_nodes_in_contact, _surface_angle, _surface_x"},
         {"output_every", VT::Integer, false, "", "write per-node rows (/contact/<name>/...) every n steps; 0: never",
          std::string("0"), Range::NonNegative}},
        "model:contact{ surface = \"drum\", set = \"tread\", friction = 0.3, history = \"patch\" }"},

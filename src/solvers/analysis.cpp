@@ -147,19 +147,21 @@ bool Analysis::try_step(double step, StepRecord& record) {
 void Analysis::finish_step(double step) {
   // residual_all_ must hold the physical residual M a + g - F of the new state, whose
   // prescribed entries are the reactions: the last Newton evaluation gives it unless
-  // HHT weighted the forces.
+  // HHT weighted the forces. Its HHT residual R = M a + (1+alpha) g_{n+1} - alpha g_n
+  // - (1+alpha) F_{n+1} + alpha F_n differs from the physical one by
+  // alpha [(g_{n+1} - F_{n+1}) - (g_n - F_n)], so one assembly of g_{n+1} (needed anyway
+  // for the next step's weighting) corrects it.
   const bool weighted = integrator_.old_force_weight() != 0.0;
   if (weighted) {
-    // Physical reactions M a + g - F, and g_{n+1} for the next step's weighting.
+    const double alpha = integrator_.alpha();
+    residual_all_ += alpha * (old_internal_forces_ - external_old_);
     EvaluationContext context;
     context.time = trial_.time;
     context.time_step = step;
     context.want_tangent = false;
     context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 0.0};
     assembler_.assemble(context, trial_, old_internal_forces_);
-    context.factors = {0.0, 0.0, 1.0, 0.0, 0.0, 0.0};
-    assembler_.assemble(context, trial_, residual_all_);
-    residual_all_ += old_internal_forces_ - external_new_;
+    residual_all_ -= alpha * (old_internal_forces_ - external_new_);
   }
   const double work = step_work();  // before the reactions and the state move on
   reactions_.setZero(model_.mesh().dof_count());
