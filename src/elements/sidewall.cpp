@@ -43,17 +43,21 @@ ArchSolution solve_half_angle(double ratio) {
   double alpha = std::min(std::sqrt(y * (6.0 + y * (1.8 + y * (144.0 / 175.0)))), kPi);
   double low = 0.0, high = kPi;
   for (int iteration = 0; iteration < 60; ++iteration) {
-    const double residual = std::sin(alpha) - ratio * alpha;
+    const double sin_alpha = std::sin(alpha), cos_alpha = std::cos(alpha);
+    const double residual = sin_alpha - ratio * alpha;
     if (residual == 0.0) break;
     (residual > 0.0 ? low : high) = alpha;
-    double next = alpha - residual / (std::cos(alpha) - ratio);
+    double next = alpha - residual / (cos_alpha - ratio);
     // A converged step may land on the bracket end just moved to alpha: keep it.
     if (!(next >= low && next <= high)) next = 0.5 * (low + high);
     const double step = next - alpha;
-    alpha = next;
     // Quadratic convergence: the error after a step d is about 1.5 d^2 / alpha, so
-    // |d| < 1e-8 alpha leaves round-off; the bracket test ends a bisection run.
-    if (std::abs(step) <= 1e-8 * alpha || high - low <= 1e-15 * high) break;
+    // |d| < 1e-8 alpha leaves round-off; sine and cosine follow to first order, with
+    // an error d^2/2 below round-off too.
+    if (std::abs(step) <= 1e-8 * alpha)
+      return {next, cos_alpha - step * sin_alpha, sin_alpha + step * cos_alpha};
+    alpha = next;
+    if (high - low <= 1e-15 * high) break;  // the end of a bisection run
   }
   return {alpha, std::cos(alpha), std::sin(alpha)};
 }
@@ -253,7 +257,9 @@ void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationCon
       spin_column -= (f.tangent_damping * c_t * k.chord) * k.e_x;
     }
     Matrix& K = *tangent;
-    K.noalias() += B.transpose() * (length_weight * G * B);
+    // Coefficient-wise (lazy) product: depth 2 is far too small for Eigen's blocked GEMM.
+    const Eigen::Matrix<double, 2, kDofs> GB = (length_weight * G) * B;
+    K.noalias() += B.transpose().lazyProduct(GB);
     K.col(2).noalias() += B.transpose() * (length_weight * spin_column);
     K(2, 2) -= length_weight * k.rim_offset.dot(traction);
     const Vector force_direction = kGaussWeight * (B.transpose() * traction);  // d(residual)/d(l)
