@@ -275,6 +275,15 @@ int value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) 
   return 1;
 }
 
+int result_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
+  io::ResultFile& output = deck.output_or_default();
+  const std::string name = arguments.string("name");
+  output.file().write_attribute("/results", name, arguments.number("value"));
+  if (arguments.has("unit")) output.file().write_attribute("/results", name + "_unit", arguments.string("unit"));
+  output.flush();
+  return 0;
+}
+
 int time_macro(lua_State* L, DeckModel& deck, const MacroArguments&) {
   lua_pushnumber(L, deck.analysis().state().time);
   return 1;
@@ -479,6 +488,14 @@ void add_model_macros(MacroTable& table) {
   add({"value", "Returns a nodal quantity at the current time (summed over a set).",
        {kNodeKey, kSetKey, kDofKey, kQuantityKey}, "local v = model:value{ node = tip, dof = \"uy\" }"},
       value_macro);
+  add({"result",
+       "Records a scalar result of the run (a peak force, a frequency) as an attribute of /results in the "
+       "result file, for post-processing and sweeps.",
+       {{"name", VT::String, true, "", "attribute name"},
+        {"value", VT::Number, true, "", "value"},
+        {"unit", VT::String, false, "", "unit, stored as the attribute <name>_unit"}},
+       "model:result{ name = \"fz_on_top_Hz\", value = 88.0, unit = \"Hz\" }"},
+      result_macro);
   add({"time", "Returns the current time.", {}, "local t = model:time()"}, time_macro);
   add({"print", "Prints a nodal quantity for a node or a set (FEAP's DISP).", {kNodeKey, kSetKey, kQuantityKey},
        "model:print{ set = \"tip\" }"},
