@@ -36,7 +36,8 @@ local p = tirefe.parameters{
   newmark_gamma = 0.5,         -- Newmark gamma (beta = (gamma + 1/2)^2 / 4); 0.5 is the average acceleration rule
   newton_tolerance = 1e-6,     -- on the residual relative to the step's force level
   alpha = -0.1,                -- HHT alpha
-  dt = 5e-4,                   -- time step while the cleat is away from the tire [s]
+  dt = 5e-4,                   -- time step at full speed while the cleat is away from the tire [s]
+  dt_max = 2e-3,               -- ... growing as 1 / speed during the spin-up up to this [s]
   dt_cleat = 2.5e-4,           -- time step from just before the cleat reaches the tire until ring_time after it left [s]
   ring_time = 0.1,             -- [s]
   fields_interval = 0.005,     -- time between deformed-shape frames [s]
@@ -48,7 +49,7 @@ local function require_positive(name)
   if not (p[name] > 0) then error(string.format("parameter %s = %g must be positive", name, p[name]), 2) end
 end
 for _, name in ipairs{ "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time",
-                       "dt", "dt_cleat", "ring_time", "fields_interval" } do
+                       "dt", "dt_max", "dt_cleat", "ring_time", "fields_interval" } do
   require_positive(name)
 end
 if p.cleat_height < 0 then error("parameter cleat_height must not be negative") end
@@ -89,12 +90,20 @@ do
   end
 end
 
--- Fine steps from shortly before a passage until ring_time after it.
+-- Fine steps from shortly before a passage until ring_time after it; elsewhere steps in
+-- which a tread node travels the same distance at any speed (up to dt_max).
 local function near_cleat(t)
   for _, passage in ipairs(passages) do
     if t > passage.on - 0.01 and t < passage.off + p.ring_time then return true end
   end
   return false
+end
+local function drum_speed(t)
+  return speed * math.min(math.max(t - dynamic_start, 0) / p.spin_up_time, 1)
+end
+local function time_step(t)
+  if near_cleat(t) then return p.dt_cleat end
+  return math.min(p.dt_max, p.dt * speed / math.max(drum_speed(t), 1e-9))
 end
 
 -- Model: the tire on top of the drum, touching it at rest.
@@ -189,7 +198,7 @@ local totals = { steps = 0, newton = 0, cuts = 0 }
 local wall_start = os.clock()  -- CPU time of this process
 while model:time() < p.end_time - 1e-9 do
   local t = model:time()
-  local dt = math.min(near_cleat(t) and p.dt_cleat or p.dt, p.end_time - t)
+  local dt = math.min(time_step(t), p.end_time - t)
   local step = model:step{ dt = dt }
   totals.steps, totals.newton, totals.cuts = totals.steps + step.steps, totals.newton + step.newton_iterations,
                                              totals.cuts + step.cuts
@@ -246,6 +255,23 @@ if last then
   end
   model:result{ name = "fx_peak_to_peak", value = summary.fx_peak_to_peak, unit = "N" }
   model:result{ name = "fz_peak_to_peak", value = summary.fz_peak_to_peak, unit = "N" }
+  -- The period of the impacts at full speed: times of the Fz maxima of successive passages.
+  local peaks = {}
+  for _, passage in ipairs(passages) do
+    if passage.on >= full_speed and passage.off + 0.01 <= p.end_time then
+      local peak_time, peak = nil, -math.huge
+      for i, t in ipairs(record.time) do
+        if t >= passage.on - 0.01 and t <= passage.off + 0.01 and record.fz[i] > peak then peak_time, peak = t, record.fz[i] end
+      end
+      peaks[#peaks + 1] = peak_time
+    end
+  end
+  if #peaks >= 2 then
+    summary.impact_period = (peaks[#peaks] - peaks[1]) / (#peaks - 1)
+    print(string.format("  Fz peaks every %.4f s over %d passages (pi D / v = %.4f s)", summary.impact_period, #peaks,
+                        math.pi * p.drum_diameter / speed))
+    model:result{ name = "impact_period", value = summary.impact_period, unit = "s" }
+  end
 else
   print("no complete cleat passage at full speed before end_time: no impact summary")
 end
