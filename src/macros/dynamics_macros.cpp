@@ -41,7 +41,19 @@ int modal_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) 
     lua_pushnumber(L, result.frequencies_hz[i]);
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
-  return 1;
+  if (!arguments.has("reaction_node")) return 1;
+  // Per mode {fx, fy, mz}: the support reaction K_pf phi of the mass-normalised shape.
+  const int node = deck_node(deck, arguments.integer("reaction_node"));
+  lua_createtable(L, static_cast<int>(result.frequencies_hz.size()), 0);
+  for (Eigen::Index i = 0; i < result.reactions.cols(); ++i) {
+    lua_createtable(L, kDofsPerNode, 0);
+    for (int c = 0; c < kDofsPerNode; ++c) {
+      lua_pushnumber(L, result.reactions(dof_index(node, c), i));
+      lua_rawseti(L, -2, c + 1);
+    }
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 2;
 }
 
 }  // namespace
@@ -61,10 +73,15 @@ void add_dynamics_macros(MacroTable& table) {
       {{"modal",
         "Modal analysis of the linearised system at the current state (tangent stiffness including geometric and "
         "contact terms, prescribed DOFs held): the lowest natural frequencies and mode shapes, printed, written "
-        "to /modes/<label> of the output, and returned as a list of frequencies in Hz (0 for rigid-body modes).",
+        "to /modes/<label> of the output, and returned as a list of frequencies in Hz (0 for rigid-body modes). "
+        "With reaction_node, a second list gives per mode {fx, fy, mz}: the support reaction K phi that the "
+        "mass-normalised shape puts on that node's prescribed DOFs (0 on free ones), e.g. the spindle force of a "
+        "tire mode on a fixed axle.",
         {{"modes", VT::Integer, true, "", "number of modes", std::nullopt, Range::Positive},
-         {"label", VT::String, false, "", "name of the /modes group (default: the time)"}},
-        "local f = model:modal{ modes = 10, label = \"loaded\" }"},
+         {"label", VT::String, false, "", "name of the /modes group (default: the time)"},
+         {"reaction_node", VT::Integer, false, "", "node whose support reaction per mode is returned",
+          std::nullopt, Range::Positive}},
+        "local f, r = model:modal{ modes = 10, label = \"loaded\", reaction_node = tire.spindle }"},
        modal_macro});
 }
 

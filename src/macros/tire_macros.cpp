@@ -31,6 +31,9 @@ TireParameters tire_parameters(const MacroArguments& arguments) {
   parameters.sidewall.circumferential_damping = arguments.number("sidewall_circumferential_damping");
   parameters.rim_mass = arguments.number("rim_mass");
   parameters.rim_rotary_inertia = arguments.number("rim_rotary_inertia");
+  parameters.tread_layer.radial_stiffness = arguments.number("tread_layer_radial_stiffness");
+  parameters.tread_layer.circumferential_stiffness = arguments.number("tread_layer_circumferential_stiffness");
+  parameters.tread_layer.mass_per_length = arguments.number("tread_layer_mass_per_length");
   parameters.centre = {arguments.number("x"), arguments.number("y")};
   return parameters;
 }
@@ -41,7 +44,7 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const Tire tire = build_tire(deck.model(), parameters,
                                deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))),
                                name);
-  lua_createtable(L, 0, 4);
+  lua_createtable(L, 0, 6);
   lua_pushinteger(L, tire.spindle + 1);
   lua_setfield(L, -2, "spindle");
   lua_createtable(L, static_cast<int>(tire.tread_nodes.size()), 0);
@@ -50,10 +53,18 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "tread");
+  lua_createtable(L, static_cast<int>(tire.contact_nodes.size()), 0);
+  for (size_t i = 0; i < tire.contact_nodes.size(); ++i) {
+    lua_pushinteger(L, tire.contact_nodes[i] + 1);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setfield(L, -2, "contact");
   lua_pushstring(L, (name + "_spindle").c_str());
   lua_setfield(L, -2, "spindle_set");
   lua_pushstring(L, (name + "_tread").c_str());
   lua_setfield(L, -2, "tread_set");
+  lua_pushstring(L, (name + "_contact").c_str());
+  lua_setfield(L, -2, "contact_set");
   return 1;
 }
 
@@ -93,7 +104,9 @@ void add_tire_macros(MacroTable& table) {
       {{"tire",
         "Builds a ring tire (MODEL.md section 1): a spindle node, N tread nodes on the outer circle, and N wedges "
         "of tread beam + sidewall + inflation pressure, with the rim and hub as mass and rotary inertia on the "
-        "spindle. Returns {spindle, tread, spindle_set, tread_set} (deck node numbers and set names). "
+        "spindle; optionally a tread-rubber layer between the tread nodes and the road. Returns {spindle, tread, "
+        "contact, spindle_set, tread_set, contact_set} (deck node numbers and set names; contact the nodes that "
+        "touch the road: the layer's nodes, or the tread nodes without a layer). "
         "docs/tire.md explains every parameter and where the 145 SR-12 values come from.",
         {{"name", VT::String, false, "", "prefix of the tire's blocks and node sets", std::string("tire")},
          {"elements", VT::Integer, false, "", "number of wedges N", std::string("100"), Range::Positive},
@@ -117,6 +130,11 @@ void add_tire_macros(MacroTable& table) {
           Range::NonNegative},
          optional_non_negative("sidewall_radial_damping", "N s/m^2", "dashpot along the cord, per length"),
          optional_non_negative("sidewall_circumferential_damping", "N s/m^2", "dashpot across the cord, per length"),
+         optional_non_negative("tread_layer_radial_stiffness", "N/m^2",
+                               "tread-rubber layer: radial stiffness per length of circumference (0: no layer)"),
+         optional_non_negative("tread_layer_circumferential_stiffness", "N/m^2",
+                               "tread-rubber layer: shear stiffness per length of circumference (0: no layer)"),
+         optional_non_negative("tread_layer_mass_per_length", "kg/m", "tread-rubber layer: mass on the contact nodes"),
          positive("rim_mass", "kg", "rim and hub mass"),
          positive("rim_rotary_inertia", "kg m^2", "rim and hub rotary inertia"),
          {"x", VT::Number, false, "m", "spindle x", std::string("0")},

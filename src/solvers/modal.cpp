@@ -32,6 +32,26 @@ struct HistoryRevert {
   ~HistoryRevert() { model.revert_history(); }
 };
 
+/// K_pf phi for every mode: central difference of the residual along the shape.
+void support_reactions(Model& model, Assembler& assembler, const State& state, ModalResult& result) {
+  HistoryRevert revert{model};
+  const DofMap& dofs = model.dof_map();
+  EvaluationContext context;
+  context.time = state.time;
+  context.want_tangent = false;
+  State shifted = state;
+  Eigen::VectorXd plus, minus;
+  for (Eigen::Index mode = 0; mode < result.shapes.cols(); ++mode) {
+    const double step = 1e-7 / result.shapes.col(mode).lpNorm<Eigen::Infinity>();
+    shifted.displacement = state.displacement + step * result.shapes.col(mode);
+    assembler.assemble(context, shifted, plus);
+    shifted.displacement = state.displacement - step * result.shapes.col(mode);
+    assembler.assemble(context, shifted, minus);
+    for (int dof = 0; dof < dofs.dof_count(); ++dof)
+      if (dofs.is_prescribed(dof)) result.reactions(dof, mode) = (plus[dof] - minus[dof]) / (2.0 * step);
+  }
+}
+
 }  // namespace
 
 ModalResult modal_analysis(Model& model, const State& state, int mode_count, const ModalSettings& settings) {
@@ -61,6 +81,7 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
   ModalResult result;
   const int count = std::min(mode_count, equations);
   result.shapes.setZero(dofs.dof_count(), count);
+  result.reactions.setZero(dofs.dof_count(), count);
   if (count == 0) return result;
 
   const Eigen::MatrixXd symmetric_mass = 0.5 * (mass + mass.transpose());
@@ -112,6 +133,7 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
     result.frequencies_hz.push_back(rigid ? 0.0 : signed_omega / kTwoPi);
     for (int equation = 0; equation < equations; ++equation) result.shapes(dofs.dof(equation), i) = shape[equation];
   }
+  support_reactions(model, assembler, linearisation, result);
   return result;
 }
 

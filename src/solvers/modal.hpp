@@ -39,6 +39,7 @@ struct ModalResult {
   std::vector<bool> rigid_body;
   std::vector<double> eigenvalues;     // omega^2 [rad^2/s^2] as computed (real parts)
   Eigen::MatrixXd shapes;              // dof_count x n: phi^T M phi = 1, largest entry positive, 0 at prescribed DOFs
+  Eigen::MatrixXd reactions;           // dof_count x n: K phi at prescribed DOFs, 0 at free DOFs
   bool symmetric = true;               // which solver ran
 };
 

@@ -19,6 +19,29 @@ void require(bool valid, const std::string& parameter, const std::string& what, 
   throw ModelError("tire parameter '" + parameter + "' " + what + " (got " + got + ")");
 }
 
+/// One contact node on each tread node, joined by the tread-rubber spring; each takes the
+/// stiffness and mass of its node's share 2 pi R / N of the circumference. The contact
+/// nodes' rotation carries nothing and is held.
+std::vector<int> add_tread_layer(Model& model, const Tire& tire, const std::string& name) {
+  const TireParameters& parameters = tire.parameters;
+  const double share = kPi * parameters.outer_diameter / parameters.elements;
+  TreadLayerProperties layer;
+  layer.radial_stiffness = share * parameters.tread_layer.radial_stiffness;
+  layer.circumferential_stiffness = share * parameters.tread_layer.circumferential_stiffness;
+  layer.mass = share * parameters.tread_layer.mass_per_length;
+  Mesh& mesh = model.mesh();
+  auto& springs = model.add_block<TreadLayer>(name + "_tread_layer");
+  std::vector<int> contact_nodes;
+  for (int tread : tire.tread_nodes) {
+    const Eigen::Vector2d position = mesh.position(tread);
+    const int contact = mesh.add_node(position);
+    model.fix(contact, 2);
+    springs.add({contact, tread}, TreadLayer(position - parameters.centre, layer));
+    contact_nodes.push_back(contact);
+  }
+  return contact_nodes;
+}
+
 }  // namespace
 
 void TireParameters::check() const {
@@ -49,6 +72,17 @@ void TireParameters::check() const {
   require(sidewall.shear_stiffness >= 0, "k_gamma", "must not be negative", sidewall.shear_stiffness);
   require(std::abs(sidewall.bending_sign) == 1.0, "k_sw_sign", "must be +1 or -1", sidewall.bending_sign);
   require(sidewall.radial_damping >= 0, "sidewall_radial_damping", "must not be negative", sidewall.radial_damping);
+  if (tread_layer.enabled()) {
+    require(tread_layer.radial_stiffness > 0, "tread_layer_radial_stiffness",
+            "must be positive when the tread layer is on", tread_layer.radial_stiffness);
+    require(tread_layer.circumferential_stiffness > 0, "tread_layer_circumferential_stiffness",
+            "must be positive when the tread layer is on", tread_layer.circumferential_stiffness);
+    require(tread_layer.mass_per_length > 0, "tread_layer_mass_per_length",
+            "must be positive when the tread layer is on (the contact nodes need mass)", tread_layer.mass_per_length);
+  } else {
+    require(tread_layer.mass_per_length == 0, "tread_layer_mass_per_length",
+            "needs the tread layer's stiffnesses", tread_layer.mass_per_length);
+  }
   require(sidewall.circumferential_damping >= 0, "sidewall_circumferential_damping", "must not be negative",
           sidewall.circumferential_damping);
 }
@@ -88,6 +122,8 @@ Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pre
   rim.mass = parameters.rim_mass;
   rim.rotary_inertia = parameters.rim_rotary_inertia;
   model.add_block<NodalSpringMass>(name + "_rim").add({tire.spindle}, NodalSpringMass(rim));
+  tire.contact_nodes = parameters.tread_layer.enabled() ? add_tread_layer(model, tire, name) : tire.tread_nodes;
+  mesh.define_node_set(name + "_contact", tire.contact_nodes);
   return tire;
 }
 

@@ -7,7 +7,9 @@
 //   - the sidewall arch-membrane element (block <name>_sidewall),
 //   - the follower inflation pressure on the tread chord (block <name>_pressure);
 // and the rigid rim + hub is a mass and rotary inertia on the spindle (block <name>_rim).
-// Node sets: <name>_spindle, <name>_tread.
+// Optionally a tread-rubber layer (block <name>_tread_layer): one contact node per tread
+// node, joined to it by a TreadLayer spring; the contact nodes then carry the contact.
+// Node sets: <name>_spindle, <name>_tread, <name>_contact (the nodes that touch the road).
 #pragma once
 
 #include <memory>
@@ -17,9 +19,19 @@
 #include "core/model.hpp"
 #include "elements/pressure_schedule.hpp"
 #include "elements/sidewall.hpp"
+#include "elements/tread_layer.hpp"
 #include "elements/tread_beam.hpp"
 
 namespace tirefe {
+
+/// The tread rubber between the belt and the road, per unit length of circumference.
+/// Off (the paper's model: the belt nodes touch the road) while both stiffnesses are 0.
+struct TreadLayerParameters {
+  double radial_stiffness = 0.0;          // [N/m^2]: normal force per m of circumference per m of compression
+  double circumferential_stiffness = 0.0; // [N/m^2]: shear force per m of circumference per m of shift
+  double mass_per_length = 0.0;           // rubber carried by the contact nodes [kg/m]
+  bool enabled() const { return radial_stiffness > 0.0 || circumferential_stiffness > 0.0; }
+};
 
 struct TireParameters {
   int elements = 100;
@@ -31,6 +43,7 @@ struct TireParameters {
   double rim_mass = 0.0;         // rim + hub mass [kg]
   double rim_rotary_inertia = 0.0;  // rim + hub rotary inertia [kg m^2]
   double pressure = 0.0;         // inflation pressure [Pa]
+  TreadLayerParameters tread_layer;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // spindle position [m]
 
   /// Throws ModelError naming the first missing, non-physical or inconsistent parameter.
@@ -41,6 +54,7 @@ struct Tire {
   std::string name;
   int spindle = -1;               // 0-based node index
   std::vector<int> tread_nodes;   // 0-based, counter-clockwise from the +x axis
+  std::vector<int> contact_nodes; // the tread-layer nodes, or the tread nodes without a layer
   std::shared_ptr<PressureSchedule> pressure;
   TireParameters parameters;
 };

@@ -1,0 +1,51 @@
+// TreadLayer: the compliance of the tread rubber between a belt node and the point of
+// the tread surface that touches the road (the contact node), as a spring with a radial
+// and a circumferential stiffness in the belt node's rotating frame, and the mass of the
+// rubber at the contact node.
+//
+// Nodes: c (the contact node: u_x, u_y; its rotation carries nothing and is held by the
+// tire builder) and b (the belt node: u_x, u_y, theta). In the reference state the two
+// coincide (a layer of zero thickness: only its compliance matters); E_r is the outward
+// radial direction at the node, E_t = k x E_r. The frame turns with the belt section,
+// R = R(theta_b), so a rigid motion of the tire strains nothing:
+//     d = x_c - x_b = u_c - u_b,     B = R (k_r E_r E_r^T + k_t E_t E_t^T) R^T,
+//     W = d^T B d / 2,
+//     force on c   f = B d,   on b  -f,   moment on b  m = -(d x f)   (moments balance),
+// k_r, k_t the stiffness of the node's share of the circumference [N/m]. With J the
+// rotation by +90 degrees (dB/dtheta = J B - B J) and g = (J B - B J) d, the tangent is
+// symmetric:
+//     K_cc = B, K_cb = -B, K_c theta = g,  K_bb = B, K_b theta = -g,
+//     K_theta theta = (J d)^T B (J d) - d^T B d.
+// Inertia: m a_c on the contact node (m the node's share of the layer mass).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "core/element.hpp"
+
+namespace tirefe {
+
+struct TreadLayerProperties {
+  double radial_stiffness = 0.0;          // k_r [N/m]
+  double circumferential_stiffness = 0.0; // k_t [N/m]
+  double mass = 0.0;                      // m on the contact node [kg]
+};
+
+class TreadLayer : public KernelShape<2> {
+ public:
+  /// 'radial' is the outward direction at the node in the reference state (normalised here).
+  TreadLayer(const Eigen::Vector2d& radial, const TreadLayerProperties& properties);
+
+  /// Local DOFs: contact node (u_x, u_y, theta unused), belt node (u_x, u_y, theta).
+  void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
+                History& trial, Vector& residual, Matrix* tangent) const;
+  ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+
+ private:
+  Eigen::Matrix2d stiffness_in_frame(double theta) const;
+
+  Eigen::Matrix2d reference_stiffness_;  // k_r E_r E_r^T + k_t E_t E_t^T
+  double mass_;
+};
+
+}  // namespace tirefe

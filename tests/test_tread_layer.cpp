@@ -1,0 +1,125 @@
+// TreadLayer: tangent against finite differences, rigid-body invariance, and the spring
+// law in the belt's rotating frame.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "core/model.hpp"
+#include "elements/tread_layer.hpp"
+#include "solvers/modal.hpp"
+#include "test_support.hpp"
+
+using namespace tirefe;
+
+namespace {
+TreadLayerProperties test_layer() {
+  TreadLayerProperties layer;
+  layer.radial_stiffness = 1.2e6;
+  layer.circumferential_stiffness = 2.5e5;
+  layer.mass = 4e-3;
+  return layer;
+}
+}  // namespace
+
+TEST_CASE("tread layer tangent equals central finite differences of the residual", "[tread_layer]") {
+  std::mt19937 random(7);
+  const TreadLayer layer({0.2, 0.25}, test_layer());
+  for (int trial = 0; trial < 20; ++trial) {
+    const auto local = testing::random_local_state<6>(random, 0.02, 2.0);
+    const EvaluationContext context = testing::dynamic_context(1e-3);
+    TreadLayer::Vector residual;
+    TreadLayer::Matrix tangent;
+    NoHistory history;
+    layer.evaluate(local, context, history, history, residual, &tangent);
+    const TreadLayer::Matrix numerical = testing::finite_difference_tangent(layer, local, context, history);
+    INFO("trial " << trial << "\nanalytic\n" << tangent << "\nnumerical\n" << numerical);
+    CHECK((tangent - numerical).norm() <= 1e-6 * tangent.norm());
+    CHECK((tangent - tangent.transpose()).norm() <= 1e-12 * tangent.norm());
+  }
+}
+
+TEST_CASE("tread layer carries no force under a large rigid-body motion and balances moments", "[tread_layer]") {
+  const Eigen::Vector2d node(0.21, -0.17);
+  const TreadLayer layer(node, test_layer());
+  NoHistory history;
+  TreadLayer::Vector residual;
+  for (double angle : {0.4, 2.2, -3.0}) {
+    const Eigen::Rotation2Dd rotation(angle);
+    const Eigen::Vector2d shift(0.3, -0.2), moved = rotation * node + shift - node;
+    LocalState<6> local;
+    local.velocity.setZero();
+    local.acceleration.setZero();
+    local.displacement << moved, 0.0, moved, angle;
+    layer.evaluate(local, testing::dynamic_context(), history, history, residual, nullptr);
+    CHECK(residual.norm() <= 1e-9);
+
+    // Strained after the rigid motion: forces and moments about the origin balance.
+    local.displacement.head<2>() += Eigen::Vector2d(0.004, -0.003);
+    EvaluationContext statics;
+    layer.evaluate(local, statics, history, history, residual, nullptr);
+    const Eigen::Vector2d x_c = node + local.displacement.head<2>(), x_b = node + local.displacement.segment<2>(3);
+    auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+    CHECK((residual.head<2>() + residual.segment<2>(3)).norm() <= 1e-9);
+    CHECK(std::abs(cross(x_c, residual.head<2>()) + cross(x_b, residual.segment<2>(3)) + residual[5]) <= 1e-9);
+  }
+}
+
+TEST_CASE("tread layer: radial and circumferential stiffness in the turned belt frame", "[tread_layer]") {
+  const TreadLayerProperties properties = test_layer();
+  const TreadLayer layer({0.0, 0.27}, properties);  // top of the tire: radial = +y, circumferential = -x
+  NoHistory history;
+  TreadLayer::Vector residual;
+  EvaluationContext statics;
+  LocalState<6> local;
+  local.velocity.setZero();
+  local.acceleration.setZero();
+
+  local.displacement << 0.0, 1e-3, 0, 0, 0, 0;  // contact node 1 mm radially outward
+  layer.evaluate(local, statics, history, history, residual, nullptr);
+  CHECK(residual[1] == Approx(properties.radial_stiffness * 1e-3).epsilon(1e-12));
+  CHECK(std::abs(residual[0]) <= 1e-12);
+
+  // The belt section turned by 90 degrees: the same shift is now circumferential.
+  local.displacement << 0.0, 1e-3, 0, 0, 0, 0.5 * M_PI;
+  layer.evaluate(local, statics, history, history, residual, nullptr);
+  CHECK(residual[1] == Approx(properties.circumferential_stiffness * 1e-3).epsilon(1e-12));
+  CHECK(std::abs(residual[0]) <= 1e-9);
+  CHECK(residual[4] == Approx(-residual[1]).epsilon(1e-12));
+
+  // Inertia of the rubber on the contact node only.
+  local.displacement.setZero();
+  local.acceleration << 2.0, -3.0, 5.0, 7.0, 11.0, 13.0;
+  statics.factors = {0.0, 0.0, 1.0, 0.0, 0.0, 1.0};
+  TreadLayer::Matrix tangent;
+  layer.evaluate(local, statics, history, history, residual, &tangent);
+  CHECK(residual[0] == Approx(properties.mass * 2.0).epsilon(1e-12));
+  CHECK(residual[1] == Approx(properties.mass * -3.0).epsilon(1e-12));
+  CHECK(residual.tail<4>().norm() == 0.0);
+  CHECK(tangent.trace() == Approx(2.0 * properties.mass).epsilon(1e-12));
+}
+
+TEST_CASE("contact node on a held belt node: two modes sqrt(k/m) and their support reactions -k phi",
+          "[tread_layer][modal]") {
+  // The belt node held, the contact node free (its rotation held): the radial and the
+  // circumferential oscillation of the rubber mass, omega^2 = k/m, and the force each
+  // mass-normalised shape (amplitude 1/sqrt(m)) puts on the held node, -k/sqrt(m) along it.
+  const TreadLayerProperties properties = test_layer();
+  Model model;
+  const Eigen::Vector2d position(0.0, 0.27);  // radial = +y, circumferential along x
+  const int contact = model.mesh().add_node(position);
+  const int belt = model.mesh().add_node(position);
+  model.add_block<TreadLayer>("layer").add({contact, belt}, TreadLayer(position, properties));
+  for (int component : {0, 1, 2}) model.fix(belt, component);
+  model.fix(contact, 2);
+  const ModalResult modes = modal_analysis(model, State{}, 2);
+  const double two_pi = 2.0 * M_PI, amplitude = 1.0 / std::sqrt(properties.mass);
+  CHECK(modes.frequencies_hz[0] == Approx(std::sqrt(properties.circumferential_stiffness / properties.mass) / two_pi).epsilon(1e-10));
+  CHECK(modes.frequencies_hz[1] == Approx(std::sqrt(properties.radial_stiffness / properties.mass) / two_pi).epsilon(1e-10));
+  CHECK(std::abs(modes.shapes(dof_index(contact, 0), 0)) == Approx(amplitude).epsilon(1e-10));
+  CHECK(modes.reactions(dof_index(belt, 0), 0) ==
+        Approx(-properties.circumferential_stiffness * modes.shapes(dof_index(contact, 0), 0)).epsilon(1e-8));
+  CHECK(std::abs(modes.reactions(dof_index(belt, 1), 0)) <= 1e-6 * properties.circumferential_stiffness * amplitude);
+  CHECK(modes.reactions(dof_index(belt, 1), 1) ==
+        Approx(-properties.radial_stiffness * modes.shapes(dof_index(contact, 1), 1)).epsilon(1e-8));
+  CHECK(modes.reactions.col(0).segment<3>(dof_index(contact, 0)).head<2>().norm() == 0.0);  // free DOFs: none
+}
