@@ -26,7 +26,8 @@ local p = tirefe.parameters{
   cleat_edge_radius = 0.005,   -- rounding of the cleat's top edges [m]
   cleat_start_deg = -90,       -- where the cleat's middle is at rest (degrees from +x; -90: bottom)
   friction = 0.3,
-  penalty_factor = 0.05,       -- normal contact penalty / largest stiffness at the tread nodes (the Uzawa updates enforce the tolerance)
+  contact_penalty = 2e7,       -- normal contact penalty [N/m]: 1.5 kN on a node penetrates 0.08 mm
+  tangential_factor = 100,     -- tangential penalty / the structure's own tangential stiffness at a contact node
   contact_tolerance = 5e-4,    -- penetration left after the Uzawa updates [m]
   multiplier_tolerance = 1e3,  -- relative multiplier change asking for another Uzawa update (1e3: only penetration does)
   speed_kmh = 51.3,            -- final drum surface speed
@@ -147,7 +148,8 @@ model:solve{ to = 1.0, dt = 0.25 }
 model:surface{ name = "drum", type = "drum", diameter = p.drum_diameter, cleat_height = p.cleat_height,
                cleat_length = p.cleat_length, cleat_angle = cleat_angle, edge_radius = p.cleat_edge_radius,
                speed = -omega, ramp_time = p.spin_up_time, start_time = dynamic_start }
-model:contact{ surface = "drum", set = tire.tread_set, friction = p.friction, penalty_factor = p.penalty_factor,
+model:contact{ surface = "drum", set = tire.contact_set, friction = p.friction, penalty = p.contact_penalty,
+               tangential_factor = p.tangential_factor,
                tolerance = p.contact_tolerance, multiplier_tolerance = p.multiplier_tolerance, history = "drum",
                output_every = 20 }
 
@@ -277,9 +279,9 @@ else
 end
 
 -- Steady rolling just before the last passage: effective rolling radius = drum surface
--- speed / spin rate, averaged over 20 ms. The belt nodes stick to the drum through the
--- patch, so over one turn of the tire the drum advances by the belt's length: the rolling
--- radius is the belt circumference over 2 pi, however deflected the tire is.
+-- speed / spin rate, averaged over 20 ms. The contact nodes stick to the drum through the
+-- patch, so over one turn of the tire the drum advances by the length of the ring they
+-- form: the rolling radius is its circumference over 2 pi, however deflected the tire is.
 local rolling_radius, belt_radius
 if last then
   local sum, count = 0, 0
@@ -288,20 +290,21 @@ if last then
   end
   rolling_radius = sum / count
 end
-local function belt_circumference()
-  local radius, length, previous, first = tire_parameters.outer_diameter / 2, 0, nil, nil
-  for i, node in ipairs(tire.tread) do
-    local angle = 2 * math.pi * (i - 1) / #tire.tread
-    local x = radius * math.cos(angle) + model:value{ node = node, dof = "ux" }
-    local y = radius * math.sin(angle) + model:value{ node = node, dof = "uy" }
+-- The polygon through the nodes that touch the drum (the tread nodes, or the tread
+-- layer's nodes), closed.
+local function contact_circumference()
+  local length, first, previous = 0, nil, nil
+  for _, node in ipairs(tire.contact) do
+    local x = model:value{ node = node, dof = "ux", quantity = "position" }
+    local y = model:value{ node = node, dof = "uy", quantity = "position" }
     if previous then length = length + math.sqrt((x - previous[1]) ^ 2 + (y - previous[2]) ^ 2) end
     previous, first = { x, y }, first or { x, y }
   end
   return length + math.sqrt((first[1] - previous[1]) ^ 2 + (first[2] - previous[2]) ^ 2)
 end
 if rolling_radius then
-  belt_radius = belt_circumference() / (2 * math.pi)  -- at the end of the run, the belt rings little by then
-  print(string.format("rolling radius before the cleat %.2f mm; belt circumference / 2 pi %.2f mm; unloaded "
+  belt_radius = contact_circumference() / (2 * math.pi)  -- at the end of the run, the belt rings little by then
+  print(string.format("rolling radius before the cleat %.2f mm; contact ring circumference / 2 pi %.2f mm; unloaded "
                       .. "radius %.2f mm, loaded %.2f mm", rolling_radius * 1e3, belt_radius * 1e3,
                       tire_parameters.outer_diameter / 2 * 1e3,
                       (tire_parameters.outer_diameter / 2 - loaded_deflection) * 1e3))
@@ -310,7 +313,7 @@ end
 if p.check then
   tirefe.check{ name = "pressed to the load [N]", value = spindle_fz_at_start, expected = p.load, tolerance = 1e-3 * p.load }
   tirefe.check{ name = "a full-speed cleat passage was run", value = last and 1 or 0, expected = 1, tolerance = 0 }
-  tirefe.check{ name = "rolling radius = belt circumference / 2 pi [m]", value = rolling_radius, expected = belt_radius,
+  tirefe.check{ name = "rolling radius = contact ring circumference / 2 pi [m]", value = rolling_radius, expected = belt_radius,
                 tolerance = 2e-3 * belt_radius }
 end
 

@@ -228,6 +228,12 @@ NodalQuantity quantity_reader(const std::string& quantity) {
   if (quantity == "velocity") return [](const Analysis& a, int dof) { return a.state().velocity[dof]; };
   if (quantity == "acceleration") return [](const Analysis& a, int dof) { return a.state().acceleration[dof]; };
   if (quantity == "reaction") return [](const Analysis& a, int dof) { return a.reactions()[dof]; };
+  if (quantity == "position")  // the current position (reference + displacement; the rotation for rz)
+    return [](const Analysis& a, int dof) {
+      const int node = dof / kDofsPerNode, component = dof % kDofsPerNode;
+      const double reference = component < 2 ? a.model().mesh().position(node)[component] : 0.0;
+      return reference + a.state().displacement[dof];
+    };
   return [](const Analysis& a, int dof) { return a.external_forces().size() ? a.external_forces()[dof] : 0.0; };
 }
 
@@ -235,6 +241,7 @@ const char* quantity_unit(const std::string& quantity, int component) {
   static const char* units[5][3] = {{"m", "m", "rad"}, {"m/s", "m/s", "rad/s"}, {"m/s^2", "m/s^2", "rad/s^2"},
                                     {"N", "N", "N m"}, {"N", "N", "N m"}};
   const char* names[4] = {"displacement", "velocity", "acceleration", "reaction"};
+  if (quantity == "position") return units[0][component];
   int row = 4;
   for (int i = 0; i < 4; ++i)
     if (quantity == names[i]) row = i;
@@ -248,7 +255,8 @@ double summed_quantity(const Analysis& analysis, NodalQuantity reader, const std
   return total;
 }
 
-const std::vector<std::string> kQuantities{"displacement", "velocity", "acceleration", "reaction", "external_force"};
+const std::vector<std::string> kQuantities{"displacement", "velocity", "acceleration", "reaction", "external_force",
+                                           "position"};
 
 int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::vector<int> nodes = target_nodes(deck, arguments);
