@@ -53,6 +53,8 @@ local function loaded_modes(title, module)
     model:solve{ to = t, dt = 0.1 }
   end
   local load = -model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
+  local patch = model:contact_value{ name = "contact_drum", quantity = "patch_length" }
+  local slipping = model:contact_value{ name = "contact_drum", quantity = "nodes_slipping" }
   model:release{ node = tire.spindle, dofs = {"rz"} }
   local f, axle = model:modal{ modes = p.modes, label = title, reaction_node = tire.spindle }
   local fore_aft, vertical, largest_fy = nil, nil, 0.0
@@ -61,7 +63,8 @@ local function loaded_modes(title, module)
     if not fore_aft and f[i] > 0 and fx > fy then fore_aft = i end
     if fy > largest_fy then vertical, largest_fy = i, fy end
   end
-  return { fore_aft = f[fore_aft], vertical = f[vertical], load = load, deflection = deflection }
+  return { fore_aft = f[fore_aft], vertical = f[vertical], load = load, deflection = deflection, patch = patch,
+           slipping = slipping }
 end
 
 local paper = loaded_modes("paper", "tires.145SR12")
@@ -70,6 +73,8 @@ local layer = loaded_modes("tread_layer", "tires.145SR12_tread_layer")
 print(string.format("\n  loaded 145 SR-12, %.0f N on the 1.7 m drum, fixed axle", p.load))
 print("                        paper's model   tread layer   measured (paper's model in the paper)")
 print(string.format("  deflection [mm]       %10.2f    %10.2f", 1e3 * paper.deflection, 1e3 * layer.deflection))
+print(string.format("  contact patch [mm]    %10.1f    %10.1f", 1e3 * paper.patch, 1e3 * layer.patch))
+print(string.format("  nodes slipping        %10d    %10d", paper.slipping, layer.slipping))
 print(string.format("  fore-aft mode [Hz]    %10.2f    %10.2f      35 (44)", paper.fore_aft, layer.fore_aft))
 print(string.format("  vertical mode [Hz]    %10.2f    %10.2f      88 on the cleat, 85 after it (89 / 84)\n",
                     paper.vertical, layer.vertical))

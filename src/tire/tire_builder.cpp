@@ -20,7 +20,7 @@ void require(bool valid, const std::string& parameter, const std::string& what, 
 }
 
 /// One contact node on each tread node, joined by the tread-rubber spring; each takes the
-/// stiffness and mass of its node's share 2 pi R / N of the circumference. The contact
+/// stiffness and mass of its node's share pi D / N of the circumference. The contact
 /// nodes' rotation carries nothing and is held.
 std::vector<int> add_tread_layer(Model& model, const Tire& tire, const std::string& name) {
   const TireParameters& parameters = tire.parameters;
@@ -35,7 +35,7 @@ std::vector<int> add_tread_layer(Model& model, const Tire& tire, const std::stri
   for (int tread : tire.tread_nodes) {
     const Eigen::Vector2d position = mesh.position(tread);
     const int contact = mesh.add_node(position);
-    model.fix(contact, 2);
+    model.fix(contact, kRz);
     springs.add({contact, tread}, TreadLayer(position - parameters.centre, layer));
     contact_nodes.push_back(contact);
   }
@@ -72,6 +72,8 @@ void TireParameters::check() const {
   require(sidewall.shear_stiffness >= 0, "k_gamma", "must not be negative", sidewall.shear_stiffness);
   require(std::abs(sidewall.bending_sign) == 1.0, "k_sw_sign", "must be +1 or -1", sidewall.bending_sign);
   require(sidewall.radial_damping >= 0, "sidewall_radial_damping", "must not be negative", sidewall.radial_damping);
+  require(sidewall.circumferential_damping >= 0, "sidewall_circumferential_damping", "must not be negative",
+          sidewall.circumferential_damping);
   if (tread_layer.enabled()) {
     require(tread_layer.radial_stiffness > 0, "tread_layer_radial_stiffness",
             "must be positive when the tread layer is on", tread_layer.radial_stiffness);
@@ -83,8 +85,6 @@ void TireParameters::check() const {
     require(tread_layer.mass_per_length == 0, "tread_layer_mass_per_length",
             "needs the tread layer's stiffnesses", tread_layer.mass_per_length);
   }
-  require(sidewall.circumferential_damping >= 0, "sidewall_circumferential_damping", "must not be negative",
-          sidewall.circumferential_damping);
 }
 
 Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pressure_ramp, const std::string& name) {
