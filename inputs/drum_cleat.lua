@@ -16,7 +16,7 @@
 -- (y), positive pressing the tire onto the drum; Fx the longitudinal one, positive along +x.
 
 local p = tirefe.parameters{
-  tire = "tires.145SR12",      -- parameter set in lua/tires/
+  tire = "tires.145SR12_tread_layer", -- parameter set in lua/tires/ (tires.145SR12: the paper's model)
   elements = 100,              -- wedges around the tire
   pressure_kpa = 208,          -- inflation pressure [kPa]
   load = 3800,                 -- spindle load on the drum [N]
@@ -315,6 +315,14 @@ if p.check then
   tirefe.check{ name = "a full-speed cleat passage was run", value = last and 1 or 0, expected = 1, tolerance = 0 }
   tirefe.check{ name = "rolling radius = contact ring circumference / 2 pi [m]", value = rolling_radius, expected = belt_radius,
                 tolerance = 2e-3 * belt_radius }
+  -- The calibrated tire against the measured ringing (docs/calibration.md), within 5 %.
+  if p.tire == "tires.145SR12_tread_layer" and p.speed_kmh == 51.3 and p.cleat_height == 0.025 then
+    tirefe.check{ name = "Fz on top of the cleat vs measured 88 Hz", value = summary.fz_on_top.frequency, expected = 88,
+                  relative = 0.05 }
+    tirefe.check{ name = "Fz leaving the cleat vs measured 85 Hz", value = summary.fz_leaving.frequency, expected = 85,
+                  relative = 0.05 }
+    tirefe.check{ name = "Fx vs measured 35 Hz", value = summary.fx_ringing.frequency, expected = 35, relative = 0.05 }
+  end
 end
 
 return { summary = summary, rolling_radius = rolling_radius, passages = passages, record = record }

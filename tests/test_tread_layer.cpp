@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 
 #include "core/model.hpp"
 #include "elements/tread_layer.hpp"
@@ -36,6 +37,51 @@ TEST_CASE("tread layer tangent equals central finite differences of the residual
     CHECK((tangent - numerical).norm() <= 1e-6 * tangent.norm());
     CHECK((tangent - tangent.transpose()).norm() <= 1e-12 * tangent.norm());
   }
+}
+
+TEST_CASE("damped tread layer: tangent equals finite differences; a strained layer turning rigidly is not damped",
+          "[tread_layer]") {
+  TreadLayerProperties properties = test_layer();
+  properties.radial_damping = 40.0;
+  properties.circumferential_damping = 9.0;
+  const TreadLayer layer({0.2, 0.25}, properties);
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const auto local = testing::random_local_state<6>(random, 0.02, 2.0);
+    const EvaluationContext context = testing::dynamic_context(1e-3);
+    TreadLayer::Vector residual;
+    TreadLayer::Matrix tangent;
+    NoHistory history;
+    layer.evaluate(local, context, history, history, residual, &tangent);
+    const TreadLayer::Matrix numerical = testing::finite_difference_tangent(layer, local, context, history);
+    INFO("trial " << trial << "\nanalytic\n" << tangent << "\nnumerical\n" << numerical);
+    CHECK((tangent - numerical).norm() <= 1e-6 * tangent.norm());
+  }
+  // A layer strained by d, turning with the belt at 50 rad/s (d' = theta' J d): no damping force.
+  LocalState<6> local;
+  local.displacement.setZero();
+  local.velocity.setZero();
+  local.acceleration.setZero();
+  const double theta = 0.7, spin = 50.0;
+  const Eigen::Vector2d strain = Eigen::Rotation2Dd(theta) * Eigen::Vector2d(1e-3, -4e-4);
+  local.displacement.segment<2>(0) = strain;
+  local.displacement[5] = theta;
+  local.velocity.segment<2>(0) = spin * Eigen::Vector2d(-strain.y(), strain.x());
+  local.velocity[5] = spin;
+  EvaluationContext context = testing::dynamic_context(1e-3);
+  context.factors.force_mass = 0.0;
+  TreadLayer::Vector damped, undamped;
+  NoHistory history;
+  layer.evaluate(local, context, history, history, damped, nullptr);
+  TreadLayer(Eigen::Vector2d(0.2, 0.25), test_layer()).evaluate(local, context, history, history, undamped, nullptr);
+  CHECK((damped - undamped).norm() <= 1e-12 * undamped.norm());
+  // Stretching at 0.1 m/s along the radial direction: the radial dashpot's force.
+  local.velocity.setZero();
+  local.displacement.setZero();
+  const Eigen::Vector2d radial = Eigen::Vector2d(0.2, 0.25).normalized();
+  local.velocity.segment<2>(0) = 0.1 * radial;
+  layer.evaluate(local, context, history, history, damped, nullptr);
+  CHECK(damped.segment<2>(0).dot(radial) == Approx(context.factors.force_damping * 40.0 * 0.1).epsilon(1e-12));
 }
 
 TEST_CASE("tread layer carries no force under a large rigid-body motion and balances moments", "[tread_layer]") {

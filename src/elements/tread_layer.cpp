@@ -12,18 +12,21 @@ TreadLayer::TreadLayer(const Eigen::Vector2d& radial, const TreadLayerProperties
   const Eigen::Vector2d e_t = kQuarterTurn * e_r;
   reference_stiffness_ = properties.radial_stiffness * e_r * e_r.transpose() +
                          properties.circumferential_stiffness * e_t * e_t.transpose();
+  reference_damping_ = properties.radial_damping * e_r * e_r.transpose() +
+                       properties.circumferential_damping * e_t * e_t.transpose();
+  damped_ = properties.radial_damping != 0.0 || properties.circumferential_damping != 0.0;
 }
 
-Eigen::Matrix2d TreadLayer::stiffness_in_frame(double theta) const {
+Eigen::Matrix2d TreadLayer::in_frame(const Eigen::Matrix2d& reference, double theta) {
   const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(theta).toRotationMatrix();
-  return rotation * reference_stiffness_ * rotation.transpose();
+  return rotation * reference * rotation.transpose();
 }
 
 void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
                           History&, Vector& residual, Matrix* tangent) const {
   const IntegratorFactors& f = context.factors;
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
-  const Eigen::Matrix2d B = stiffness_in_frame(local.displacement[5]);
+  const Eigen::Matrix2d B = in_frame(reference_stiffness_, local.displacement[5]);
   const Eigen::Vector2d force = B * d;
   const Eigen::Vector2d turned = kQuarterTurn * d;  // J d; d x f = (J d) . f
 
@@ -31,7 +34,10 @@ void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContex
   residual.segment<2>(0) = f.force_stiffness * force + f.force_mass * mass_ * local.acceleration.segment<2>(0);
   residual.segment<2>(3) = -f.force_stiffness * force;
   residual[5] = -f.force_stiffness * turned.dot(force);
-  if (!tangent) return;
+  if (!tangent) {
+    if (damped_) add_damping(local, context, residual, nullptr);
+    return;
+  }
 
   const Eigen::Vector2d g = (kQuarterTurn * B - B * kQuarterTurn) * d;
   const double cK = f.tangent_stiffness;
@@ -45,12 +51,52 @@ void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContex
   tangent->block<2, 1>(3, 5) = -cK * g;
   tangent->block<1, 2>(5, 3) = -cK * g.transpose();
   (*tangent)(5, 5) = cK * (turned.dot(B * turned) - d.dot(force));
+  if (damped_) add_damping(local, context, residual, tangent);
+}
+
+void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, Vector& residual,
+                             Matrix* tangent) const {
+  const IntegratorFactors& f = context.factors;
+  if (f.force_damping == 0.0 && (!tangent || f.tangent_damping == 0.0)) return;  // quasi-static
+  const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
+  const Eigen::Vector2d d_rate = local.velocity.segment<2>(0) - local.velocity.segment<2>(3);
+  const double spin = local.velocity[5];
+  const Eigen::Matrix2d C = in_frame(reference_damping_, local.displacement[5]);
+  const Eigen::Vector2d turned = kQuarterTurn * d;
+  const Eigen::Vector2d w = d_rate - spin * turned;  // rate of d in the turning frame
+  const Eigen::Vector2d force = C * w;
+  const double wD = f.force_damping, cC = f.tangent_damping;
+  residual.segment<2>(0) += wD * force;
+  residual.segment<2>(3) -= wD * force;
+  residual[5] -= wD * turned.dot(force);
+  if (!tangent) return;
+
+  // Derivatives of f_d: by d (through w) -spin C J, by theta (C turns) (J C - C J) w,
+  // by d' C, by theta' -C J d; the moment -(J d).f_d adds -(J^T f_d) by d.
+  const Eigen::Matrix2d by_d = wD * (-spin * C * kQuarterTurn);
+  const Eigen::Vector2d by_theta = wD * ((kQuarterTurn * C - C * kQuarterTurn) * w);
+  const Eigen::Matrix2d by_rate = cC * C;
+  const Eigen::Vector2d by_spin = cC * (-C * turned);
+  const Eigen::Matrix2d force_by_d = by_d + by_rate;           // d and d' enter as u_c - u_b
+  const Eigen::Vector2d force_by_theta = by_theta + by_spin;   // theta and theta' of the belt node
+  Matrix& K = *tangent;
+  K.block<2, 2>(0, 0) += force_by_d;
+  K.block<2, 2>(0, 3) -= force_by_d;
+  K.block<2, 2>(3, 0) -= force_by_d;
+  K.block<2, 2>(3, 3) += force_by_d;
+  K.block<2, 1>(0, 5) += force_by_theta;
+  K.block<2, 1>(3, 5) -= force_by_theta;
+  const Eigen::RowVector2d moment_by_d =
+      -(turned.transpose() * force_by_d) - wD * (kQuarterTurn.transpose() * force).transpose();
+  K.block<1, 2>(5, 0) += moment_by_d;
+  K.block<1, 2>(5, 3) -= moment_by_d;
+  K(5, 5) += -turned.dot(force_by_theta);
 }
 
 ElementEnergy TreadLayer::energy(const LocalState<kDofs>& local, const History&) const {
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
   ElementEnergy energy;
-  energy.strain = 0.5 * d.dot(stiffness_in_frame(local.displacement[5]) * d);
+  energy.strain = 0.5 * d.dot(in_frame(reference_stiffness_, local.displacement[5]) * d);
   energy.kinetic = 0.5 * mass_ * local.velocity.segment<2>(0).squaredNorm();
   return energy;
 }

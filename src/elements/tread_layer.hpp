@@ -17,6 +17,10 @@
 //     K_cc = B, K_cb = -B, K_c theta = g,  K_bb = B, K_b theta = -g,
 //     K_theta theta = (J d)^T B (J d) - d^T B d.
 // Inertia: m a_c on the contact node (m the node's share of the layer mass).
+// Damping (the rubber's hysteresis, as a Kelvin-Voigt dashpot in the same frame): the rate
+// of d seen from the turning frame, w = d' - theta_b' J d, so that a strained layer carried
+// round by the rolling belt is not damped; f_d = C w with C = R (c_r E_r E_r^T + c_t E_t E_t^T) R^T,
+// on c, -f_d on b, and the moment -(d x f_d) on b. Its tangent is unsymmetric.
 #pragma once
 
 #include <Eigen/Dense>
@@ -29,6 +33,8 @@ struct TreadLayerProperties {
   double radial_stiffness = 0.0;          // k_r [N/m]
   double circumferential_stiffness = 0.0; // k_t [N/m]
   double mass = 0.0;                      // m on the contact node [kg]
+  double radial_damping = 0.0;            // c_r [N s/m]
+  double circumferential_damping = 0.0;   // c_t [N s/m]
 };
 
 class TreadLayer : public KernelShape<2> {
@@ -42,9 +48,13 @@ class TreadLayer : public KernelShape<2> {
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
 
  private:
-  Eigen::Matrix2d stiffness_in_frame(double theta) const;
+  static Eigen::Matrix2d in_frame(const Eigen::Matrix2d& reference, double theta);
+  void add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, Vector& residual,
+                   Matrix* tangent) const;
 
   Eigen::Matrix2d reference_stiffness_;  // k_r E_r E_r^T + k_t E_t E_t^T
+  Eigen::Matrix2d reference_damping_;    // c_r E_r E_r^T + c_t E_t E_t^T
+  bool damped_ = false;
   double mass_;
 };
 

@@ -34,6 +34,8 @@ TireParameters tire_parameters(const MacroArguments& arguments) {
   parameters.tread_layer.radial_stiffness = arguments.number("tread_layer_radial_stiffness");
   parameters.tread_layer.circumferential_stiffness = arguments.number("tread_layer_circumferential_stiffness");
   parameters.tread_layer.mass_per_length = arguments.number("tread_layer_mass_per_length");
+  parameters.tread_layer.radial_damping = arguments.number("tread_layer_radial_damping");
+  parameters.tread_layer.circumferential_damping = arguments.number("tread_layer_circumferential_damping");
   parameters.centre = {arguments.number("x"), arguments.number("y")};
   return parameters;
 }
@@ -135,6 +137,10 @@ void add_tire_macros(MacroTable& table) {
          optional_non_negative("tread_layer_circumferential_stiffness", "N/m^2",
                                "tread-rubber layer: shear stiffness per length of circumference (0: no layer)"),
          optional_non_negative("tread_layer_mass_per_length", "kg/m", "tread-rubber layer: mass on the contact nodes"),
+         optional_non_negative("tread_layer_radial_damping", "N s/m^2",
+                               "tread-rubber layer: radial dashpot per length of circumference (hysteresis)"),
+         optional_non_negative("tread_layer_circumferential_damping", "N s/m^2",
+                               "tread-rubber layer: shear dashpot per length of circumference"),
          positive("rim_mass", "kg", "rim and hub mass"),
          positive("rim_rotary_inertia", "kg m^2", "rim and hub rotary inertia"),
          {"x", VT::Number, false, "m", "spindle x", std::string("0")},

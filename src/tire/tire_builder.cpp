@@ -29,6 +29,8 @@ std::vector<int> add_tread_layer(Model& model, const Tire& tire, const std::stri
   layer.radial_stiffness = share * parameters.tread_layer.radial_stiffness;
   layer.circumferential_stiffness = share * parameters.tread_layer.circumferential_stiffness;
   layer.mass = share * parameters.tread_layer.mass_per_length;
+  layer.radial_damping = share * parameters.tread_layer.radial_damping;
+  layer.circumferential_damping = share * parameters.tread_layer.circumferential_damping;
   Mesh& mesh = model.mesh();
   auto& springs = model.add_block<TreadLayer>(name + "_tread_layer");
   std::vector<int> contact_nodes;
@@ -84,6 +86,10 @@ void TireParameters::check() const {
   } else {
     require(tread_layer.mass_per_length == 0, "tread_layer_mass_per_length",
             "needs the tread layer's stiffnesses", tread_layer.mass_per_length);
+    require(tread_layer.radial_damping == 0, "tread_layer_radial_damping", "needs the tread layer's stiffnesses",
+            tread_layer.radial_damping);
+    require(tread_layer.circumferential_damping == 0, "tread_layer_circumferential_damping",
+            "needs the tread layer's stiffnesses", tread_layer.circumferential_damping);
   }
 }
 

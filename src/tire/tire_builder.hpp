@@ -30,6 +30,8 @@ struct TreadLayerParameters {
   double radial_stiffness = 0.0;          // [N/m^2]: normal force per m of circumference per m of compression
   double circumferential_stiffness = 0.0; // [N/m^2]: shear force per m of circumference per m of shift
   double mass_per_length = 0.0;           // rubber carried by the contact nodes [kg/m]
+  double radial_damping = 0.0;            // [N s/m^2]: dashpot of the rubber's hysteresis, per m of circumference
+  double circumferential_damping = 0.0;   // [N s/m^2]
   bool enabled() const { return radial_stiffness > 0.0 || circumferential_stiffness > 0.0; }
 };
 
