@@ -20,28 +20,15 @@ constexpr double kGravity = 9.81;
 constexpr double kBodyMass = 300.0, kCarrierMass = 30.0;
 constexpr double kSpring = 2.0e4;  // N/m
 
-/// A tire pressed quasi-statically to 'deflection' (spindle moved down) on a still flat
-/// road, handed to a TireSpindle with a free spin.
+/// The 145 SR-12 tire on a still flat road (mu = 0.8).
 struct PressedTire {
   TireOnRoad tire{macros::load_tire_parameters("tires.145SR12"),
                   [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); },
                   RoadContact{0.8}};
-  std::unique_ptr<TireSpindle> spindle;
+  TireSpindle* spindle = nullptr;
 
-  /// Quasi-static spindle force y [N] pressed to 'deflection' [m] (the force on the tire: negative).
-  double press(double deflection) {
-    Model& model = tire.model();
-    const double time = tire.analysis().state().time;
-    const double previous = -tire.analysis().state().displacement[dof_index(tire.tire().spindle, 1)];
-    model.prescribe(tire.tire().spindle, 1, 1.0,
-                    model.add_load_function(LoadFunction::table({{time, -previous}, {time + 1.0, -deflection}})));
-    tire.analysis().advance(1.0);
-    return tire.analysis().reactions()[dof_index(tire.tire().spindle, 1)];
-  }
-  void drive(double alpha) {
-    tire.analysis().set_integrator(Integrator::hht(alpha));
-    spindle = std::make_unique<TireSpindle>(tire.analysis(), tire.tire().spindle, SpinMode::Free);
-  }
+  double press(double deflection) { return tire.press(deflection); }
+  void drive(double alpha) { spindle = &tire.drive(Integrator::hht(alpha)); }
 };
 
 Corner quarter_corner(double preload, double damping) {
@@ -64,7 +51,7 @@ TEST_CASE("quarter car: static ride height is weight over stiffness, the tire ca
   PressedTire tire;
   tire.press(0.015);
   tire.drive(-0.05);
-  TireGroup tires({tire.spindle.get()}, false);
+  TireGroup tires({tire.spindle}, false);
   // Spring preload 0.8 of the body weight: the suspension settles 0.2 m_b g / k_s into jounce.
   const double critical = 2.0 * std::sqrt(kSpring * kBodyMass);
   VehicleSettings settings;
@@ -90,7 +77,7 @@ TEST_CASE("quarter car: the wheel-hop frequency is that of the linearised two-ma
   const double static_deflection = 0.010 + (weight + f1) / k_tire;
   tire.press(static_deflection - 0.001);  // let go 1 mm short of equilibrium: a small hop
   tire.drive(0.0);
-  TireGroup tires({tire.spindle.get()}, false);
+  TireGroup tires({tire.spindle}, false);
   Vehicle car({kBodyMass}, {quarter_corner(kBodyMass * kGravity, 50.0)}, tires, VehicleSettings{});
   std::vector<std::pair<double, double>> wheel;  // (t, z_w)
   car.add_step_observer([&wheel](const Vehicle& v) { wheel.emplace_back(v.time(), v.state().displacement[1]); });
@@ -124,7 +111,7 @@ TEST_CASE("quarter car: the direct spindle Jacobian gives the finite-difference 
     auto tire = std::make_unique<PressedTire>();
     tire->press(0.015);
     tire->drive(-0.05);
-    TireGroup tires({tire->spindle.get()}, false);
+    TireGroup tires({tire->spindle}, false);
     VehicleSettings settings;
     settings.alpha = -0.05;
     settings.jacobian = source;
@@ -150,7 +137,7 @@ TEST_CASE("full car: four tires solved in concurrent threads give the sequential
       tires.push_back(std::make_unique<PressedTire>());
       tires.back()->press(0.010 + 0.002 * i);  // unequal: the body pitches and rolls
       tires.back()->drive(-0.05);
-      spindles.push_back(tires.back()->spindle.get());
+      spindles.push_back(tires.back()->spindle);
       Corner corner = quarter_corner(0.8 * kBodyMass * kGravity, 1500.0);
       corner.x = positions[i][0];
       corner.y = positions[i][1];

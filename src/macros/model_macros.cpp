@@ -90,6 +90,7 @@ int load_function_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
   // A Lua function of time, kept in the registry; evaluated once per step and load.
   arguments.push_value("fn");
   const int reference = luaL_ref(L, LUA_REGISTRYINDEX);
+  deck.note_lua_callback();
   deck.define_load_function(name, LoadFunction([L, reference, name](double time) {
     lua_rawgeti(L, LUA_REGISTRYINDEX, reference);
     lua_pushnumber(L, time);

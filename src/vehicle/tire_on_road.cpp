@@ -27,4 +27,20 @@ TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, 
   contact_ = &add_contact_block(model_, "contact", surface, tire_.tread_nodes, penalties, analysis_->state().time);
 }
 
+double TireOnRoad::press(double deflection) {
+  if (spindle_) throw ModelError("the tire is driven by its spindle already: press it before drive()");
+  const double time = analysis_->state().time;
+  const double now = analysis_->state().displacement[dof_index(tire_.spindle, 1)];
+  model_.prescribe(tire_.spindle, 1, 1.0,
+                   model_.add_load_function(LoadFunction::table({{time, now}, {time + 1.0, -deflection}})));
+  analysis_->advance(1.0);
+  return analysis_->reactions()[dof_index(tire_.spindle, 1)];
+}
+
+TireSpindle& TireOnRoad::drive(const Integrator& integrator, SpinMode spin) {
+  analysis_->set_integrator(integrator);
+  spindle_ = std::make_unique<TireSpindle>(*analysis_, tire_.spindle, spin);
+  return *spindle_;
+}
+
 }  // namespace tirefe

@@ -3,8 +3,8 @@
 // held: a free hub has rigid-body modes quasi-statically), puts the road under the
 // inflated tire, touching its lowest tread node, and adds Coulomb contact with the
 // structure's default penalties (node_contact.hpp). The spindle is condensed and the
-// RingSolver solves. The tire is then still quasi-static with the spindle held: the
-// host chooses the integrator and hands the spindle to a TireSpindle.
+// RingSolver solves. press() then loads it quasi-statically, and drive() makes it
+// dynamic and hands the spindle to a TireSpindle for a host.
 #pragma once
 
 #include <functional>
@@ -14,6 +14,7 @@
 #include "contact/rigid_surface.hpp"
 #include "solvers/analysis.hpp"
 #include "tire/tire_builder.hpp"
+#include "vehicle/tire_spindle.hpp"
 
 namespace tirefe {
 
@@ -33,6 +34,14 @@ class TireOnRoad {
   TireOnRoad(const TireOnRoad&) = delete;
   TireOnRoad& operator=(const TireOnRoad&) = delete;
 
+  /// Moves the held spindle quasi-statically (in 1 s of model time) to 'deflection'
+  /// below its design position [m]; returns the vertical spindle force then [N] (the
+  /// force on the tire: negative when pressed).
+  double press(double deflection);
+  /// Switches the tire to 'integrator' (dynamic) and hands its spindle to a TireSpindle.
+  TireSpindle& drive(const Integrator& integrator, SpinMode spin = SpinMode::Free);
+  TireSpindle& spindle() { return *spindle_; }
+
   Model& model() { return model_; }
   Analysis& analysis() { return *analysis_; }
   const Tire& tire() const { return tire_; }
@@ -46,6 +55,7 @@ class TireOnRoad {
   std::unique_ptr<Analysis> analysis_;
   double road_level_ = 0.0;
   const ContactBlock* contact_ = nullptr;
+  std::unique_ptr<TireSpindle> spindle_;
 };
 
 }  // namespace tirefe

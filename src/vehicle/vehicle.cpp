@@ -14,6 +14,8 @@ struct TireFailure {
   std::string message;
 };
 
+constexpr int kMaxBacktracks = 4;
+
 }  // namespace
 
 Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireGroup& tires, VehicleSettings settings)
@@ -164,12 +166,22 @@ bool Vehicle::try_step(double h) {
   const double reference = weight_.sum();
   integrator_.predict(committed_, h, trial_);
   for (int iteration = 0;; ++iteration) {
-    for (int dof = 0; dof < dof_count(); ++dof) integrator_.update_rates(committed_, h, dof, trial_);
-    try {
-      solve_tires(h);
-    } catch (const TireFailure& failure) {
-      last_failure_ = "a tire failed: " + failure.message;
-      return false;
+    // A tire that cannot reach the corrected position (a wild Newton increment near an
+    // impact) gets half the increment instead, a few times, before the step is cut.
+    for (int backtrack = 0;; ++backtrack) {
+      for (int dof = 0; dof < dof_count(); ++dof) integrator_.update_rates(committed_, h, dof, trial_);
+      try {
+        solve_tires(h);
+        break;
+      } catch (const TireFailure& failure) {
+        if (iteration == 0 || backtrack == kMaxBacktracks) {
+          last_failure_ = "a tire failed: " + failure.message;
+          return false;
+        }
+        increment_ *= 0.5;
+        trial_.displacement -= increment_;
+        ++statistics_.backtracks;
+      }
     }
     suspension_forces(trial_, forces_);
     residual_ = mass_.cwiseProduct(trial_.acceleration) + (1.0 + alpha) * forces_ - alpha * old_forces_ + weight_;
@@ -207,11 +219,11 @@ bool Vehicle::try_step(double h) {
 
 void Vehicle::take_step(double h, int cuts) {
   if (try_step(h)) {
+    std::swap(committed_, trial_);  // first: the tires' output may read the vehicle's new state
+    suspension_forces(committed_, old_forces_);
     tires_.serve_all(SpindleCommand::Commit, replies_);
     for (const SpindleReply& reply : replies_)
       if (reply.status == SpindleStatus::Failed) throw StepFailure(std::string("a tire could not commit: ") + reply.message);
-    std::swap(committed_, trial_);
-    suspension_forces(committed_, old_forces_);
     ++statistics_.steps;
     for (const auto& observer : observers_) observer(*this);
     return;

@@ -73,6 +73,7 @@ struct VehicleStatistics {
   int tire_solves = 0;            // spindle solves, each tire counted
   long tire_newton_iterations = 0;
   int cuts = 0;
+  int backtracks = 0;  // corrector increments halved because a tire could not follow
 };
 
 class Vehicle {
