@@ -7,6 +7,7 @@
 #include "macros/macro_table.hpp"
 #include "vehicle/tire_on_road.hpp"
 #include "vehicle/tire_spindle.hpp"
+#include "solvers/driven_solver.hpp"
 
 using namespace tirefe;
 
@@ -113,4 +114,32 @@ TEST_CASE("spindle trial solves do not advance the tire; commit and revert do wh
   const SpindleReply refused = rolling.spindle->serve(request);
   CHECK(refused.status == SpindleStatus::Failed);
   CHECK(std::string(refused.message).find("no trial step") != std::string::npos);
+}
+
+TEST_CASE("driven-DOF solves and the Schur complement equal dense linear algebra, with KLU factors",
+          "[spindle][linear]") {
+  // An unsymmetric, regular 12 x 12 sparse matrix; the last three equations are driven.
+  const int n = 12, s = 3;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    dense(i, i) = 10.0 + i;
+    dense(i, (i + 1) % n) = -2.0 + 0.1 * i;
+    dense((i + 3) % n, i) = 1.5 - 0.2 * i;
+  }
+  const SparseMatrix sparse = dense.sparseView();
+  KluSolver klu;
+  DrivenDofSolver driven(klu, {n - 3, n - 2, n - 1});
+  driven.analyze(sparse);
+  driven.factorize(sparse);
+
+  const int u = n - s;
+  const Eigen::MatrixXd schur = dense.bottomRightCorner(s, s) - dense.bottomLeftCorner(s, u) *
+                                                                    dense.topLeftCorner(u, u).lu().solve(dense.topRightCorner(u, s));
+  CHECK((Eigen::MatrixXd(driven.schur_complement()) - schur).norm() < 1e-13 * schur.norm());
+
+  Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0), x = rhs;
+  driven.solve(x);
+  const Eigen::VectorXd expected = dense.topLeftCorner(u, u).lu().solve(rhs.head(u));
+  CHECK((x.head(u) - expected).norm() < 1e-13 * expected.norm());
+  CHECK(x.tail(s).isZero(0.0));
 }

@@ -18,11 +18,13 @@ void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> bor
   solver->analyze(assembler_.tangent());  // throws for a model that does not fit, before anything changes
   linear_solver_ = std::move(solver);
   analyzed_pattern_ = assembler_.pattern_version();
+  driven_solver_.reset();  // it wrapped the old solver
 }
 
 void Analysis::use_klu_solver() {
   linear_solver_ = std::make_unique<KluSolver>();
   analyzed_pattern_ = -1;
+  driven_solver_.reset();
 }
 
 void Analysis::set_integrator(const Integrator& integrator) {
