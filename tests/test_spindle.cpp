@@ -29,18 +29,29 @@ struct RollingTire {
                   },
                   RoadContact{0.8}};
   std::unique_ptr<TireSpindle> spindle;
+  SpinMode spin_mode;
 
-  RollingTire() {
+  explicit RollingTire(SpinMode spin = SpinMode::Free) : spin_mode(spin) {
     Model& model = tire.model();
     const int press = model.add_load_function(LoadFunction::table({{1.0, 0.0}, {2.0, 1.0}}));
     model.prescribe(tire.tire().spindle, 1, -kDeflection, press);
     tire.analysis().set_time_step(0.25);
     tire.analysis().advance(1.0);
     tire.analysis().set_integrator(Integrator::hht(kAlpha));
-    spindle = std::make_unique<TireSpindle>(tire.analysis(), tire.tire().spindle, SpinMode::Free);
+    spindle = std::make_unique<TireSpindle>(tire.analysis(), tire.tire().spindle, spin);
   }
 
-  SpindleReply solve(double x, double y) { return spindle->solve_step({kStep, x, y, 0.0}); }
+  /// A driven spin turns the wheel 10% slower than free rolling on the road (braking):
+  /// the angle follows the road's travel over a rolling radius of 0.264 m.
+  double braked_spin(double time) const {
+    const double t = time - 2.0, v = 5.0, ramp = 0.05;
+    const double travel = t <= 0.0 ? 0.0 : t < ramp ? 0.5 * v * t * t / ramp : v * (t - 0.5 * ramp);
+    return -0.9 * travel / 0.264;
+  }
+  SpindleReply solve(double x, double y, double spin_offset = 0.0) {
+    const double spin = spin_mode == SpinMode::Driven ? braked_spin(spindle->time() + kStep) + spin_offset : 0.0;
+    return spindle->solve_step({kStep, x, y, spin});
+  }
   void roll(int steps) {
     for (int i = 0; i < steps; ++i) {
       solve(0.0, -kDeflection);
@@ -53,7 +64,7 @@ struct RollingTire {
 
 TEST_CASE("spindle Jacobian H_ss equals central differences of the spindle force, rolling with friction",
           "[spindle][vehicle]") {
-  RollingTire rolling;
+  RollingTire rolling;  // free spin
   // Uzawa updates change the multipliers with the spindle position outside Newton; H_ss
   // is the derivative of the step equations with the step's multipliers, so compare with them held.
   rolling.tire.analysis().step_control().max_augmentations = 0;
@@ -142,4 +153,37 @@ TEST_CASE("driven-DOF solves and the Schur complement equal dense linear algebra
   const Eigen::VectorXd expected = dense.topLeftCorner(u, u).lu().solve(rhs.head(u));
   CHECK((x.head(u) - expected).norm() < 1e-13 * expected.norm());
   CHECK(x.tail(s).isZero(0.0));
+}
+
+TEST_CASE("spindle Jacobian H_ss with a driven spin (a braked wheel) equals central differences, moment included",
+          "[spindle][vehicle]") {
+  RollingTire rolling(SpinMode::Driven);
+  rolling.tire.analysis().step_control().max_augmentations = 0;
+  rolling.tire.analysis().newton_settings().residual_tolerance = 1e-12;
+  rolling.roll(60);
+  const SpindleReply centre = rolling.solve(0.0, -kDeflection);
+  CHECK(force_of(centre)[0] > 100.0);  // the axle holds the braked wheel against the road ...
+  CHECK(force_of(centre)[2] > 10.0);   // ... and the brake a moment against its clockwise spin
+  const double delta[3] = {1e-7, 1e-7, 1e-6};  // m, m, rad
+  SpindleJacobian difference;
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::Vector3d d = delta[j] * Eigen::Vector3d::Unit(j);
+    const SpindleReply plus = rolling.solve(d.x(), -kDeflection + d.y(), d.z());
+    const SpindleReply minus = rolling.solve(-d.x(), -kDeflection - d.y(), -d.z());
+    difference.col(j) = (force_of(plus) - force_of(minus)) / (2.0 * delta[j]);
+  }
+  const SpindleJacobian jacobian = jacobian_of(centre);
+  INFO("H_ss\n" << jacobian << "\nfinite differences\n" << difference);
+  // Column by column against the column's structural size (the rim's inertia m/(beta h^2)
+  // and I/(beta h^2) on the diagonal removed): N/m, N/m and N m/rad do not mix.
+  const TireParameters parameters = macros::load_tire_parameters("tires.145SR12");
+  const double inertia_factor = 1.0 / (rolling.tire.analysis().integrator().beta() * kStep * kStep);
+  SpindleJacobian structural = jacobian;
+  structural.diagonal() -= inertia_factor * Eigen::Vector3d(parameters.rim_mass, parameters.rim_mass,
+                                                              parameters.rim_rotary_inertia);
+  for (int j = 0; j < 3; ++j) {
+    const double scale = structural.col(j).cwiseAbs().maxCoeff();
+    CHECK(scale > 0.0);
+    CHECK((jacobian.col(j) - difference.col(j)).cwiseAbs().maxCoeff() < 1e-5 * scale);
+  }
 }
