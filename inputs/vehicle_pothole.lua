@@ -1,12 +1,15 @@
 -- The paper's vehicle experiment (MODEL.md section 7, its section 3.2): a mid-size car
 -- on four FE 145 SR-12 tires at 0.243 MPa. Protocol, 9 s: 1 s quasi-static inflation
--- (and the tires pressed to their static load); 1 s dynamic settling; the ground under
+-- (here followed by another quasi-static second pressing each tire to its static corner
+-- load, so the dynamic part runs from t = 2 s to 10 s); 1 s dynamic settling; the ground under
 -- the car accelerates at a constant rate from 0 to 48 km/h over 5 s (the tires roll
 -- freely, no drive torque); 2 s at 48 km/h, during which the LEFT wheels cross a
 -- chuckhole 760 mm long and 100 mm deep (1 s into the cruise) while the right side stays
 -- flat. Each corner's tire writes vehicle_pothole_<corner>.h5 with its spindle forces
--- and the body motions; post/plot_vehicle.py plots the left-front and left-rear Fx, Fz
--- around the pothole and their spectra.
+-- and the body motions; the left-front and left-rear Fx, Fz around the pothole and
+-- their spectra (wheel hop ~10 Hz; the first vertical tire mode ~90 Hz) are plotted by
+--   /usr/bin/python3 post/plot_vehicle.py 8.9 10 results/vehicle_pothole_LF.h5 results/vehicle_pothole_LR.h5
+-- Wall time on the shared 2-core machine: 287 s (165 s CPU) for the 8 s dynamic part.
 --
 --   tirefe inputs/vehicle_pothole.lua [dt=5e-4] [settle=1] [ramp=5] [cruise=2] [depth=0.1]
 --

@@ -47,12 +47,23 @@ Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireGroup& tires, Vehic
       throw ModelError("corner '" + corner.name + "': the tire's spin must be free (no drive torque)");
     design_spindle_.push_back(tires_.tire(static_cast<int>(i)).committed_position().head<2>());
   }
+  for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(dofs);  // jounce d = z_w - (z + x_i theta + y_i phi)
+    b[wheel_vertical_dof(i)] = 1.0;
+    b[0] = -1.0;
+    if (body_dofs_ == 3) {
+      b[1] = -corners_[i].x;
+      b[2] = -corners_[i].y;
+    }
+    attachments_.push_back(b);
+  }
   committed_.resize(dofs);
   committed_.time = tires_.tire(0).time();
   trial_ = committed_;
   requests_.resize(corners_.size());
   jacobian_.setZero(dofs, dofs);
-  tangent_.setZero(dofs, dofs);
+  factors_ = Eigen::PartialPivLU<Eigen::MatrixXd>(dofs);
+  perturbed_forces_.resize(2 * corners_.size());
   spindle_jacobians_.assign(corners_.size(), Eigen::Matrix2d::Zero());
 }
 
@@ -64,27 +75,16 @@ void Vehicle::set_initial_state(const Eigen::VectorXd& displacement, const Eigen
   committed_.velocity = velocity;
 }
 
-Eigen::VectorXd Vehicle::attachment(int corner) const {
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(dof_count());
-  b[wheel_vertical_dof(corner)] = 1.0;
-  b[0] = -1.0;
-  if (body_dofs_ == 3) {
-    b[1] = -corners_[corner].x;
-    b[2] = -corners_[corner].y;
-  }
-  return b;
-}
-
 double Vehicle::jounce(int corner) const { return attachment(corner).dot(committed_.displacement); }
 
 void Vehicle::suspension_forces(const State& state, Eigen::VectorXd& forces) const {
   forces.setZero(dof_count());
   for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
     const Suspension& s = corners_[i].suspension;
-    const Eigen::VectorXd b = attachment(i);
+    const Eigen::VectorXd& b = attachment(i);
     const double d = b.dot(state.displacement), rate = b.dot(state.velocity);
     const double bump = d > s.bumper_gap ? s.bumper_stiffness * (d - s.bumper_gap) * (d - s.bumper_gap) : 0.0;
-    forces += (s.spring(d) + s.damper(rate) + bump) * b;  // pushes the body up and the carrier down
+    forces.noalias() += (s.spring(d) + s.damper(rate) + bump) * b;  // pushes the body up and the carrier down
     const int x = wheel_fore_aft_dof(i);
     forces[x] += s.fore_aft_stiffness * state.displacement[x] + s.fore_aft_damping * state.velocity[x];
   }
@@ -94,7 +94,7 @@ void Vehicle::suspension_tangent(const State& state, double stiffness_factor, do
                                  Eigen::MatrixXd& tangent) const {
   for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
     const Suspension& s = corners_[i].suspension;
-    const Eigen::VectorXd b = attachment(i);
+    const Eigen::VectorXd& b = attachment(i);
     const double d = b.dot(state.displacement), rate = b.dot(state.velocity);
     const double bump = d > s.bumper_gap ? 2.0 * s.bumper_stiffness * (d - s.bumper_gap) : 0.0;
     const double k = stiffness_factor * (s.spring.derivative(d) + bump) + damping_factor * s.damper.derivative(rate);
@@ -126,19 +126,18 @@ void Vehicle::solve_tires(double h) {
   const size_t count = corners_.size();
   if (settings_.jacobian == SpindleJacobianSource::FiniteDifference) {
     // Perturbed solves first, so that the last trial of every tire is at q itself.
-    std::vector<Eigen::Vector2d> perturbed(2 * count);
     for (int column = 0; column < 2; ++column) {
       request_positions(h, trial_.displacement);
       for (auto& request : requests_) (column == 0 ? request.input.x : request.input.y) += settings_.difference_step;
       serve();
-      for (size_t i = 0; i < count; ++i) perturbed[2 * i + column] = Eigen::Vector2d(replies_[i].force[0], replies_[i].force[1]);
+      for (size_t i = 0; i < count; ++i) perturbed_forces_[2 * i + column] = Eigen::Vector2d(replies_[i].force[0], replies_[i].force[1]);
     }
     request_positions(h, trial_.displacement);
     serve();
     for (size_t i = 0; i < count; ++i) {
       const Eigen::Vector2d base(replies_[i].force[0], replies_[i].force[1]);
       for (int column = 0; column < 2; ++column)
-        spindle_jacobians_[i].col(column) = (perturbed[2 * i + column] - base) / settings_.difference_step;
+        spindle_jacobians_[i].col(column) = (perturbed_forces_[2 * i + column] - base) / settings_.difference_step;
     }
     return;
   }
@@ -193,10 +192,7 @@ bool Vehicle::try_step(double h) {
       last_failure_ = "the vehicle residual is not finite";
       return false;
     }
-    if (residual_.lpNorm<Eigen::Infinity>() <= settings_.residual_tolerance * reference) {
-      last_iterations_ = iteration;
-      return true;
-    }
+    if (residual_.lpNorm<Eigen::Infinity>() <= settings_.residual_tolerance * reference) return true;
     if (iteration == settings_.max_iterations) {
       std::ostringstream message;
       message << "no corrector convergence in " << iteration << " iterations (|r| = "
@@ -211,7 +207,8 @@ bool Vehicle::try_step(double h) {
       for (int r = 0; r < 2; ++r)
         for (int c = 0; c < 2; ++c) jacobian_(dofs[r], dofs[c]) += spindle_jacobians_[i](r, c);
     }
-    increment_ = jacobian_.partialPivLu().solve(-residual_);
+    factors_.compute(jacobian_);
+    increment_.noalias() = factors_.solve(-residual_);
     trial_.displacement += increment_;
     ++statistics_.corrector_iterations;
   }

@@ -21,7 +21,6 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <Eigen/StdVector>
 #include <functional>
 #include <string>
 #include <vector>
@@ -116,7 +115,7 @@ class Vehicle {
   void suspension_forces(const State& state, Eigen::VectorXd& forces) const;
   void suspension_tangent(const State& state, double stiffness_factor, double damping_factor,
                           Eigen::MatrixXd& tangent) const;
-  Eigen::VectorXd attachment(int corner) const;  // b_i: d = b_i . q
+  const Eigen::VectorXd& attachment(int corner) const { return attachments_[corner]; }  // b_i: d = b_i . q
   void initialize_acceleration();
   void request_positions(double h, const Eigen::VectorXd& displacement);
 
@@ -135,12 +134,14 @@ class Vehicle {
   std::vector<SpindleRequest> requests_;
   std::vector<SpindleReply> replies_;
   std::vector<Eigen::Matrix2d> spindle_jacobians_;  // d f_s / d (x, y) of each tire, this iteration
+  std::vector<Eigen::Vector2d> perturbed_forces_;   // finite differences: f_s at q + delta e_j
+  std::vector<Eigen::VectorXd> attachments_;
   std::string last_failure_;
-  int last_iterations_ = 0;
   std::vector<std::function<void(const Vehicle&)>> observers_;
   // Corrector work space.
   Eigen::VectorXd residual_, forces_, increment_;
-  Eigen::MatrixXd jacobian_, tangent_;
+  Eigen::MatrixXd jacobian_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> factors_;
 };
 
 }  // namespace tirefe
