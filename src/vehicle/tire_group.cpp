@@ -1,26 +1,54 @@
 #include "vehicle/tire_group.hpp"
 
-#include <thread>
-
 namespace tirefe {
 
 TireGroup::TireGroup(std::vector<TireSpindle*> tires, bool concurrent)
-    : tires_(std::move(tires)), concurrent_(concurrent), commands_(tires_.size()) {}
+    : tires_(std::move(tires)), concurrent_(concurrent && tires_.size() > 1), commands_(tires_.size()) {
+  if (!concurrent_) return;
+  workers_.reserve(tires_.size() - 1);
+  for (size_t i = 1; i < tires_.size(); ++i) workers_.emplace_back([this, i] { work(i); });
+}
+
+TireGroup::~TireGroup() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  start_.notify_all();
+  for (auto& worker : workers_) worker.join();
+}
+
+void TireGroup::work(size_t tire) {
+  long served = 0;
+  for (;;) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    start_.wait(lock, [&] { return stopping_ || round_ != served; });
+    if (stopping_) return;
+    served = round_;
+    lock.unlock();
+    (*replies_)[tire] = tires_[tire]->serve((*requests_)[tire]);  // serve() never throws
+    lock.lock();
+    if (--pending_ == 0) done_.notify_one();
+  }
+}
 
 void TireGroup::serve(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies) {
   replies.resize(tires_.size());
-  const size_t count = tires_.size();
-  if (!concurrent_ || count < 2) {
-    for (size_t i = 0; i < count; ++i) replies[i] = tires_[i]->serve(requests[i]);
+  if (!concurrent_) {
+    for (size_t i = 0; i < tires_.size(); ++i) replies[i] = tires_[i]->serve(requests[i]);
     return;
   }
-  // One thread per tire but the first, which this thread solves; serve() never throws.
-  std::vector<std::thread> workers;
-  workers.reserve(count - 1);
-  for (size_t i = 1; i < count; ++i)
-    workers.emplace_back([this, i, &requests, &replies] { replies[i] = tires_[i]->serve(requests[i]); });
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    requests_ = &requests;
+    replies_ = &replies;
+    pending_ = static_cast<int>(workers_.size());
+    ++round_;
+  }
+  start_.notify_all();
   replies[0] = tires_[0]->serve(requests[0]);
-  for (auto& worker : workers) worker.join();
+  std::unique_lock<std::mutex> lock(mutex_);
+  done_.wait(lock, [&] { return pending_ == 0; });
 }
 
 void TireGroup::serve_all(SpindleCommand command, std::vector<SpindleReply>& replies) {
