@@ -11,6 +11,7 @@
 #include "solvers/analysis.hpp"
 #include "solvers/ring_solver.hpp"
 #include "tire/tire_builder.hpp"
+#include "vehicle/tire_spindle.hpp"
 
 namespace {
 std::atomic<long> allocations{0};
@@ -93,5 +94,29 @@ TEST_CASE("Newmark steps of the tire with the ring solver allocate no memory, no
   ring.factorize_interior(tangent);
   ring.condense(rhs, condensed);
   during = allocations.load() - before;
+  CHECK(during == 0);
+}
+
+TEST_CASE("spindle steps of a driven tire allocate no memory: Newton, the driven solves and H_ss",
+          "[kernel][allocation][spindle]") {
+  using namespace tirefe;
+  Model model;
+  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"),
+                               LoadFunction::table({{0.0, 0.0}, {1e-3, 1.0}}));
+  model.condense_node(tire.spindle);
+  Analysis analysis(model);
+  analysis.use_ring_solver(tire.tread_nodes, {tire.spindle});
+  analysis.set_integrator(Integrator::newmark());
+  TireSpindle spindle(analysis, tire.spindle, SpinMode::Free);
+  auto step = [&](int i) {
+    spindle.solve_step({1e-4, 1e-4 * i, -2e-4 * i, 0.0});  // the hub moves: Newton has work to do
+    spindle.commit();
+  };
+  for (int i = 1; i <= 5; ++i) step(i);  // warm-up
+
+  const long before = allocations.load();
+  for (int i = 6; i <= 10; ++i) step(i);
+  const long during = allocations.load() - before;
+  CHECK(analysis.last_newton_report().iterations >= 1);
   CHECK(during == 0);
 }

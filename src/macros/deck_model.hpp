@@ -28,6 +28,10 @@ class DeckModel {
   const BeamSection& section(const std::string& name) const;
   void define_load_function(const std::string& name, LoadFunction function);
   int load_function(const std::string& name) const;
+  /// The model calls back into the deck's Lua state (a load function given as a Lua
+  /// function): it must then be solved on the deck's thread only.
+  void note_lua_callback() { calls_lua_ = true; }
+  bool calls_lua() const { return calls_lua_; }
 
   /// Opens the result file (a relative path is taken inside the session's output folder).
   void open_output(const std::string& file, int field_interval, double field_time_interval = 0.0);
@@ -48,6 +52,7 @@ class DeckModel {
   std::map<std::string, BeamSection> sections_;
   std::map<std::string, int> load_functions_;
   std::unique_ptr<io::ResultFile> output_;
+  bool calls_lua_ = false;
 };
 
 }  // namespace tirefe::macros

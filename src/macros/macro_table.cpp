@@ -111,6 +111,7 @@ const MacroTable& macro_table() {
     add_contact_macros(built);
     add_fitting_macros(built);
     add_post_macros(built);
+    add_vehicle_macros(built);
     return built;
   }();
   return table;

@@ -90,6 +90,7 @@ int load_function_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
   // A Lua function of time, kept in the registry; evaluated once per step and load.
   arguments.push_value("fn");
   const int reference = luaL_ref(L, LUA_REGISTRYINDEX);
+  deck.note_lua_callback();
   deck.define_load_function(name, LoadFunction([L, reference, name](double time) {
     lua_rawgeti(L, LUA_REGISTRYINDEX, reference);
     lua_pushnumber(L, time);
@@ -173,6 +174,7 @@ int step_control_macro(lua_State*, DeckModel& deck, const MacroArguments& argume
   control.max_step = arguments.number_or("max_dt", control.max_step);
   control.max_cuts = static_cast<int>(arguments.integer_or("max_cuts", control.max_cuts));
   control.easy_iterations = static_cast<int>(arguments.integer_or("easy_iterations", control.easy_iterations));
+  control.max_augmentations = static_cast<int>(arguments.integer_or("max_augmentations", control.max_augmentations));
   control.growth = arguments.number_or("growth", control.growth);
   if (control.growth < 1.0) throw ModelError("growth must be at least 1");
   return 0;
@@ -460,7 +462,9 @@ void add_model_macros(MacroTable& table) {
         {"max_cuts", VT::Integer, false, "", "halvings of one step", std::string("10"), Range::NonNegative},
         {"easy_iterations", VT::Integer, false, "", "grow the step after converging in this many iterations",
          std::string("4"), Range::NonNegative},
-        {"growth", VT::Number, false, "", "growth factor back toward dt", std::string("2"), Range::Positive}},
+        {"growth", VT::Number, false, "", "growth factor back toward dt", std::string("2"), Range::Positive},
+        {"max_augmentations", VT::Integer, false, "", "contact multiplier updates per step (0: penalty only)",
+         std::string("20"), Range::NonNegative}},
        "model:step_control{ max_cuts = 6 }"},
       step_control_macro);
   add({"dt", "Sets the nominal time (or load) step (FEAP's DT).",

@@ -18,11 +18,13 @@ void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> bor
   solver->analyze(assembler_.tangent());  // throws for a model that does not fit, before anything changes
   linear_solver_ = std::move(solver);
   analyzed_pattern_ = assembler_.pattern_version();
+  driven_solver_.reset();  // it wrapped the old solver
 }
 
 void Analysis::use_klu_solver() {
   linear_solver_ = std::make_unique<KluSolver>();
   analyzed_pattern_ = -1;
+  driven_solver_.reset();
 }
 
 void Analysis::set_integrator(const Integrator& integrator) {
@@ -54,6 +56,60 @@ void Analysis::prepare() {
     analyzed_pattern_ = assembler_.pattern_version();
   }
   size_state();
+  if (driven_dofs_.empty()) {
+    driven_solver_.reset();
+  } else if (!driven_solver_ || driven_pattern_ != analyzed_pattern_) {
+    if (!integrator_.is_dynamic())
+      throw ModelError("driven DOFs need a dynamic integrator (Newmark or HHT): the quasi-static tangent of a "
+                       "structure held only at its driven DOFs is singular");
+    std::vector<int> equations;
+    for (int dof : driven_dofs_) {
+      if (model_.dof_map().is_prescribed(dof))
+        throw ModelError("DOF " + std::to_string(dof) + " is prescribed and cannot also be driven (release it first)");
+      equations.push_back(model_.dof_map().equation(dof));
+    }
+    driven_solver_ = std::make_unique<DrivenDofSolver>(*linear_solver_, std::move(equations));
+    driven_solver_->analyze(assembler_.tangent());
+    driven_pattern_ = analyzed_pattern_;
+  }
+}
+
+LinearSolver& Analysis::newton_linear_solver() {
+  return driven_solver_ ? static_cast<LinearSolver&>(*driven_solver_) : *linear_solver_;
+}
+
+void Analysis::drive_dofs(std::vector<int> dofs) {
+  if (dofs.size() > static_cast<size_t>(DrivenDofSolver::kMaxDriven))
+    throw ModelError("at most " + std::to_string(DrivenDofSolver::kMaxDriven) + " DOFs (one node) can be driven");
+  for (int dof : dofs)
+    if (dof < 0 || dof >= model_.mesh().dof_count())
+      throw ModelError("driven DOF " + std::to_string(dof) + " does not exist");
+  discard_trial_step();
+  driven_dofs_ = std::move(dofs);
+  driven_displacements_.resize(static_cast<Eigen::Index>(driven_dofs_.size()));
+  size_state();
+  for (size_t i = 0; i < driven_dofs_.size(); ++i)
+    driven_displacements_[static_cast<Eigen::Index>(i)] = committed_.displacement[driven_dofs_[i]];
+  driven_solver_.reset();
+  reactions_valid_ = false;
+}
+
+void Analysis::set_driven_displacements(const Eigen::Ref<const Eigen::VectorXd>& values) {
+  if (values.size() != driven_displacements_.size())
+    throw ModelError("got " + std::to_string(values.size()) + " driven displacements for " +
+                     std::to_string(driven_displacements_.size()) + " driven DOFs");
+  if (!values.allFinite()) throw ModelError("driven displacements must be finite");
+  driven_displacements_ = values;
+}
+
+void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const {
+  for (size_t i = 0; i < driven_dofs_.size(); ++i) forces[static_cast<Eigen::Index>(i)] = residual_all_[driven_dofs_[i]];
+}
+
+const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
+  if (!trial_pending_ || !driven_solver_) throw ModelError("the driven tangent needs a solved trial step");
+  driven_solver_->factorize(assembler_.tangent());
+  return driven_solver_->schur_complement();
 }
 
 void Analysis::size_state() {
@@ -91,6 +147,10 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
   double reaction_squared = 0.0;
   for (const auto& constraint : model_.prescribed_dofs())
     reaction_squared += residual_all_[constraint.dof] * residual_all_[constraint.dof];
+  for (int dof : driven_dofs_) {  // held where the host puts them: their residuals are reactions
+    reaction_squared += residual_all_[dof] * residual_all_[dof];
+    free_residual[dofs.equation(dof)] = 0.0;
+  }
   force_level = std::max(external_new_.norm(), std::sqrt(reaction_squared));
 }
 
@@ -111,6 +171,10 @@ bool Analysis::try_step(double step, StepRecord& record) {
   model_.apply_prescribed_displacements(trial_.time, trial_);
   for (const auto& constraint : model_.prescribed_dofs())
     integrator_.update_rates(committed_, step, constraint.dof, trial_);
+  for (size_t i = 0; i < driven_dofs_.size(); ++i) {
+    trial_.displacement[driven_dofs_[i]] = driven_displacements_[static_cast<Eigen::Index>(i)];
+    integrator_.update_rates(committed_, step, driven_dofs_[i], trial_);
+  }
   model_.external_forces(trial_.time, external_new_);
   if (integrator_.old_force_weight() != 0.0 && !old_forces_valid_) {
     // g_n = f_int(u_n) + C v_n at the committed state, for HHT's weighting.
@@ -123,14 +187,15 @@ bool Analysis::try_step(double step, StepRecord& record) {
     old_forces_valid_ = true;
   }
   try {
-    const NewtonReport* report = &newton_.solve(*this, *linear_solver_);
+    LinearSolver& linear_solver = newton_linear_solver();
+    const NewtonReport* report = &newton_.solve(*this, linear_solver);
     record.newton_iterations = report->iterations;
     record.augmentations = 0;
     // Augmented Lagrangian: update the multipliers and solve again until the
     // constraints are met to their tolerance (or the augmentation budget is spent).
     while (record.augmentations < control_.max_augmentations && model_.augment()) {
       ++record.augmentations;
-      report = &newton_.solve(*this, *linear_solver_);
+      report = &newton_.solve(*this, linear_solver);
       record.newton_iterations += report->iterations;
     }
     record.residual = report->residual_norms.back();
@@ -166,6 +231,7 @@ void Analysis::finish_step(double step) {
   const double work = step_work();  // before the reactions and the state move on
   reactions_.setZero(model_.mesh().dof_count());
   for (const auto& constraint : model_.prescribed_dofs()) reactions_[constraint.dof] = residual_all_[constraint.dof];
+  for (int dof : driven_dofs_) reactions_[dof] = residual_all_[dof];
   reactions_valid_ = true;
   model_.commit_history();
   std::swap(committed_, trial_);
@@ -190,6 +256,7 @@ double Analysis::step_work() const {
     const int dof = constraint.dof;
     work += 0.5 * (reactions_[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
   }
+  for (int dof : driven_dofs_) work += 0.5 * (reactions_[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
   return work;
 }
 
@@ -218,7 +285,7 @@ void Analysis::update_committed_reactions() {
   // Physical residual M a + C v + f_int - F at the committed state (no inertia quasi-statically).
   reactions_.setZero(model_.mesh().dof_count());
   reactions_valid_ = true;
-  if (model_.prescribed_dofs().empty()) return;
+  if (model_.prescribed_dofs().empty() && driven_dofs_.empty()) return;
   EvaluationContext context;
   context.time = committed_.time;
   context.time_step = current_step_;
@@ -230,6 +297,7 @@ void Analysis::update_committed_reactions() {
   model_.external_forces(committed_.time, external_old_);
   for (const auto& constraint : model_.prescribed_dofs())
     reactions_[constraint.dof] = residual_all_[constraint.dof] - external_old_[constraint.dof];
+  for (int dof : driven_dofs_) reactions_[dof] = residual_all_[dof] - external_old_[dof];
 }
 
 Eigen::VectorXd& Analysis::initial_field(Eigen::VectorXd State::*field, const char* what) {
@@ -276,11 +344,50 @@ void Analysis::set_initial_velocity(const Eigen::VectorXd& velocity) {
   set_field(initial_field(&State::velocity, "velocity"), velocity, "velocity");
 }
 
-const std::vector<StepRecord>& Analysis::advance(double duration) {
+void Analysis::start_steps() {
+  discard_trial_step();
   prepare();
   if (acceleration_pending_) initialize_acceleration();
   if (!reactions_valid_) update_committed_reactions();
   if (!energy_started_) start_energy_bookkeeping();
+}
+
+void Analysis::record_step(double step, StepRecord& record) {
+  finish_step(step);
+  record.step = accepted_steps_;
+  record.time = committed_.time;
+  record.step_size = step;
+  record.energy = energy_;
+  for (const auto& observer : observers_) observer(*this, record);
+}
+
+const StepRecord& Analysis::solve_trial_step(double step) {
+  if (!(step > 0.0) || !std::isfinite(step))
+    throw ModelError("the time step must be positive and finite (got " + std::to_string(step) + ")");
+  start_steps();
+  trial_record_ = StepRecord{};
+  if (!try_step(step, trial_record_))
+    throw StepFailure("the step from t = " + std::to_string(committed_.time) + " (dt = " + std::to_string(step) +
+                      ") failed: " + last_failure_);
+  trial_pending_ = true;
+  trial_step_size_ = step;
+  return trial_record_;
+}
+
+void Analysis::accept_trial_step() {
+  if (!trial_pending_) throw ModelError("there is no trial step to accept");
+  trial_pending_ = false;
+  record_step(trial_step_size_, trial_record_);
+}
+
+void Analysis::discard_trial_step() {
+  if (!trial_pending_) return;
+  model_.revert_history();
+  trial_pending_ = false;
+}
+
+const std::vector<StepRecord>& Analysis::advance(double duration) {
+  start_steps();
   records_.clear();
   if (duration <= 0.0) duration = nominal_step_;
   const double start = committed_.time;
@@ -305,13 +412,8 @@ const std::vector<StepRecord>& Analysis::advance(double duration) {
       }
       step = cut;
     }
-    finish_step(step);
-    record.step = accepted_steps_;
-    record.time = committed_.time;
-    record.step_size = step;
-    record.energy = energy_;
+    record_step(step, record);
     records_.push_back(record);
-    for (const auto& observer : observers_) observer(*this, record);
     // Grow back toward the nominal step after an easy convergence.
     if (record.newton_iterations <= control_.easy_iterations)
       step = std::min(nominal_step_, step * control_.growth);

@@ -23,6 +23,7 @@
 
 #include "core/assembler.hpp"
 #include "core/model.hpp"
+#include "solvers/driven_solver.hpp"
 #include "solvers/integrator.hpp"
 #include "solvers/linear_solver.hpp"
 #include "solvers/newton.hpp"
@@ -123,6 +124,35 @@ class Analysis : private StepEquations {
   /// The RingSolver in use, for its border Schur complement; null while KLU solves.
   RingSolver* ring_solver() { return dynamic_cast<RingSolver*>(linear_solver_.get()); }
 
+  /// Driven DOFs (docs/spindle.md): free DOFs whose displacement at the end of each
+  /// step a host gives (a vehicle moving a tire's spindle). Newton solves the other
+  /// equations with the factors of the whole tangent (DrivenDofSolver); the driven DOFs'
+  /// residuals are the forces that hold them there. At most one node's DOFs, dynamic
+  /// integrators only (the tangent must be regular). An empty list ends the driving.
+  void drive_dofs(std::vector<int> dofs);
+  const std::vector<int>& driven_dofs() const { return driven_dofs_; }
+  /// Displacements of the driven DOFs at the end of the next step, in drive_dofs' order.
+  void set_driven_displacements(const Eigen::Ref<const Eigen::VectorXd>& values);
+
+  /// One step of size 'step' from the committed state, kept as a trial: the committed
+  /// state and element history stay as they are until accept_trial_step(); another
+  /// solve_trial_step() starts again from them (no step cuts; throws StepFailure).
+  const StepRecord& solve_trial_step(double step);
+  /// Commits the trial step as advance() commits a step (observers hear of it).
+  void accept_trial_step();
+  /// Forgets the trial step.
+  void discard_trial_step();
+  bool has_trial_step() const { return trial_pending_; }
+  /// The trial state of the last solve_trial_step().
+  const State& trial_state() const { return trial_; }
+  /// Residuals at the driven DOFs of the converged trial step: the forces that hold
+  /// them, HHT-weighted like the step's equations (the reactions once accepted).
+  void driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const;
+  /// H = K_ss - K_su K_uu^-1 K_us of the effective tangent at the converged trial step
+  /// over the driven DOFs (MODEL.md eq. 27): the Jacobian of driven_forces() with
+  /// respect to the driven displacements. One factorization of the converged tangent.
+  const DrivenDofSolver::SmallMatrix& driven_tangent();
+
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
     observers_.push_back(std::move(observer));
   }
@@ -130,6 +160,9 @@ class Analysis : private StepEquations {
  private:
   void prepare();
   void size_state();
+  void start_steps();
+  void record_step(double step, StepRecord& record);
+  LinearSolver& newton_linear_solver();
   bool try_step(double step, StepRecord& record);
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
@@ -163,6 +196,13 @@ class Analysis : private StepEquations {
   EnergyRecord energy_;
   int accepted_steps_ = 0;
   std::vector<StepRecord> records_;
+  std::vector<int> driven_dofs_;
+  Eigen::VectorXd driven_displacements_;
+  std::unique_ptr<DrivenDofSolver> driven_solver_;
+  int driven_pattern_ = -1;  // the pattern driven_solver_ was built for
+  bool trial_pending_ = false;
+  double trial_step_size_ = 0.0;
+  StepRecord trial_record_;
   std::vector<std::function<void(const Analysis&, const StepRecord&)>> observers_;
 };
 

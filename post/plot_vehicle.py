@@ -1,0 +1,64 @@
+#!/usr/bin/env python3
+"""Plots the spindle forces of a vehicle run around an event (the pothole) and their
+spectra: Fx and Fz of the given corner result files (inputs/vehicle_pothole.lua writes
+vehicle_pothole_<corner>.h5) in a time window, and the amplitude spectrum of each force
+in that window (mean removed, Hann window), where wheel hop (~10 Hz) and the first
+vertical tire mode (~90 Hz) show. Writes <first file stem>_spindle.png.
+
+    /usr/bin/python3 post/plot_vehicle.py START END results/vehicle_pothole_LF.h5 results/vehicle_pothole_LR.h5
+"""
+import os
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def spectrum(time, values):
+    """Amplitude spectrum of a signal on a uniform grid (resampled if the steps were cut)."""
+    grid = np.linspace(time[0], time[-1], len(time))
+    uniform = np.interp(grid, time, values)
+    uniform = (uniform - uniform.mean()) * np.hanning(len(uniform))
+    amplitude = 2.0 * np.abs(np.fft.rfft(uniform)) / (0.5 * len(uniform))
+    return np.fft.rfftfreq(len(uniform), grid[1] - grid[0]), amplitude
+
+
+def main(arguments):
+    if len(arguments) < 3:
+        print(__doc__)
+        return 2
+    start, end, files = float(arguments[0]), float(arguments[1]), arguments[2:]
+    figure, axes = plt.subplots(2, 2, figsize=(11, 7))
+    for path in files:
+        with h5py.File(path, "r") as result:
+            history = result["history"]
+            time = history["time"][:]
+            window = (time >= start) & (time <= end)
+            label = os.path.splitext(os.path.basename(path))[0].split("_")[-1]
+            for row, channel in enumerate(("spindle_fx", "spindle_fz")):
+                force = -history[channel][:][window]  # the force the tire applies to the car
+                axes[row, 0].plot(time[window], force, label=label)
+                frequency, amplitude = spectrum(time[window], force)
+                axes[row, 1].semilogy(frequency, amplitude, label=label)
+    for row, name in enumerate(("Fx (longitudinal)", "Fz (vertical)")):
+        axes[row, 0].set_ylabel(name + " [N]")
+        axes[row, 1].set_ylabel("amplitude [N]")
+        axes[row, 1].set_xlim(0, 200)
+        for axis in axes[row]:
+            axis.grid(True, alpha=0.3)
+            axis.legend()
+    axes[1, 0].set_xlabel("time [s]")
+    axes[1, 1].set_xlabel("frequency [Hz]")
+    figure.tight_layout()
+    output = os.path.splitext(files[0])[0] + "_spindle.png"
+    figure.savefig(output, dpi=120)
+    print(output)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,55 @@
+// DrivenDofSolver: Newton's linear solves with some free equations driven from outside
+// (the spindle of a tire whose motion a vehicle prescribes), and the Schur complement
+// of the tangent onto those equations (MODEL.md section 6, eqs. 25-27).
+//
+// Partition the effective tangent A over the free equations into the driven equations
+// s and all others u. Newton then solves A_uu x_u = b_u with x_s = 0, and the driven
+// equations' residuals are the forces that hold them (the spindle force, eqs. 28-30).
+// Both come from the factors of the whole A, which any LinearSolver provides: with
+// the |s| columns Z = A^-1 [0; I] (one solve with the factors),
+//     Z_s = H^-1,  H = A_ss - A_su A_uu^-1 A_us          (eq. 27, the spindle Jacobian)
+//     Z_u = -A_uu^-1 A_us H^-1,
+// and a solve of A [y_u; y_s] = [b_u; 0] gives A_uu^-1 b_u = y_u - Z_u H y_s.
+// A must be regular (a dynamic tangent is: the driven node has mass).
+#pragma once
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "solvers/linear_solver.hpp"
+
+namespace tirefe {
+
+class DrivenDofSolver final : public LinearSolver {
+ public:
+  /// At most one node's DOFs are driven, so H lives on the stack.
+  static constexpr int kMaxDriven = 3;
+  using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxDriven, kMaxDriven>;
+  using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxDriven, 1>;
+
+  /// 'inner' factors the whole tangent and must outlive this solver; 'driven' are the
+  /// equation numbers held at their current values.
+  DrivenDofSolver(LinearSolver& inner, std::vector<int> driven);
+
+  void analyze(const Matrix& pattern) override;
+  void factorize(const Matrix& matrix) override;
+  /// x_u = A_uu^-1 b_u, x_s = 0.
+  void solve(Eigen::VectorXd& right_hand_side) const override;
+  void solve(Eigen::MatrixXd& right_hand_sides) const override;
+  const char* name() const override { return inner_.name(); }
+
+  /// H = A_ss - A_su A_uu^-1 A_us over the driven equations, in their given order,
+  /// of the last factorized matrix.
+  const SmallMatrix& schur_complement() const { return schur_; }
+  const std::vector<int>& driven_equations() const { return driven_; }
+
+ private:
+  LinearSolver& inner_;
+  std::vector<int> driven_;
+  Eigen::MatrixXd columns_;   // Z = A^-1 [0; I]
+  Eigen::MatrixXd coupling_;  // Z_u H = -A_uu^-1 A_us (rows over every equation, 0 at s)
+  SmallMatrix schur_;         // H
+  mutable SmallVector driven_part_;
+};
+
+}  // namespace tirefe

@@ -1,0 +1,52 @@
+// TireGroup: the tires of a vehicle behind their spindles, asked together. Every
+// request of a round goes to its own tire; with concurrency each tire but the first is
+// solved by its own worker thread (started once, waiting between rounds) while the
+// calling thread solves the first. The tires share nothing, so the replies are those
+// of a sequential round, bit for bit. A tire in another process would sit behind the
+// same requests and replies (spindle_exchange.hpp, docs/spindle.md).
+#pragma once
+
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "vehicle/tire_spindle.hpp"
+
+namespace tirefe {
+
+class TireGroup {
+ public:
+  /// The spindles must outlive the group.
+  TireGroup(std::vector<TireSpindle*> tires, bool concurrent);
+  ~TireGroup();
+  TireGroup(const TireGroup&) = delete;
+  TireGroup& operator=(const TireGroup&) = delete;
+
+  int size() const { return static_cast<int>(tires_.size()); }
+  TireSpindle& tire(int i) { return *tires_[i]; }
+  bool concurrent() const { return concurrent_; }
+
+  /// replies[i] = tire i's answer to requests[i].
+  void serve(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies);
+  /// The same command to every tire.
+  void serve_all(SpindleCommand command, std::vector<SpindleReply>& replies);
+
+ private:
+  void work(size_t tire);
+
+  std::vector<TireSpindle*> tires_;
+  bool concurrent_;
+  std::vector<SpindleRequest> commands_;
+  // The round the workers serve: set under the mutex, read by the workers after it.
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable start_, done_;
+  long round_ = 0;
+  int pending_ = 0;
+  bool stopping_ = false;
+  const std::vector<SpindleRequest>* requests_ = nullptr;
+  std::vector<SpindleReply>* replies_ = nullptr;
+};
+
+}  // namespace tirefe

@@ -1,0 +1,46 @@
+#include "vehicle/tire_on_road.hpp"
+
+#include <limits>
+
+namespace tirefe {
+
+TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, const RoadContact& contact) {
+  TireParameters centred = parameters;
+  centred.centre.setZero();
+  tire_ = build_tire(model_, centred, LoadFunction::table({{0.0, 0.0}, {1.0, 1.0}}));
+  model_.condense_node(tire_.spindle);
+  for (int c = 0; c < kDofsPerNode; ++c) model_.fix(tire_.spindle, c);
+  analysis_ = std::make_unique<Analysis>(model_);
+  analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
+  analysis_->set_time_step(0.25);
+  analysis_->advance(1.0);
+
+  road_level_ = std::numeric_limits<double>::infinity();
+  for (int node : tire_.tread_nodes)
+    road_level_ = std::min(road_level_, model_.mesh().position(node).y() + analysis_->state().displacement[dof_index(node, 1)]);
+  const std::shared_ptr<const RigidSurface> surface = road(road_level_);
+  ContactParameters penalties;
+  penalties.friction = contact.friction;
+  penalties.normal_penalty = structural_penalty(*analysis_, tire_.tread_nodes, contact.penalty_factor);
+  penalties.tangential_penalty =
+      structural_tangential_penalty(*analysis_, tire_.tread_nodes, *surface, contact.tangential_factor);
+  contact_ = &add_contact_block(model_, "contact", surface, tire_.tread_nodes, penalties, analysis_->state().time);
+}
+
+double TireOnRoad::press(double deflection) {
+  if (spindle_) throw ModelError("the tire is driven by its spindle already: press it before drive()");
+  const double time = analysis_->state().time;
+  const double now = analysis_->state().displacement[dof_index(tire_.spindle, 1)];
+  model_.prescribe(tire_.spindle, 1, 1.0,
+                   model_.add_load_function(LoadFunction::table({{time, now}, {time + 1.0, -deflection}})));
+  analysis_->advance(1.0);
+  return analysis_->reactions()[dof_index(tire_.spindle, 1)];
+}
+
+TireSpindle& TireOnRoad::drive(const Integrator& integrator, SpinMode spin) {
+  analysis_->set_integrator(integrator);
+  spindle_ = std::make_unique<TireSpindle>(*analysis_, tire_.spindle, spin);
+  return *spindle_;
+}
+
+}  // namespace tirefe

@@ -1,0 +1,61 @@
+// TireOnRoad: a tire model ready to be driven through its spindle. Builds the ring tire
+// with its spindle at the origin and held, inflates it quasi-statically (1 s, the hub
+// held: a free hub has rigid-body modes quasi-statically), puts the road under the
+// inflated tire, touching its lowest tread node, and adds Coulomb contact with the
+// structure's default penalties (node_contact.hpp). The spindle is condensed and the
+// RingSolver solves. press() then loads it quasi-statically, and drive() makes it
+// dynamic and hands the spindle to a TireSpindle for a host.
+#pragma once
+
+#include <functional>
+#include <memory>
+
+#include "contact/node_contact.hpp"
+#include "contact/rigid_surface.hpp"
+#include "solvers/analysis.hpp"
+#include "tire/tire_builder.hpp"
+#include "vehicle/tire_spindle.hpp"
+
+namespace tirefe {
+
+struct RoadContact {
+  double friction = 0.0;
+  double penalty_factor = 1.0;     // normal penalty / largest diagonal stiffness at the tread nodes
+  double tangential_factor = 1.0;  // tangential penalty / smallest tangential stiffness there
+};
+
+class TireOnRoad {
+ public:
+  /// The road at the height 'level' of the inflated tire's lowest point (the spindle is
+  /// at y = 0), in the frame where the tire stands still.
+  using RoadMaker = std::function<std::shared_ptr<const RigidSurface>(double level)>;
+
+  TireOnRoad(const TireParameters& parameters, const RoadMaker& road, const RoadContact& contact);
+  TireOnRoad(const TireOnRoad&) = delete;
+  TireOnRoad& operator=(const TireOnRoad&) = delete;
+
+  /// Moves the held spindle quasi-statically (in 1 s of model time) to 'deflection'
+  /// below its design position [m]; returns the vertical spindle force then [N] (the
+  /// force on the tire: negative when pressed).
+  double press(double deflection);
+  /// Switches the tire to 'integrator' (dynamic) and hands its spindle to a TireSpindle.
+  TireSpindle& drive(const Integrator& integrator, SpinMode spin = SpinMode::Free);
+  TireSpindle& spindle() { return *spindle_; }
+
+  Model& model() { return model_; }
+  Analysis& analysis() { return *analysis_; }
+  const Tire& tire() const { return tire_; }
+  /// Height of the road below the spindle at the end of inflation (negative) [m].
+  double road_level() const { return road_level_; }
+  const ContactBlock& contact() const { return *contact_; }
+
+ private:
+  Model model_;
+  Tire tire_;
+  std::unique_ptr<Analysis> analysis_;
+  double road_level_ = 0.0;
+  const ContactBlock* contact_ = nullptr;
+  std::unique_ptr<TireSpindle> spindle_;
+};
+
+}  // namespace tirefe

@@ -1,0 +1,74 @@
+#include "vehicle/tire_spindle.hpp"
+
+#include <cstring>
+#include <exception>
+
+namespace tirefe {
+
+TireSpindle::TireSpindle(Analysis& analysis, int spindle, SpinMode spin)
+    : analysis_(analysis), spindle_(analysis.model().mesh().checked(spindle)), spin_(spin),
+      driven_count_(spin == SpinMode::Free ? 2 : 3) {
+  if (!analysis.integrator().is_dynamic())
+    throw ModelError("the spindle force needs a dynamic tire analysis (Newmark or HHT)");
+  Model& model = analysis.model();
+  std::vector<int> dofs;
+  for (int c = 0; c < kDofsPerNode; ++c) model.release(spindle_, c);
+  for (int c = 0; c < driven_count_; ++c) dofs.push_back(dof_index(spindle_, c));
+  analysis.drive_dofs(std::move(dofs));
+}
+
+Eigen::Vector3d TireSpindle::committed_position() const {
+  const Eigen::Vector2d& reference = analysis_.model().mesh().position(spindle_);
+  const Eigen::VectorXd& u = analysis_.state().displacement;
+  const int first = dof_index(spindle_, 0);
+  return {reference.x() + u[first], reference.y() + u[first + 1], u[first + 2]};
+}
+
+Eigen::Vector3d TireSpindle::committed_force() const {
+  return analysis_.reactions().segment<3>(dof_index(spindle_, 0));
+}
+
+const SpindleReply& TireSpindle::solve_step(const SpindleInput& input) {
+  const Eigen::Vector2d& reference = analysis_.model().mesh().position(spindle_);
+  const Eigen::Vector3d target(input.x - reference.x(), input.y - reference.y(), input.spin);
+  analysis_.set_driven_displacements(target.head(driven_count_));
+  const StepRecord& record = analysis_.solve_trial_step(input.time_step);
+  reply_ = SpindleReply{};
+  reply_.time = analysis_.trial_state().time;
+  reply_.newton_iterations = record.newton_iterations;
+  reply_.augmentations = record.augmentations;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  analysis_.driven_forces(force.head(driven_count_));
+  force_of(reply_) = force;
+  jacobian_of(reply_).topLeftCorner(driven_count_, driven_count_) = analysis_.driven_tangent();
+  return reply_;
+}
+
+void TireSpindle::commit() { analysis_.accept_trial_step(); }
+
+void TireSpindle::revert() { analysis_.discard_trial_step(); }
+
+SpindleReply TireSpindle::serve(const SpindleRequest& request) {
+  try {
+    switch (request.command) {
+      case SpindleCommand::Solve:
+        return solve_step(request.input);
+      case SpindleCommand::Commit:
+        commit();
+        break;
+      case SpindleCommand::Revert:
+        revert();
+        break;
+    }
+    SpindleReply reply;
+    reply.time = analysis_.state().time;
+    return reply;
+  } catch (const std::exception& failure) {
+    SpindleReply reply;
+    reply.status = SpindleStatus::Failed;
+    std::strncpy(reply.message, failure.what(), sizeof reply.message - 1);
+    return reply;
+  }
+}
+
+}  // namespace tirefe

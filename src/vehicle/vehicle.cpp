@@ -1,0 +1,248 @@
+#include "vehicle/vehicle.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "solvers/analysis.hpp"
+
+namespace tirefe {
+
+namespace {
+
+/// A tire that could not solve its step: the vehicle cuts its step.
+struct TireFailure {
+  std::string message;
+};
+
+constexpr int kMaxBacktracks = 4;
+
+}  // namespace
+
+Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireGroup& tires, VehicleSettings settings)
+    : body_(std::move(body)), corners_(std::move(corners)), tires_(tires), settings_(settings),
+      integrator_(settings.alpha == 0.0 ? Integrator::newmark() : Integrator::hht(settings.alpha)) {
+  if (corners_.empty()) throw ModelError("a vehicle needs at least one corner");
+  if (tires_.size() != static_cast<int>(corners_.size()))
+    throw ModelError("a vehicle with " + std::to_string(corners_.size()) + " corners needs as many tires (got " +
+                     std::to_string(tires_.size()) + ")");
+  if (!(body_.mass > 0.0)) throw ModelError("the body mass must be positive");
+  body_dofs_ = corners_.size() == 1 ? 1 : 3;
+  if (body_dofs_ == 3 && !(body_.pitch_inertia > 0.0 && body_.roll_inertia > 0.0))
+    throw ModelError("a vehicle with several corners needs positive pitch and roll inertias");
+  const int dofs = body_dofs_ + 2 * static_cast<int>(corners_.size());
+  mass_.setZero(dofs);
+  weight_.setZero(dofs);
+  mass_[0] = body_.mass;
+  weight_[0] = body_.mass * settings_.gravity;
+  if (body_dofs_ == 3) {
+    mass_[1] = body_.pitch_inertia;
+    mass_[2] = body_.roll_inertia;
+  }
+  for (size_t i = 0; i < corners_.size(); ++i) {
+    const Corner& corner = corners_[i];
+    if (!(corner.mass > 0.0)) throw ModelError("corner '" + corner.name + "': the carrier mass must be positive");
+    mass_[wheel_vertical_dof(static_cast<int>(i))] = mass_[wheel_fore_aft_dof(static_cast<int>(i))] = corner.mass;
+    weight_[wheel_vertical_dof(static_cast<int>(i))] = corner.mass * settings_.gravity;
+    if (tires_.tire(static_cast<int>(i)).spin() != SpinMode::Free)
+      throw ModelError("corner '" + corner.name + "': the tire's spin must be free (no drive torque)");
+    design_spindle_.push_back(tires_.tire(static_cast<int>(i)).committed_position().head<2>());
+  }
+  for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(dofs);  // jounce d = z_w - (z + x_i theta + y_i phi)
+    b[wheel_vertical_dof(i)] = 1.0;
+    b[0] = -1.0;
+    if (body_dofs_ == 3) {
+      b[1] = -corners_[i].x;
+      b[2] = -corners_[i].y;
+    }
+    attachments_.push_back(b);
+  }
+  committed_.resize(dofs);
+  committed_.time = tires_.tire(0).time();
+  trial_ = committed_;
+  requests_.resize(corners_.size());
+  jacobian_.setZero(dofs, dofs);
+  factors_ = Eigen::PartialPivLU<Eigen::MatrixXd>(dofs);
+  perturbed_forces_.resize(2 * corners_.size());
+  spindle_jacobians_.assign(corners_.size(), Eigen::Matrix2d::Zero());
+}
+
+void Vehicle::set_initial_state(const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity) {
+  if (started_) throw ModelError("initial conditions are set before the first step");
+  if (displacement.size() != dof_count() || velocity.size() != dof_count())
+    throw ModelError("initial state: expected " + std::to_string(dof_count()) + " values");
+  committed_.displacement = displacement;
+  committed_.velocity = velocity;
+}
+
+double Vehicle::jounce(int corner) const { return attachment(corner).dot(committed_.displacement); }
+
+void Vehicle::suspension_forces(const State& state, Eigen::VectorXd& forces) const {
+  forces.setZero(dof_count());
+  for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+    const Suspension& s = corners_[i].suspension;
+    const Eigen::VectorXd& b = attachment(i);
+    const double d = b.dot(state.displacement), rate = b.dot(state.velocity);
+    const double bump = d > s.bumper_gap ? s.bumper_stiffness * (d - s.bumper_gap) * (d - s.bumper_gap) : 0.0;
+    forces.noalias() += (s.spring(d) + s.damper(rate) + bump) * b;  // pushes the body up and the carrier down
+    const int x = wheel_fore_aft_dof(i);
+    forces[x] += s.fore_aft_stiffness * state.displacement[x] + s.fore_aft_damping * state.velocity[x];
+  }
+}
+
+void Vehicle::suspension_tangent(const State& state, double stiffness_factor, double damping_factor,
+                                 Eigen::MatrixXd& tangent) const {
+  for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+    const Suspension& s = corners_[i].suspension;
+    const Eigen::VectorXd& b = attachment(i);
+    const double d = b.dot(state.displacement), rate = b.dot(state.velocity);
+    const double bump = d > s.bumper_gap ? 2.0 * s.bumper_stiffness * (d - s.bumper_gap) : 0.0;
+    const double k = stiffness_factor * (s.spring.derivative(d) + bump) + damping_factor * s.damper.derivative(rate);
+    tangent.noalias() += k * b * b.transpose();
+    const int x = wheel_fore_aft_dof(i);
+    tangent(x, x) += stiffness_factor * s.fore_aft_stiffness + damping_factor * s.fore_aft_damping;
+  }
+}
+
+void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement) {
+  for (size_t i = 0; i < corners_.size(); ++i) {
+    SpindleRequest& request = requests_[i];
+    request.command = SpindleCommand::Solve;
+    request.input.time_step = h;
+    request.input.x = design_spindle_[i].x() + displacement[wheel_fore_aft_dof(static_cast<int>(i))];
+    request.input.y = design_spindle_[i].y() + displacement[wheel_vertical_dof(static_cast<int>(i))];
+  }
+}
+
+void Vehicle::solve_tires(double h) {
+  auto serve = [this]() {
+    tires_.serve(requests_, replies_);
+    for (const SpindleReply& reply : replies_) {
+      if (reply.status == SpindleStatus::Failed) throw TireFailure{reply.message};
+      ++statistics_.tire_solves;
+      statistics_.tire_newton_iterations += reply.newton_iterations;
+    }
+  };
+  const size_t count = corners_.size();
+  if (settings_.jacobian == SpindleJacobianSource::FiniteDifference) {
+    // Perturbed solves first, so that the last trial of every tire is at q itself.
+    for (int column = 0; column < 2; ++column) {
+      request_positions(h, trial_.displacement);
+      for (auto& request : requests_) (column == 0 ? request.input.x : request.input.y) += settings_.difference_step;
+      serve();
+      for (size_t i = 0; i < count; ++i) perturbed_forces_[2 * i + column] = Eigen::Vector2d(replies_[i].force[0], replies_[i].force[1]);
+    }
+    request_positions(h, trial_.displacement);
+    serve();
+    for (size_t i = 0; i < count; ++i) {
+      const Eigen::Vector2d base(replies_[i].force[0], replies_[i].force[1]);
+      for (int column = 0; column < 2; ++column)
+        spindle_jacobians_[i].col(column) = (perturbed_forces_[2 * i + column] - base) / settings_.difference_step;
+    }
+    return;
+  }
+  request_positions(h, trial_.displacement);
+  serve();
+  for (size_t i = 0; i < count; ++i) spindle_jacobians_[i] = jacobian_of(replies_[i]).topLeftCorner<2, 2>();
+}
+
+void Vehicle::initialize_acceleration() {
+  // M a_0 = -(f(q_0, v_0) + W + sum P^T f_s) with the tires' committed spindle forces.
+  suspension_forces(committed_, forces_);
+  residual_ = forces_ + weight_;
+  for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+    const Eigen::Vector3d force = spindle_force(i);
+    residual_[wheel_fore_aft_dof(i)] += force.x();
+    residual_[wheel_vertical_dof(i)] += force.y();
+  }
+  committed_.acceleration = -residual_.cwiseQuotient(mass_);
+  old_forces_ = forces_;
+  started_ = true;
+}
+
+bool Vehicle::try_step(double h) {
+  const double alpha = integrator_.alpha(), beta = integrator_.beta(), gamma = integrator_.gamma();
+  const double reference = weight_.sum();
+  integrator_.predict(committed_, h, trial_);
+  for (int iteration = 0;; ++iteration) {
+    // A tire that cannot reach the corrected position (a wild Newton increment near an
+    // impact) gets half the increment instead, a few times, before the step is cut.
+    for (int backtrack = 0;; ++backtrack) {
+      for (int dof = 0; dof < dof_count(); ++dof) integrator_.update_rates(committed_, h, dof, trial_);
+      try {
+        solve_tires(h);
+        break;
+      } catch (const TireFailure& failure) {
+        if (iteration == 0 || backtrack == kMaxBacktracks) {
+          last_failure_ = "a tire failed: " + failure.message;
+          return false;
+        }
+        increment_ *= 0.5;
+        trial_.displacement -= increment_;
+        ++statistics_.backtracks;
+      }
+    }
+    suspension_forces(trial_, forces_);
+    residual_ = mass_.cwiseProduct(trial_.acceleration) + (1.0 + alpha) * forces_ - alpha * old_forces_ + weight_;
+    for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+      residual_[wheel_fore_aft_dof(i)] += replies_[i].force[0];
+      residual_[wheel_vertical_dof(i)] += replies_[i].force[1];
+    }
+    if (!residual_.allFinite()) {
+      last_failure_ = "the vehicle residual is not finite";
+      return false;
+    }
+    if (residual_.lpNorm<Eigen::Infinity>() <= settings_.residual_tolerance * reference) return true;
+    if (iteration == settings_.max_iterations) {
+      std::ostringstream message;
+      message << "no corrector convergence in " << iteration << " iterations (|r| = "
+              << residual_.lpNorm<Eigen::Infinity>() << " N)";
+      last_failure_ = message.str();
+      return false;
+    }
+    jacobian_ = (mass_ / (beta * h * h)).asDiagonal();
+    suspension_tangent(trial_, 1.0 + alpha, (1.0 + alpha) * gamma / (beta * h), jacobian_);
+    for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
+      const int dofs[2] = {wheel_fore_aft_dof(i), wheel_vertical_dof(i)};
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) jacobian_(dofs[r], dofs[c]) += spindle_jacobians_[i](r, c);
+    }
+    factors_.compute(jacobian_);
+    increment_.noalias() = factors_.solve(-residual_);
+    trial_.displacement += increment_;
+    ++statistics_.corrector_iterations;
+  }
+}
+
+void Vehicle::take_step(double h, int cuts) {
+  if (try_step(h)) {
+    std::swap(committed_, trial_);  // first: the tires' output may read the vehicle's new state
+    suspension_forces(committed_, old_forces_);
+    tires_.serve_all(SpindleCommand::Commit, replies_);
+    for (const SpindleReply& reply : replies_)
+      if (reply.status == SpindleStatus::Failed) throw StepFailure(std::string("a tire could not commit: ") + reply.message);
+    ++statistics_.steps;
+    for (const auto& observer : observers_) observer(*this);
+    return;
+  }
+  tires_.serve_all(SpindleCommand::Revert, replies_);
+  if (cuts >= settings_.max_cuts)
+    throw StepFailure("vehicle step from t = " + std::to_string(committed_.time) + " (dt = " + std::to_string(h) +
+                      ") failed after " + std::to_string(cuts) + " cuts: " + last_failure_);
+  ++statistics_.cuts;
+  take_step(0.5 * h, cuts + 1);
+  take_step(0.5 * h, cuts + 1);
+}
+
+void Vehicle::step(double h) {
+  if (!(h > 0.0) || !std::isfinite(h)) throw ModelError("the vehicle time step must be positive and finite");
+  if (!started_) initialize_acceleration();
+  take_step(h, 0);
+}
+
+void Vehicle::advance(double duration, double h) {
+  const double target = committed_.time + duration;
+  while (committed_.time < target - 1e-9 * h) step(std::min(h, target - committed_.time));
+}
+
+}  // namespace tirefe

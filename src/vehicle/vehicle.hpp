@@ -1,0 +1,147 @@
+// Vehicle: a lightweight rigid-body vehicle on FE tires (docs/vehicle.md).
+//
+// A body (heave z; with more than one corner also pitch theta and roll phi, small
+// angles) and corners. Each corner is a wheel carrier of mass m_w with two DOFs,
+// vertical z_w and fore-aft x_w, joined to the body at (x_i, y_i) from its centre of
+// mass (x forward, y left) by a suspension: a nonlinear spring and a damper table on
+// the jounce d = z_w - (z + x_i theta + y_i phi) (wheel up relative to the body), a
+// jounce bumper k_b (d - gap)^2 beyond its gap, and a fore-aft bushing (spring and
+// damper) on x_w. The body is held fore-aft: the road moves under the car. Every DOF is
+// a displacement from the design position, where the tires touch the road unloaded.
+// Gravity acts on the body and the carriers (the tires carry no weight).
+//
+// Integration: HHT-alpha (Newmark with alpha = 0), the tires' own scheme, step h.
+// Its corrector is Newton on the end-of-step displacements q:
+//     r(q) = M a + (1+alpha) f(q, v) - alpha f_n + W + sum_i P_i^T f_s,i(q) = 0,
+//     J    = M / (beta h^2) + (1+alpha) (K + gamma/(beta h) C) + sum_i P_i^T H_i P_i,
+// with f the suspension forces, W the weights, f_s,i the spindle force of tire i (the
+// force the carrier applies to the tire, HHT-weighted by the tire: docs/spindle.md), P_i
+// picking carrier i's (x_w, z_w), and H_i the tire's spindle Jacobian (eq. 27) or, for
+// comparison, its forward finite difference (two more tire solves per tire).
+#pragma once
+
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/state.hpp"
+#include "solvers/integrator.hpp"
+#include "vehicle/force_curve.hpp"
+#include "vehicle/tire_group.hpp"
+
+namespace tirefe {
+
+struct Suspension {
+  ForceCurve spring;              // force [N] on the body (up) vs jounce d [m]
+  ForceCurve damper;              // force [N] on the body (up) vs jounce rate [m/s]
+  double bumper_gap = 0.0;        // jounce where the bumper starts [m]
+  double bumper_stiffness = 0.0;  // k_b: bumper force k_b (d - gap)^2 [N/m^2]
+  double fore_aft_stiffness = 0.0;  // carrier to body along x [N/m]
+  double fore_aft_damping = 0.0;    // [N s/m]
+};
+
+struct Corner {
+  std::string name;
+  double x = 0.0, y = 0.0;  // attachment from the body's centre of mass: forward, left [m]
+  double mass = 0.0;        // wheel carrier, without the tire (the tire model carries its rim) [kg]
+  Suspension suspension;
+};
+
+struct Body {
+  double mass = 0.0;           // sprung mass [kg]
+  double pitch_inertia = 0.0;  // about the lateral axis through the centre of mass [kg m^2]
+  double roll_inertia = 0.0;   // about the longitudinal axis [kg m^2]
+};
+
+enum class SpindleJacobianSource { Direct, FiniteDifference };
+
+struct VehicleSettings {
+  double gravity = 9.81;           // [m/s^2]
+  double alpha = 0.0;              // HHT alpha, as the tires' integrator
+  double residual_tolerance = 1e-8;  // on |r|_inf / total weight
+  int max_iterations = 25;           // corrector iterations before the step is cut
+  int max_cuts = 4;                  // halvings of one step
+  SpindleJacobianSource jacobian = SpindleJacobianSource::Direct;
+  double difference_step = 1e-7;  // spindle perturbation of the finite-difference Jacobian [m]
+};
+
+struct VehicleStatistics {
+  int steps = 0;
+  int corrector_iterations = 0;   // Newton iterations of the vehicle (Jacobian solves)
+  int tire_solves = 0;            // spindle solves, each tire counted
+  long tire_newton_iterations = 0;
+  int cuts = 0;
+  int backtracks = 0;  // corrector increments halved because a tire could not follow
+};
+
+class Vehicle {
+ public:
+  /// Corner i rides on tires.tire(i) (spin free), whose current spindle position is the
+  /// design position. A single corner makes a quarter car (heave only); more add pitch
+  /// and roll. Starts at rest at the design position unless set_initial_state() says otherwise.
+  Vehicle(Body body, std::vector<Corner> corners, TireGroup& tires, VehicleSettings settings);
+
+  int dof_count() const { return static_cast<int>(mass_.size()); }
+  int body_dofs() const { return body_dofs_; }
+  /// DOF numbers: body heave 0, pitch 1, roll 2 (with pitch and roll); corner i's
+  /// z_w and x_w follow the body's.
+  int wheel_vertical_dof(int corner) const { return body_dofs_ + 2 * corner; }
+  int wheel_fore_aft_dof(int corner) const { return body_dofs_ + 2 * corner + 1; }
+
+  /// Displacements and velocities before the first step (accelerations follow from equilibrium).
+  void set_initial_state(const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity);
+
+  /// Advances by one step h (cut into halves if the corrector fails; throws StepFailure).
+  void step(double h);
+  void advance(double duration, double h);
+
+  const State& state() const { return committed_; }
+  double time() const { return committed_.time; }
+  /// Jounce of a corner's suspension at the committed state [m].
+  double jounce(int corner) const;
+  /// Spindle force of tire i at the committed state (the force on the tire, physical).
+  Eigen::Vector3d spindle_force(int corner) const { return tires_.tire(corner).committed_force(); }
+  const VehicleStatistics& statistics() const { return statistics_; }
+  VehicleSettings& settings() { return settings_; }
+  const std::vector<Corner>& corners() const { return corners_; }
+  /// Called after every accepted step.
+  void add_step_observer(std::function<void(const Vehicle&)> observer) { observers_.push_back(std::move(observer)); }
+
+ private:
+  bool try_step(double h);
+  void take_step(double h, int cuts);
+  void solve_tires(double h);
+  void suspension_forces(const State& state, Eigen::VectorXd& forces) const;
+  void suspension_tangent(const State& state, double stiffness_factor, double damping_factor,
+                          Eigen::MatrixXd& tangent) const;
+  const Eigen::VectorXd& attachment(int corner) const { return attachments_[corner]; }  // b_i: d = b_i . q
+  void initialize_acceleration();
+  void request_positions(double h, const Eigen::VectorXd& displacement);
+
+  Body body_;
+  std::vector<Corner> corners_;
+  TireGroup& tires_;
+  VehicleSettings settings_;
+  Integrator integrator_;
+  int body_dofs_ = 1;
+  Eigen::VectorXd mass_, weight_;
+  std::vector<Eigen::Vector2d> design_spindle_;
+  State committed_, trial_;
+  Eigen::VectorXd old_forces_;  // f(q_n, v_n) for HHT
+  bool started_ = false;
+  VehicleStatistics statistics_;
+  std::vector<SpindleRequest> requests_;
+  std::vector<SpindleReply> replies_;
+  std::vector<Eigen::Matrix2d> spindle_jacobians_;  // d f_s / d (x, y) of each tire, this iteration
+  std::vector<Eigen::Vector2d> perturbed_forces_;   // finite differences: f_s at q + delta e_j
+  std::vector<Eigen::VectorXd> attachments_;
+  std::string last_failure_;
+  std::vector<std::function<void(const Vehicle&)>> observers_;
+  // Corrector work space.
+  Eigen::VectorXd residual_, forces_, increment_;
+  Eigen::MatrixXd jacobian_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> factors_;
+};
+
+}  // namespace tirefe

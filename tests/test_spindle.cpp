@@ -1,0 +1,189 @@
+// The spindle force interface (MODEL.md section 6): the condensed Jacobian H_ss against
+// central finite differences of the converged spindle force on a tire rolling with
+// friction on a moving flat road; trial solves leave the tire's history alone.
+#include <catch2/catch.hpp>
+
+#include "contact/rigid_motion.hpp"
+#include "macros/macro_table.hpp"
+#include "vehicle/tire_on_road.hpp"
+#include "vehicle/tire_spindle.hpp"
+#include "solvers/driven_solver.hpp"
+
+using namespace tirefe;
+
+namespace {
+
+constexpr double kDeflection = 0.02;  // spindle pressed down [m]
+constexpr double kStep = 1e-3;        // [s]
+constexpr double kAlpha = -0.05;
+
+/// The 145 SR-12 tire pressed 20 mm onto a road that starts moving at t = 2 s
+/// (ramped to 5 m/s in 0.05 s, mu = 0.8): the tire spins up under a dead axle, rolling
+/// with part of the patch slipping. The spin is free; the spindle is held by a TireSpindle.
+struct RollingTire {
+  TireOnRoad tire{macros::load_tire_parameters("tires.145SR12"),
+                  [](double level) {
+                    return std::make_shared<FlatRoad>(
+                        Eigen::Vector2d(0.0, level), Eigen::Vector2d::UnitX(),
+                        RigidMotion::translation(MotionFunction::ramped_rate(-5.0, 0.05, 2.0)));
+                  },
+                  RoadContact{0.8}};
+  std::unique_ptr<TireSpindle> spindle;
+  SpinMode spin_mode;
+
+  explicit RollingTire(SpinMode spin = SpinMode::Free) : spin_mode(spin) {
+    Model& model = tire.model();
+    const int press = model.add_load_function(LoadFunction::table({{1.0, 0.0}, {2.0, 1.0}}));
+    model.prescribe(tire.tire().spindle, 1, -kDeflection, press);
+    tire.analysis().set_time_step(0.25);
+    tire.analysis().advance(1.0);
+    tire.analysis().set_integrator(Integrator::hht(kAlpha));
+    spindle = std::make_unique<TireSpindle>(tire.analysis(), tire.tire().spindle, spin);
+  }
+
+  /// A driven spin turns the wheel 10% slower than free rolling on the road (braking):
+  /// the angle follows the road's travel over a rolling radius of 0.264 m.
+  double braked_spin(double time) const {
+    const double t = time - 2.0, v = 5.0, ramp = 0.05;
+    const double travel = t <= 0.0 ? 0.0 : t < ramp ? 0.5 * v * t * t / ramp : v * (t - 0.5 * ramp);
+    return -0.9 * travel / 0.264;
+  }
+  SpindleReply solve(double x, double y, double spin_offset = 0.0) {
+    const double spin = spin_mode == SpinMode::Driven ? braked_spin(spindle->time() + kStep) + spin_offset : 0.0;
+    return spindle->solve_step({kStep, x, y, spin});
+  }
+  void roll(int steps) {
+    for (int i = 0; i < steps; ++i) {
+      solve(0.0, -kDeflection);
+      spindle->commit();
+    }
+  }
+};
+
+}  // namespace
+
+TEST_CASE("spindle Jacobian H_ss equals central differences of the spindle force, rolling with friction",
+          "[spindle][vehicle]") {
+  RollingTire rolling;  // free spin
+  // Uzawa updates change the multipliers with the spindle position outside Newton; H_ss
+  // is the derivative of the step equations with the step's multipliers, so compare with them held.
+  rolling.tire.analysis().step_control().max_augmentations = 0;
+  rolling.tire.analysis().newton_settings().residual_tolerance = 1e-12;
+  rolling.roll(60);
+  const ContactSummary summary = summarize_contact(rolling.tire.contact());
+  REQUIRE(summary.nodes_in_contact >= 3);
+  CHECK(std::abs(summary.force.x()) > 0.01 * std::abs(summary.force.y()));  // friction acts in the patch
+  const double spin_rate = rolling.tire.analysis().state().velocity[dof_index(rolling.tire.tire().spindle, 2)];
+  CHECK(spin_rate < -1.0);                // the road drags the tire into rolling (clockwise)
+
+  const SpindleReply centre = rolling.solve(0.0, -kDeflection);
+  const SpindleJacobian jacobian = jacobian_of(centre);
+  CHECK(force_of(centre)[1] < -1000.0);  // the spindle is held down against the road
+  // Central differences: truncation ~ delta^2 f''' and the Newton tolerance / delta are
+  // both far below 1e-5 of the structural stiffness for delta = 1e-7 m (measured: 2e-10;
+  // the margin covers a patch-edge node whose gap changes sign within +-delta).
+  const double delta = 1e-7;
+  SpindleJacobian difference = SpindleJacobian::Zero();
+  for (int j = 0; j < 2; ++j) {
+    const double dx = j == 0 ? delta : 0.0, dy = j == 1 ? delta : 0.0;
+    const SpindleReply plus = rolling.solve(dx, -kDeflection + dy);
+    const SpindleReply minus = rolling.solve(-dx, -kDeflection - dy);
+    difference.col(j) = (force_of(plus) - force_of(minus)) / (2.0 * delta);
+  }
+  // H holds the rim's inertia m / (beta h^2) on its diagonal (exactly, in both); judge the
+  // agreement against the tire's own stiffness, what is left without it.
+  const Integrator& integrator = rolling.tire.analysis().integrator();
+  const double rim_mass = macros::load_tire_parameters("tires.145SR12").rim_mass;
+  SpindleJacobian structural = jacobian;
+  structural.diagonal().head<2>().array() -= rim_mass / (integrator.beta() * kStep * kStep);
+  const double scale = structural.topLeftCorner<2, 2>().cwiseAbs().maxCoeff();
+  const double error = (jacobian - difference).topLeftCorner<2, 2>().cwiseAbs().maxCoeff();
+  INFO("H_ss\n" << jacobian << "\nfinite differences\n" << difference << "\nstructural part\n" << structural);
+  CHECK(scale > 1e5);  // a loaded tire: of order 1e5 - 1e6 N/m
+  CHECK(error < 1e-5 * scale);
+  CHECK(jacobian.row(2).isZero());  // free spin: no moment, no rz column
+  CHECK(jacobian.col(2).isZero());
+}
+
+TEST_CASE("spindle trial solves do not advance the tire; commit and revert do what they say", "[spindle][vehicle]") {
+  RollingTire rolling;
+  rolling.roll(5);
+  const double time = rolling.spindle->time();
+  const SpindleReply first = rolling.solve(0.0, -kDeflection);
+  rolling.solve(0.001, -kDeflection - 0.002);  // a trial elsewhere ...
+  rolling.spindle->revert();
+  CHECK(rolling.spindle->time() == time);
+  const SpindleReply again = rolling.solve(0.0, -kDeflection);  // ... leaves no trace
+  CHECK((force_of(again) - force_of(first)).norm() <= 1e-9 * force_of(first).norm());
+  CHECK((jacobian_of(again) - jacobian_of(first)).norm() <= 1e-9 * jacobian_of(first).norm());
+  rolling.spindle->commit();
+  CHECK(rolling.spindle->time() == Approx(time + kStep).epsilon(1e-14));
+  CHECK((rolling.spindle->committed_position().head<2>() - Eigen::Vector2d(0.0, -kDeflection)).norm() < 1e-15);
+
+  SpindleRequest request;
+  request.command = SpindleCommand::Commit;  // nothing to commit now
+  const SpindleReply refused = rolling.spindle->serve(request);
+  CHECK(refused.status == SpindleStatus::Failed);
+  CHECK(std::string(refused.message).find("no trial step") != std::string::npos);
+}
+
+TEST_CASE("driven-DOF solves and the Schur complement equal dense linear algebra, with KLU factors",
+          "[spindle][linear]") {
+  // An unsymmetric, regular 12 x 12 sparse matrix; the last three equations are driven.
+  const int n = 12, s = 3;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    dense(i, i) = 10.0 + i;
+    dense(i, (i + 1) % n) = -2.0 + 0.1 * i;
+    dense((i + 3) % n, i) = 1.5 - 0.2 * i;
+  }
+  const SparseMatrix sparse = dense.sparseView();
+  KluSolver klu;
+  DrivenDofSolver driven(klu, {n - 3, n - 2, n - 1});
+  driven.analyze(sparse);
+  driven.factorize(sparse);
+
+  const int u = n - s;
+  const Eigen::MatrixXd schur = dense.bottomRightCorner(s, s) - dense.bottomLeftCorner(s, u) *
+                                                                    dense.topLeftCorner(u, u).lu().solve(dense.topRightCorner(u, s));
+  CHECK((Eigen::MatrixXd(driven.schur_complement()) - schur).norm() < 1e-13 * schur.norm());
+
+  Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0), x = rhs;
+  driven.solve(x);
+  const Eigen::VectorXd expected = dense.topLeftCorner(u, u).lu().solve(rhs.head(u));
+  CHECK((x.head(u) - expected).norm() < 1e-13 * expected.norm());
+  CHECK(x.tail(s).isZero(0.0));
+}
+
+TEST_CASE("spindle Jacobian H_ss with a driven spin (a braked wheel) equals central differences, moment included",
+          "[spindle][vehicle]") {
+  RollingTire rolling(SpinMode::Driven);
+  rolling.tire.analysis().step_control().max_augmentations = 0;
+  rolling.tire.analysis().newton_settings().residual_tolerance = 1e-12;
+  rolling.roll(60);
+  const SpindleReply centre = rolling.solve(0.0, -kDeflection);
+  CHECK(force_of(centre)[0] > 100.0);  // the axle holds the braked wheel against the road ...
+  CHECK(force_of(centre)[2] > 10.0);   // ... and the brake a moment against its clockwise spin
+  const double delta[3] = {1e-7, 1e-7, 1e-6};  // m, m, rad
+  SpindleJacobian difference;
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::Vector3d d = delta[j] * Eigen::Vector3d::Unit(j);
+    const SpindleReply plus = rolling.solve(d.x(), -kDeflection + d.y(), d.z());
+    const SpindleReply minus = rolling.solve(-d.x(), -kDeflection - d.y(), -d.z());
+    difference.col(j) = (force_of(plus) - force_of(minus)) / (2.0 * delta[j]);
+  }
+  const SpindleJacobian jacobian = jacobian_of(centre);
+  INFO("H_ss\n" << jacobian << "\nfinite differences\n" << difference);
+  // Column by column against the column's structural size (the rim's inertia m/(beta h^2)
+  // and I/(beta h^2) on the diagonal removed): N/m, N/m and N m/rad do not mix.
+  const TireParameters parameters = macros::load_tire_parameters("tires.145SR12");
+  const double inertia_factor = 1.0 / (rolling.tire.analysis().integrator().beta() * kStep * kStep);
+  SpindleJacobian structural = jacobian;
+  structural.diagonal() -= inertia_factor * Eigen::Vector3d(parameters.rim_mass, parameters.rim_mass,
+                                                              parameters.rim_rotary_inertia);
+  for (int j = 0; j < 3; ++j) {
+    const double scale = structural.col(j).cwiseAbs().maxCoeff();
+    CHECK(scale > 0.0);
+    CHECK((jacobian.col(j) - difference.col(j)).cwiseAbs().maxCoeff() < 1e-5 * scale);
+  }
+}

@@ -1,0 +1,157 @@
+// The vehicle module on FE tires: the quarter car's static ride height and tire load
+// against weight / stiffness, its wheel-hop frequency against the linearised two-mass
+// system, the direct spindle Jacobian against the finite-difference one (same answer,
+// fewer tire solves), and four concurrent tires against sequential ones, bit for bit.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+
+#include "contact/rigid_motion.hpp"
+#include "macros/macro_table.hpp"
+#include "vehicle/tire_on_road.hpp"
+#include "vehicle/vehicle.hpp"
+
+using namespace tirefe;
+
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kBodyMass = 300.0, kCarrierMass = 30.0;
+constexpr double kSpring = 2.0e4;  // N/m
+
+/// The 145 SR-12 tire on a still flat road (mu = 0.8).
+struct PressedTire {
+  TireOnRoad tire{macros::load_tire_parameters("tires.145SR12"),
+                  [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); },
+                  RoadContact{0.8}};
+  TireSpindle* spindle = nullptr;
+
+  double press(double deflection) { return tire.press(deflection); }
+  void drive(double alpha) { spindle = &tire.drive(Integrator::hht(alpha)); }
+};
+
+Corner quarter_corner(double preload, double damping) {
+  Corner corner;
+  corner.name = "quarter";
+  corner.mass = kCarrierMass;
+  corner.suspension.spring = ForceCurve({{0.0, preload}, {0.1, preload + 0.1 * kSpring}});
+  corner.suspension.damper = ForceCurve::linear(damping);
+  corner.suspension.bumper_gap = 0.05;
+  corner.suspension.bumper_stiffness = 1e7;
+  corner.suspension.fore_aft_stiffness = 1e5;
+  corner.suspension.fore_aft_damping = 1e3;
+  return corner;
+}
+
+}  // namespace
+
+TEST_CASE("quarter car: static ride height is weight over stiffness, the tire carries the whole weight",
+          "[vehicle][quarter]") {
+  PressedTire tire;
+  tire.press(0.015);
+  tire.drive(-0.05);
+  TireGroup tires({tire.spindle}, false);
+  // Spring preload 0.8 of the body weight: the suspension settles 0.2 m_b g / k_s into jounce.
+  const double critical = 2.0 * std::sqrt(kSpring * kBodyMass);
+  VehicleSettings settings;
+  settings.alpha = -0.05;
+  Vehicle car({kBodyMass}, {quarter_corner(0.8 * kBodyMass * kGravity, critical)}, tires, settings);
+  car.advance(2.5, 2e-3);
+  const double expected_jounce = 0.2 * kBodyMass * kGravity / kSpring;
+  CHECK(car.jounce(0) == Approx(expected_jounce).epsilon(1e-3));
+  CHECK(car.spindle_force(0).y() == Approx(-(kBodyMass + kCarrierMass) * kGravity).epsilon(2e-3));
+  CHECK(std::abs(car.state().velocity[0]) < 1e-3);
+  // The corrector converges in a few iterations with the direct Jacobian.
+  const VehicleStatistics& statistics = car.statistics();
+  CHECK(statistics.cuts == 0);
+  CHECK(statistics.corrector_iterations <= 4 * statistics.steps);
+}
+
+TEST_CASE("quarter car: the wheel-hop frequency is that of the linearised two-mass system", "[vehicle][quarter]") {
+  PressedTire tire;
+  // The tire's vertical stiffness k_t around the static load, from two quasi-static presses.
+  const double f1 = tire.press(0.010), f2 = tire.press(0.020);
+  const double k_tire = (f1 - f2) / 0.010;
+  const double weight = (kBodyMass + kCarrierMass) * kGravity;
+  const double static_deflection = 0.010 + (weight + f1) / k_tire;
+  tire.press(static_deflection - 0.001);  // let go 1 mm short of equilibrium: a small hop
+  tire.drive(0.0);
+  TireGroup tires({tire.spindle}, false);
+  Vehicle car({kBodyMass}, {quarter_corner(kBodyMass * kGravity, 50.0)}, tires, VehicleSettings{});
+  std::vector<std::pair<double, double>> wheel;  // (t, z_w)
+  car.add_step_observer([&wheel](const Vehicle& v) { wheel.emplace_back(v.time(), v.state().displacement[1]); });
+  car.advance(0.35, 5e-4);
+
+  std::vector<double> peaks;  // times of the wheel's local maxima
+  for (size_t i = 1; i + 1 < wheel.size(); ++i)
+    if (wheel[i].second > wheel[i - 1].second && wheel[i].second >= wheel[i + 1].second) peaks.push_back(wheel[i].first);
+  REQUIRE(peaks.size() >= 3);
+  const double measured = (peaks.size() - 1) / (peaks.back() - peaks.front());
+  // Linearised quarter car: masses m_b and m_u, springs k_s and k_t; the higher
+  // eigenfrequency is the hop. m_u = carrier + rim + belt: at ~11 Hz, far below its own
+  // modes (~90 Hz), the belt ring moves with the hub (without the belt, 4% too high).
+  const TireParameters parameters = macros::load_tire_parameters("tires.145SR12");
+  const double unsprung = kCarrierMass + parameters.rim_mass +
+                          parameters.tread.mass_per_length * M_PI * parameters.outer_diameter;
+  Eigen::Matrix2d stiffness, mass = Eigen::Vector2d(kBodyMass, unsprung).asDiagonal();
+  stiffness << kSpring, -kSpring, -kSpring, kSpring + k_tire;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> modes(stiffness, mass);
+  const double expected = std::sqrt(modes.eigenvalues()[1]) / (2.0 * M_PI);
+  const double simple = std::sqrt((kSpring + k_tire) / unsprung) / (2.0 * M_PI);
+  INFO("k_t = " << k_tire << " N/m, hop measured " << measured << " Hz, two-mass " << expected
+                << " Hz, sqrt((k_s + k_t)/m_u)/2pi = " << simple << " Hz, " << peaks.size() << " peaks");
+  CHECK(measured == Approx(expected).epsilon(0.02));
+  CHECK(simple == Approx(expected).epsilon(0.01));  // the textbook formula: the body hardly moves
+}
+
+TEST_CASE("quarter car: the direct spindle Jacobian gives the finite-difference run's answer with fewer tire solves",
+          "[vehicle][quarter]") {
+  auto run = [](SpindleJacobianSource source) {
+    auto tire = std::make_unique<PressedTire>();
+    tire->press(0.015);
+    tire->drive(-0.05);
+    TireGroup tires({tire->spindle}, false);
+    VehicleSettings settings;
+    settings.alpha = -0.05;
+    settings.jacobian = source;
+    Vehicle car({kBodyMass}, {quarter_corner(0.8 * kBodyMass * kGravity, 1000.0)}, tires, settings);
+    car.advance(0.1, 2e-3);
+    return std::make_pair(Eigen::VectorXd(car.state().displacement), car.statistics());
+  };
+  const auto direct = run(SpindleJacobianSource::Direct);
+  const auto difference = run(SpindleJacobianSource::FiniteDifference);
+  // Both converge to the corrector tolerance (1e-8 of the weight, ~3e-5 N: ~1e-10 m).
+  CHECK((direct.first - difference.first).lpNorm<Eigen::Infinity>() < 1e-8);
+  CHECK(direct.second.corrector_iterations <= difference.second.corrector_iterations);
+  CHECK(3 * direct.second.tire_solves < 2 * difference.second.tire_solves);
+}
+
+TEST_CASE("full car: four tires solved in concurrent threads give the sequential run bit for bit", "[vehicle][car]") {
+  auto run = [](bool concurrent) {
+    std::vector<std::unique_ptr<PressedTire>> tires;
+    std::vector<TireSpindle*> spindles;
+    std::vector<Corner> corners;
+    const double positions[4][2] = {{1.3, 0.7}, {1.3, -0.7}, {-1.4, 0.7}, {-1.4, -0.7}};
+    for (int i = 0; i < 4; ++i) {
+      tires.push_back(std::make_unique<PressedTire>());
+      tires.back()->press(0.010 + 0.002 * i);  // unequal: the body pitches and rolls
+      tires.back()->drive(-0.05);
+      spindles.push_back(tires.back()->spindle);
+      Corner corner = quarter_corner(0.8 * kBodyMass * kGravity, 1500.0);
+      corner.x = positions[i][0];
+      corner.y = positions[i][1];
+      corners.push_back(corner);
+    }
+    TireGroup group(spindles, concurrent);
+    VehicleSettings settings;
+    settings.alpha = -0.05;
+    Vehicle car({4 * kBodyMass, 1500.0, 400.0}, corners, group, settings);
+    car.advance(0.04, 2e-3);
+    return Eigen::VectorXd(car.state().displacement);
+  };
+  const Eigen::VectorXd sequential = run(false), concurrent = run(true);
+  CHECK(std::abs(sequential[1]) > 1e-5);  // pitch
+  CHECK(std::abs(sequential[2]) > 1e-5);  // roll
+  CHECK((sequential - concurrent).lpNorm<Eigen::Infinity>() == 0.0);
+}
