@@ -1,5 +1,7 @@
-// The inflated 145 SR-12 on a road: a clear failure for a tread node jammed against a
-// cleat wall.
+// The inflated 145 SR-12 on a road: quasi-static force-deflection on a flat road and on the
+// 1.7 m drum (stiffness, convergence, penetration, patch), loading with and without
+// friction, steady free rolling on a moving road, and a clear failure for a tread node
+// jammed against a cleat wall.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -99,8 +101,204 @@ struct TireOnRoad {
   }
 };
 
+std::shared_ptr<FlatRoad> flat_road_at(double y, RigidMotion motion = {}) {
+  return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, y), Eigen::Vector2d::UnitX(), std::move(motion));
+}
 
 }  // namespace
+
+TEST_CASE("145 SR-12 on a flat road: force-deflection to 30 mm, stiffness near 3800 N, patch growth",
+          "[road][contact][tire]") {
+  // Displacement-controlled spindle, frictionless road, 2 mm steps.
+  TireOnRoad coarse(100), fine(200);
+  std::vector<LoadPoint> curves[2];
+  TireOnRoad* tires[2] = {&coarse, &fine};
+  for (int m = 0; m < 2; ++m) {
+    tires[m]->add_contact(flat_road_at(tires[m]->lowest), 0.0);
+    curves[m] = tires[m]->press(0.030, 15);
+  }
+  const std::vector<LoadPoint>& curve = curves[0];
+  for (int m = 0; m < 2; ++m) {
+    double previous = 0.0;
+    for (const LoadPoint& point : curves[m]) {
+      INFO("elements " << tires[m]->tire.tread_nodes.size() << ", deflection " << point.deflection);
+      CHECK(point.load > previous);  // monotone
+      previous = point.load;
+      CHECK(point.cuts == 0);  // converged at once
+      CHECK(point.newton_iterations <= 6);
+      CHECK(point.contact.max_penetration <= kTolerance);
+      // The road carries the spindle load, straight up.
+      CHECK(point.contact.force.y() == Approx(point.load).epsilon(1e-8));
+      CHECK(std::abs(point.contact.force.x()) <= 1e-8 * point.load);
+    }
+  }
+  // Mesh convergence of the load: 100 against 200 elements.
+  CHECK(curves[0][9].load == Approx(curves[1][9].load).epsilon(0.03));
+  CHECK(curves[0][14].load == Approx(curves[1][14].load).epsilon(0.03));
+
+  // Vertical stiffness at 3800 N: the secant through the neighbouring steps.
+  size_t i = 1;
+  while (curve[i].load < 3800.0) ++i;
+  const double tangent = (curve[i].load - curve[i - 1].load) / (curve[i].deflection - curve[i - 1].deflection);
+  const double deflection_3800 =
+      curve[i - 1].deflection + (3800.0 - curve[i - 1].load) / tangent;
+  WARN("145 SR-12, flat road, 208 kPa: 3800 N at " << deflection_3800 * 1e3 << " mm, secant "
+                                                    << 3.8 / deflection_3800 << " N/mm, tangent " << tangent / 1e3
+                                                    << " N/mm (Rhyne: 194 N/mm)");
+  CHECK(tangent / 1e3 >= 150.0);
+  CHECK(tangent / 1e3 <= 250.0);
+  CHECK(3.8 / deflection_3800 >= 150.0);
+  CHECK(3.8 / deflection_3800 <= 250.0);
+
+  // Patch (200 elements: nodes 8.5 mm apart): grows with the deflection, symmetric about
+  // the spindle, and shorter than the chord 2 sqrt(2 R delta) of the undeformed circle cut
+  // by the road: the tread ring flattens over a part of the chord only (docs/tire.md).
+  const std::vector<LoadPoint>& patch_curve = curves[1];
+  for (size_t k = 1; k < patch_curve.size(); ++k) {
+    const LoadPoint& point = patch_curve[k];
+    // More nodes touch as the load grows; a patch of given nodes shortens only by the
+    // belt's compression (micrometres).
+    CHECK(point.contact.nodes_in_contact >= patch_curve[k - 1].contact.nodes_in_contact);
+    CHECK(point.contact.patch_length >= patch_curve[k - 1].contact.patch_length - 1e-5);
+    const double chord = 2.0 * std::sqrt(2.0 * fine.inflated_radius * point.deflection);
+    CHECK(point.contact.patch_length < 0.5 * chord);
+  }
+  for (int step : {9, 14}) {  // 20 and 30 mm
+    const double chord = 2.0 * std::sqrt(2.0 * fine.inflated_radius * patch_curve[step].deflection);
+    WARN("deflection " << patch_curve[step].deflection * 1e3 << " mm: patch " << patch_curve[step].contact.patch_length * 1e3
+                       << " mm, chord " << chord * 1e3 << " mm");
+    CHECK(patch_curve[step].contact.patch_length > 0.2 * chord);
+  }
+  const auto forces = fine.contact_forces();
+  for (const auto& [x, normal] : forces) {
+    if (normal == 0.0) continue;
+    // Every contact node has its mirror image across the spindle with the same force.
+    bool mirrored = false;
+    for (const auto& [x2, normal2] : forces)
+      mirrored = mirrored || (std::abs(x + x2) < 1e-9 && std::abs(normal - normal2) <= 1e-6 * normal);
+    CHECK(mirrored);
+  }
+}
+
+TEST_CASE("145 SR-12 on the 1.7 m drum is slightly softer than on a flat road", "[road][contact][tire]") {
+  // Same tire, same spindle travel from first touch. The drum's surface falls away from
+  // the flat road's by h = x^2 / (2 R_d) under a contact node at x, which unloads the tire.
+  // Two first-order estimates of the loss bracket it:
+  //  - the patch as a rigid punch: the load-weighted mean drop, times the tangent stiffness,
+  //    K sum(N_i h_i) / sum(N_i) (too small: the edge nodes, which the drum lowers most,
+  //    carry more of each load increment than of the load);
+  //  - by reciprocity, the load increment per unit spindle travel that each node takes,
+  //    sum(dN_i/d delta h_i), with dN_i/d delta by central differences of the flat road's
+  //    steps (too large: it counts in full the nodes about to touch down, which the drum
+  //    reaches later or not at all).
+  const double drum_radius = 0.85;
+  TireOnRoad flat, drum;
+  flat.add_contact(flat_road_at(flat.lowest), 0.0);
+  drum.add_contact(std::make_shared<Drum>(2.0 * drum_radius, Eigen::Vector2d(0.0, drum.lowest - drum_radius),
+                                          MotionFunction::constant(0.0)),
+                   0.0);
+  const std::vector<LoadPoint> on_flat = flat.press(0.030, 15), on_drum = drum.press(0.030, 15);
+  for (size_t step = 0; step < on_flat.size(); ++step) {
+    CHECK(on_drum[step].load <= on_flat[step].load * (1.0 + 1e-9));
+    CHECK(on_drum[step].load >= 0.94 * on_flat[step].load);
+    CHECK(on_drum[step].contact.max_penetration <= kTolerance);
+  }
+  for (int step : {9, 13}) {  // 20 and 28 mm
+    const LoadPoint &before = on_flat[step - 1], &point = on_flat[step], &after = on_flat[step + 1];
+    const double stiffness = (after.load - before.load) / (after.deflection - before.deflection);
+    double punch = 0.0, increments = 0.0;
+    for (size_t i = 0; i < point.forces.size(); ++i) {
+      const double drop = point.forces[i].first * point.forces[i].first / (2.0 * drum_radius);
+      punch += stiffness * point.forces[i].second * drop / point.load;
+      increments += (after.forces[i].second - before.forces[i].second) / (after.deflection - before.deflection) * drop;
+    }
+    const double softening = point.load - on_drum[step].load;
+    WARN("deflection " << point.deflection * 1e3 << " mm: flat " << point.load << " N, drum " << on_drum[step].load
+                       << " N, softer by " << softening << " N (estimates " << punch << " to " << increments << " N)");
+    CHECK(softening > 0.9 * punch);
+    CHECK(softening < 1.1 * increments);
+  }
+}
+
+TEST_CASE("145 SR-12 pressed with friction: slightly stiffer, symmetric, within the friction cone",
+          "[road][contact][tire][friction]") {
+  // Touching nodes stick where they land and are held against the sideways spread of the
+  // flattening tread: a constraint added to the frictionless problem, so the loads can only
+  // rise, and by little (the tread barely slides).
+  const double mu = 0.3;
+  TireOnRoad smooth, rough;
+  smooth.add_contact(flat_road_at(smooth.lowest), 0.0);
+  rough.add_contact(flat_road_at(rough.lowest), mu);
+  const std::vector<LoadPoint> frictionless = smooth.press(0.030, 15), frictional = rough.press(0.030, 15);
+  for (size_t k = 0; k < frictional.size(); ++k) {
+    INFO("deflection " << frictional[k].deflection);
+    CHECK(frictional[k].load >= frictionless[k].load * (1.0 - 1e-9));
+    CHECK(frictional[k].load <= frictionless[k].load * 1.001);
+    CHECK(frictional[k].contact.max_penetration <= kTolerance);
+    CHECK(std::abs(frictional[k].contact.force.x()) <= 1e-6 * frictional[k].load);
+  }
+  WARN("30 mm: " << frictionless.back().load << " N frictionless, " << frictional.back().load << " N with mu = " << mu);
+  double largest_ratio = 0.0;
+  for (int i = 0; i < rough.contact->size(); ++i) {
+    const ContactHistory& h = rough.contact->committed_history(i);
+    if (h.state == ContactState::Open) continue;
+    CHECK(std::abs(h.tangential_force) <= mu * h.normal_force * (1.0 + 1e-9));
+    largest_ratio = std::max(largest_ratio, std::abs(h.tangential_force) / h.normal_force);
+  }
+  WARN("largest |t_T| / t_N at 30 mm: " << largest_ratio);
+  CHECK(largest_ratio > 1e-3);  // friction is at work
+}
+
+TEST_CASE("145 SR-12 rolling freely on a moving road: spin rate = speed / effective rolling radius",
+          "[road][contact][tire][dynamics]") {
+  // Pressed 20 mm on a road that then accelerates to 5 m/s in 0.15 s and holds; the spindle
+  // is held in x and y, its spin free; HHT-alpha. In steady rolling the tread nodes stick
+  // in the patch and move with the road, so one turn passes all N nodes at their spacing l
+  // in the patch: the effective rolling radius is v / omega = N l / (2 pi), kinematically.
+  const double speed = 5.0, ramp = 0.15, hold = 0.15, deflection = 0.020;
+  TireOnRoad rolling;
+  rolling.add_contact(flat_road_at(rolling.lowest, RigidMotion::translation(MotionFunction::ramped_rate(-speed, ramp, 2.0))),
+                      0.3);
+  const double static_load = rolling.press(deflection, 10).back().load;
+  rolling.model.release(rolling.tire.spindle, kRz);
+  rolling.analysis->set_integrator(Integrator::hht(-0.1));
+  rolling.analysis->set_time_step(5e-4);
+  const int spin = dof_index(rolling.tire.spindle, kRz);
+  double spin_sum = 0.0, load_sum = 0.0, drag_sum = 0.0;
+  int samples = 0;
+  rolling.analysis->add_step_observer([&](const Analysis& run, const StepRecord& record) {
+    CHECK(summarize_contact(*rolling.contact).max_penetration <= kTolerance);
+    if (record.time > 2.0 + ramp + 0.05) {  // after the start-up transient
+      spin_sum += run.state().velocity[spin];
+      load_sum += -run.reactions()[dof_index(rolling.tire.spindle, kUy)];
+      drag_sum += run.reactions()[dof_index(rolling.tire.spindle, kUx)];
+      ++samples;
+    }
+  });
+  rolling.analysis->advance(ramp + hold);
+  const double spin_rate = -spin_sum / samples;  // the road moves to -x: the tire turns clockwise
+  const double rolling_radius = speed / spin_rate;
+
+  // Node spacing in the patch: the sticking nodes, in order along the road.
+  std::vector<double> xs;
+  for (int i = 0; i < rolling.contact->size(); ++i)
+    if (rolling.contact->committed_history(i).state == ContactState::Stick)
+      xs.push_back(rolling.position(rolling.tire.tread_nodes[i]).x());
+  REQUIRE(xs.size() >= 3);
+  std::sort(xs.begin(), xs.end());
+  const double spacing = (xs.back() - xs.front()) / (xs.size() - 1);
+  const double kinematic_radius = rolling.tire.tread_nodes.size() * spacing / (2.0 * kPi);
+  const double loaded_radius = rolling.inflated_radius - deflection;
+  WARN("rolling at " << speed << " m/s, " << load_sum / samples << " N: spin " << spin_rate << " rad/s, effective radius "
+                     << rolling_radius * 1e3 << " mm (N l / 2 pi " << kinematic_radius * 1e3 << " mm; loaded "
+                     << loaded_radius * 1e3 << " mm, unloaded " << rolling.inflated_radius * 1e3
+                     << " mm); drag " << drag_sum / samples << " N");
+  CHECK(rolling_radius > loaded_radius);
+  CHECK(rolling_radius < rolling.inflated_radius);
+  CHECK(rolling_radius == Approx(kinematic_radius).epsilon(2e-3));
+  // The load of the static press: rolling at 5 m/s adds little (centrifugal hoop tension).
+  CHECK(load_sum / samples == Approx(static_load).epsilon(0.01));
+}
 
 TEST_CASE("a tread node jammed against a vertical cleat wall ends the run with a StepFailure", "[road][contact][failure]") {
   // The spindle is held and the road frictionless: a pressed tread node cannot climb a
