@@ -1,7 +1,7 @@
 // The inflated 145 SR-12 on a road: quasi-static force-deflection on a flat road and on the
 // 1.7 m drum (stiffness, convergence, penetration, patch), loading with and without
-// friction, steady free rolling on a moving road, and a clear failure for a tread node
-// jammed against a cleat wall.
+// friction, steady free rolling on a moving road, rolling over a bump's edges, and a clear
+// failure for a tread node jammed against a cleat wall.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -321,4 +321,54 @@ TEST_CASE("a tread node jammed against a vertical cleat wall ends the run with a
   CHECK(smallest >= 0.004 / 4096 * (1.0 - 1e-9));
   CHECK(accepted < 1000);
   CHECK(tire.analysis->state().displacement.allFinite());
+}
+
+TEST_CASE("145 SR-12 rolling over a bump: tread nodes pass its rounded and sharp edges converged, outside the road",
+          "[road][contact][tire][vertex][dynamics]") {
+  // Pressed 20 mm on a road that accelerates to 5 m/s in 0.1 s and carries a 10 mm bump
+  // (45 degree ramps, sharp feet, a 100 mm top whose edges are sharp or rounded) under the
+  // freely spinning tire (spindle held in x and y; HHT, mu = 0.3). Every step converges,
+  // no node penetrates beyond the tolerance, the load peaks near the flat road's at 30 mm
+  // (the top is as long as the patch there) without spikes, and returns to the static load.
+  const double height = 0.010, top = 0.100, start = 0.35, deflection = 0.020;
+  TireOnRoad reference;
+  reference.add_contact(flat_road_at(reference.lowest), 0.0);
+  const double load_30 = reference.press(0.030, 15).back().load;
+  for (double edge_radius : {0.005, 0.0}) {
+    INFO("edge radius " << edge_radius);
+    TireOnRoad tire;
+    const double y = tire.lowest;
+    const std::vector<Eigen::Vector2d> bump = {{-1.0, y},
+                                               {start, y},
+                                               {start + height, y + height},
+                                               {start + height + top, y + height},
+                                               {start + 2 * height + top, y},
+                                               {3.0, y}};
+    tire.add_contact(std::make_shared<RoadProfile>(bump, edge_radius,
+                                                   RigidMotion::translation(MotionFunction::ramped_rate(-5.0, 0.1, 2.0))),
+                     0.3);
+    const double static_load = tire.press(deflection, 10).back().load;
+    tire.model.release(tire.tire.spindle, kRz);
+    tire.analysis->set_integrator(Integrator::hht(-0.1));
+    tire.analysis->set_time_step(5e-4);
+    double largest = 0.0, smallest = 1e9;
+    int cuts = 0;
+    tire.analysis->add_step_observer([&](const Analysis& run, const StepRecord& record) {
+      const double load = -run.reactions()[dof_index(tire.tire.spindle, kUy)];
+      CHECK(std::isfinite(load));
+      CHECK(summarize_contact(*tire.contact).max_penetration <= kTolerance);
+      largest = std::max(largest, load);
+      smallest = std::min(smallest, load);
+      cuts += record.cuts;
+    });
+    tire.analysis->advance(0.25);  // the road travels 1 m: the bump passes
+    const double final_load = -tire.analysis->reactions()[dof_index(tire.tire.spindle, kUy)];
+    WARN("edge radius " << edge_radius * 1e3 << " mm: static " << static_load << " N, over the bump " << smallest
+                        << " to " << largest << " N (flat road at 30 mm " << load_30 << " N), after " << final_load
+                        << " N, cuts " << cuts);
+    CHECK(largest > 0.95 * load_30);
+    CHECK(largest < 1.1 * load_30);
+    CHECK(smallest > 0.85 * static_load);
+    CHECK(final_load == Approx(static_load).epsilon(0.02));
+  }
 }
