@@ -133,8 +133,10 @@ TEST_CASE("145 SR-12 on a flat road: force-deflection to 30 mm, stiffness near 3
     }
   }
   // Mesh convergence of the load: 100 against 200 elements.
-  CHECK(curves[0][9].load == Approx(curves[1][9].load).epsilon(0.03));
-  CHECK(curves[0][14].load == Approx(curves[1][14].load).epsilon(0.03));
+  WARN("load at 20 mm: " << curves[0][9].load << " N (100 elements), " << curves[1][9].load << " N (200); at 30 mm: "
+                         << curves[0][14].load << " N, " << curves[1][14].load << " N");
+  CHECK(curves[0][9].load == Approx(curves[1][9].load).epsilon(0.01));
+  CHECK(curves[0][14].load == Approx(curves[1][14].load).epsilon(0.01));
 
   // Vertical stiffness at 3800 N: the secant through the neighbouring steps.
   size_t i = 1;
