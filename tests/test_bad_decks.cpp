@@ -90,7 +90,8 @@ TEST_CASE("every bad deck gets a clear one-line error with file and line", "[dec
 
 TEST_CASE("the self-checking decks in inputs/ pass their checks", "[decks]") {
   for (const char* deck : {"cantilever_elastica.lua", "cantilever_rollup.lua", "tire_inflation.lua", "ring_modes.lua",
-                           "step_cut.lua", "loaded_modes_145SR12.lua", "spindle_force.lua", "quarter_car.lua"}) {
+                           "step_cut.lua", "loaded_modes_145SR12.lua", "spindle_force.lua", "quarter_car.lua",
+                           "fit_ksw_145SR12.lua"}) {
     const std::string path = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / deck).string();
     INFO("deck " << path);
     const RunResult result = run_tirefe(path);

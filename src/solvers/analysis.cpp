@@ -399,11 +399,16 @@ const std::vector<StepRecord>& Analysis::advance(double duration) {
     const double remaining = target - committed_.time;
     // Take the rest in one step if a sliver would be left over.
     step = (step >= remaining || remaining - step < 1e-6 * step) ? remaining : step;
+    // No step is cut below the nominal one halved 2 max_cuts times: otherwise a run that
+    // scrapes through with tiny steps, failing again after each, lets the step dwindle
+    // from cut to cut without ever stopping.
+    const double smallest =
+        std::max(control_.min_step, std::ldexp(std::min(nominal_step_, remaining), -2 * control_.max_cuts));
     StepRecord record;
     while (!try_step(step, record)) {
       ++record.cuts;
       const double cut = 0.5 * step;
-      if (record.cuts > control_.max_cuts || cut < control_.min_step) {
+      if (record.cuts > control_.max_cuts || cut < smallest * (1.0 - 1e-9)) {
         std::ostringstream message;
         message << "the step from t = " << committed_.time << " could not be solved after " << record.cuts - 1
                 << " cuts (smallest dt = " << step << "): " << last_failure_

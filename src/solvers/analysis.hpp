@@ -40,7 +40,7 @@ class StepFailure : public std::runtime_error {
 struct StepControl {
   double min_step = 0.0;     // 0: no lower bound beyond max_cuts
   double max_step = 0.0;     // 0: the nominal step
-  int max_cuts = 10;         // consecutive halvings of one step
+  int max_cuts = 10;         // halvings of one step; and no step below nominal / 4^max_cuts
   int easy_iterations = 4;   // grow the step after converging in this many iterations or fewer
   double growth = 2.0;       // growth factor back toward the nominal step
   int max_augmentations = 20;  // augmented-Lagrangian updates per step
