@@ -10,21 +10,13 @@ local p = tirefe.parameters{ speed_kmh = 18.0, depth = 0.02, length = 0.3, dt = 
                              carrier = 30.0, k_s = 2.0e4, mu = 0.9 }
 local g = 9.81
 local tp = require("tires.145SR12")
+local tire_on_road = require("tire_on_road")
 
 -- A tire model: inflated on a held hub, a road touching its lowest point, contact.
 -- 'road' gets the road level and returns the surface arguments.
 local function tire_model(title, road)
   local model = tirefe.model{ title = title }
-  model:load_function{ name = "inflate", points = {{0, 0}, {1, 1}} }
-  tp.pressure_load_function = "inflate"
-  local tire = model:tire(tp)
-  model:fix{ node = tire.spindle }
-  model:solve{ to = 1.0, dt = 0.25 }
-  local level = math.huge
-  for i, node in ipairs(tire.tread) do
-    local angle = 2 * math.pi * (i - 1) / #tire.tread
-    level = math.min(level, tp.outer_diameter / 2 * math.sin(angle) + model:value{ node = node, dof = "uy" })
-  end
+  local tire, level = tire_on_road.inflated(model, tp)
   local surface = road(level)
   surface.name = "road"
   model:surface(surface)

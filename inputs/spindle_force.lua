@@ -11,18 +11,8 @@ local p = tirefe.parameters{ steps = 150, dt = 1e-3, speed = 5.0, deflection = 0
 
 local model = tirefe.model{ title = "spindle force of a rolling tire" }
 local tp = require("tires.145SR12")
-model:load_function{ name = "inflate", points = {{0, 0}, {1, 1}} }
-tp.pressure_load_function = "inflate"
-local tire = model:tire(tp)
-model:fix{ node = tire.spindle }
-model:solve{ to = 1.0, dt = 0.25 }
-
--- The road touches the inflated tire's lowest tread node.
-local level = math.huge
-for i, node in ipairs(tire.tread) do
-  local angle = 2 * math.pi * (i - 1) / #tire.tread
-  level = math.min(level, tp.outer_diameter / 2 * math.sin(angle) + model:value{ node = node, dof = "uy" })
-end
+-- Inflated on a held hub; the road touches the inflated tire's lowest tread node.
+local tire, level = require("tire_on_road").inflated(model, tp)
 model:surface{ name = "road", type = "flat", point = {0, level}, speed = -p.speed, ramp_time = 0.05, start_time = 2.0 }
 model:contact{ surface = "road", set = tire.tread_set, friction = p.mu, history = "patch" }
 model:load_function{ name = "press", points = {{1, 0}, {2, 1}} }

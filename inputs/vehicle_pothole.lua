@@ -51,16 +51,7 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
 
   local model = tirefe.model{ title = "vehicle pothole, " .. c.name .. " tire" }
   model:output{ file = "vehicle_pothole_" .. c.name .. ".h5" }
-  model:load_function{ name = "inflate", points = {{0, 0}, {1, 1}} }
-  tp.pressure_load_function = "inflate"
-  local tire = model:tire(tp)
-  model:fix{ node = tire.spindle }
-  model:solve{ to = 1.0, dt = 0.25 }
-  local level = math.huge
-  for i, node in ipairs(tire.tread) do
-    local angle = 2 * math.pi * (i - 1) / #tire.tread
-    level = math.min(level, tp.outer_diameter / 2 * math.sin(angle) + model:value{ node = node, dof = "uy" })
-  end
+  local tire, level = require("tire_on_road").inflated(model, tp)
   if c.pothole then
     -- Each tire stands at its own origin: the rear one meets the chuckhole a wheelbase later.
     model:surface{ name = "road", type = "profile", pothole = {ahead + a - c.x, p.length, p.depth}, level = level,

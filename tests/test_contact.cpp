@@ -24,6 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using tirefe::testing::TempDir;
+
 constexpr double kPi = 3.14159265358979323846;
 
 double angle_between(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -107,29 +109,6 @@ ContactParameters penalties(double normal, double tangential, double friction) {
   parameters.friction = friction;
   return parameters;
 }
-
-// A temporary folder, removed with its contents.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ =
-        fs::temp_directory_path() / ("tirefe_contact_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name) << text;
-    return (path_ / name).string();
-  }
-  std::string path(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 }  // namespace
 

@@ -19,12 +19,15 @@
 #include "macros/deck_session.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
+#include "test_support.hpp"
 
 using namespace tirefe::fitting;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
+
+using tirefe::testing::TempDir;
 
 double relative_error(double value, double expected) { return std::abs(value - expected) / std::abs(expected); }
 
@@ -78,26 +81,6 @@ FitProblem stiffness_problem(double initial, std::vector<double>* evaluated = nu
   problem.data = 2.5e6 * d.array().pow(1.5);
   return problem;
 }
-
-// A temporary folder removed at scope exit.
-class TempFolder {
- public:
-  TempFolder() : path_(fs::temp_directory_path() / ("tirefe_fitting_" + std::to_string(::getpid()))) {
-    fs::create_directories(path_);
-  }
-  ~TempFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name) << text;
-    return (path_ / name).string();
-  }
-  std::string path(const std::string& name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 // Runs a deck in the sandbox with the macros installed, as the tirefe binary does.
 struct DeckRun {
@@ -394,7 +377,7 @@ TEST_CASE("inconsistent fit problems are refused with a clear message", "[fittin
 }
 
 TEST_CASE("the CSV reader converts unit suffixes to SI and names bad rows by file and line", "[fitting]") {
-  TempFolder folder;
+  TempDir folder;
   const std::string good = folder.write("curve.csv",
                                         "# vertical stiffness, flat road\n"
                                         "\n"
@@ -421,7 +404,7 @@ TEST_CASE("the CSV reader converts unit suffixes to SI and names bad rows by fil
 }
 
 TEST_CASE("tirefe.fit works end to end in a deck: CSV data, a Lua model, the HDF5 output", "[fitting]") {
-  TempFolder folder;
+  TempDir folder;
   // Tip deflections of a 1 m cantilever under three small loads, from beam theory with
   // EI = 2.5 N m^2: P L^3 / (3 EI).
   folder.write("tip.csv",
@@ -484,7 +467,7 @@ third_deflection = tirefe.read_csv{ file = "tip.csv" }.deflection[3]
 }
 
 TEST_CASE("tirefe.fit reports a malformed CSV row and a failing model at the deck line", "[fitting]") {
-  TempFolder folder;
+  TempDir folder;
   folder.write("bad.csv", "deflection_mm, force_N\n1, 10\n2, 20, 30\n");
   const std::string bad_data = folder.write("bad_data.lua",
                                             "local p = 1\n"
@@ -514,7 +497,7 @@ TEST_CASE("tirefe.fit reports a malformed CSV row and a failing model at the dec
 }
 
 TEST_CASE("tirefe.fit returns not_identifiable without values for an ignored parameter", "[fitting]") {
-  TempFolder folder;
+  TempDir folder;
   const std::string deck = folder.write("ignored.lua", R"(
 result = tirefe.fit{
   parameters = { { name = "a", initial = 1 }, { name = "unused", initial = 5 } },

@@ -4,6 +4,7 @@
 
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_spec.hpp"
+#include "test_support.hpp"
 
 #include <unistd.h>
 
@@ -17,30 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A fresh temporary folder, removed with its contents at scope exit.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("tirefe_lua_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path file = path_ / name;
-    fs::create_directories(file.parent_path());
-    std::ofstream(file, std::ios::binary) << text;
-    return file.string();
-  }
-  std::string path(const std::string& name = "") const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using tirefe::testing::TempDir;
 
 const MacroSpec& beam_spec() {
   static const MacroSpec spec{

@@ -2,8 +2,13 @@
 // small model builders.
 #pragma once
 
+#include <unistd.h>
+
 #include <Eigen/Dense>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <string>
 
 #include "core/element.hpp"
 
@@ -70,5 +75,33 @@ LocalState<Dofs> random_local_state(std::mt19937& random, double displacement_sc
   }
   return local;
 }
+
+/// A fresh temporary folder, removed with its contents at scope exit.
+class TempDir {
+ public:
+  TempDir() {
+    static int counter = 0;
+    path_ = std::filesystem::temp_directory_path() /
+            ("tirefe_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  /// Writes 'text' to the file 'name' (folders created as needed); returns its path.
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::filesystem::path file = path_ / name;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file, std::ios::binary) << text;
+    return file.string();
+  }
+  std::string path(const std::string& name = "") const { return (path_ / name).string(); }
+
+ private:
+  std::filesystem::path path_;
+};
 
 }  // namespace tirefe::testing
