@@ -182,6 +182,70 @@ TEST_CASE("145 SR-12 on a flat road: force-deflection to 30 mm, stiffness near 3
   }
 }
 
+namespace {
+
+/// Largest difference between the assembled static tangent of 'loaded' at its current
+/// displacements and central differences of the assembled residual, relative to the
+/// tangent's largest entry; evaluated 'later' after the current time (the road moving on).
+double tangent_error(TireOnRoad& loaded, double later = 0.0) {
+  Analysis& analysis = *loaded.analysis;
+  Assembler& assembler = analysis.assembler();
+  const DofMap& dofs = loaded.model.dof_map();
+  EvaluationContext context;  // quasi-static: K alone
+  context.time = analysis.state().time + later;
+  State state = analysis.state();
+  Eigen::VectorXd residual, plus, minus;
+  assembler.assemble(context, state, residual);
+  const Eigen::MatrixXd tangent = Eigen::MatrixXd(assembler.tangent());
+  const int equations = dofs.equation_count();
+  Eigen::MatrixXd numerical(equations, equations);
+  const double step = 1e-8;  // m and rad: the deflections are of order 1e-2
+  for (int column = 0; column < equations; ++column) {
+    const int dof = dofs.dof(column);
+    state.displacement[dof] += step;
+    assembler.assemble(context, state, plus);
+    state.displacement[dof] -= 2.0 * step;
+    assembler.assemble(context, state, minus);
+    state.displacement[dof] += step;
+    for (int row = 0; row < equations; ++row)
+      numerical(row, column) = (plus[dofs.dof(row)] - minus[dofs.dof(row)]) / (2.0 * step);
+  }
+  loaded.model.revert_history();  // the evaluations leave no trial history behind
+  return (tangent - numerical).cwiseAbs().maxCoeff() / tangent.cwiseAbs().maxCoeff();
+}
+
+int nodes_in_state(const ContactBlock& contact, ContactState state) {
+  int count = 0;
+  for (int i = 0; i < contact.size(); ++i) count += contact.committed_history(i).state == state ? 1 : 0;
+  return count;
+}
+
+}  // namespace
+
+TEST_CASE("tire in contact: the assembled tangent equals finite differences, sticking and slipping",
+          "[road][contact][tire][tangent]") {
+  // Pressed 20 mm with friction 0.3: the patch sticks. Then the road slides 10 mm under the
+  // held tire (quasi-static, t from 2 to 3): the patch slips. The tangent is unsymmetric
+  // (follower pressure, sidewall shear, friction); its largest entries are about 1e8 N/m.
+  // At an accepted state a slipping node sits exactly on the friction cone (its stick
+  // point has just been moved there), where a difference quotient straddles stick and slip;
+  // so the slipping patch is differentiated 0.1 mm of road travel later, well inside slip,
+  // as within a step's Newton iterations.
+  TireOnRoad loaded(60);
+  const int slide = loaded.model.add_load_function(LoadFunction::table({{2.0, 0.0}, {3.0, 1.0}, {4.0, 2.0}}));
+  loaded.add_contact(flat_road_at(loaded.lowest, RigidMotion::translation(MotionFunction::from_load_function(
+                                                    loaded.model.load_function(slide), 0.01))),
+                     0.3);
+  loaded.press(0.020, 5);
+  REQUIRE(nodes_in_state(*loaded.contact, ContactState::Stick) >= 3);
+  CHECK(tangent_error(loaded) < 1e-6);
+
+  loaded.analysis->set_time_step(0.25);
+  loaded.analysis->advance(1.0);
+  REQUIRE(nodes_in_state(*loaded.contact, ContactState::Slip) >= 3);
+  CHECK(tangent_error(loaded, 0.01) < 1e-6);
+}
+
 TEST_CASE("145 SR-12 on the 1.7 m drum is slightly softer than on a flat road", "[road][contact][tire]") {
   // Same tire, same spindle travel from first touch. The drum's surface falls away from
   // the flat road's by h = x^2 / (2 R_d) under a contact node at x, which unloads the tire.
