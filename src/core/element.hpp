@@ -21,9 +21,12 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -97,6 +100,14 @@ class ElementBlock {
   virtual void revert() = 0;
   /// Uzawa update after a converged Newton solve; true if the block wants another solve.
   virtual bool augment() { return false; }
+
+  // Checkpoints: the committed history of every element as plain bytes. The kernel's
+  // type name and the history's size let a restart refuse a block of another kind.
+  virtual std::string kernel_type() const = 0;
+  virtual size_t history_bytes_per_element() const = 0;
+  virtual std::vector<unsigned char> committed_history_bytes() const = 0;
+  /// Sets the committed (and trial) history of every element from such bytes.
+  virtual void set_history_bytes(const std::vector<unsigned char>& bytes) = 0;
 };
 
 struct NoHistory {};
@@ -191,6 +202,25 @@ class ElementBlockOf final : public ElementBlock {
     trial_ = committed_;
     base_ = committed_;
   }
+  std::string kernel_type() const override { return typeid(Kernel).name(); }
+  size_t history_bytes_per_element() const override { return sizeof(History); }
+  std::vector<unsigned char> committed_history_bytes() const override {
+    // Plain data owns nothing: numbers and fixed-size Eigen vectors (bitwise copyable,
+    // though Eigen does not declare them trivially copyable); no pointers, no containers.
+    static_assert(std::is_trivially_destructible_v<History>, "element history must be plain data (checkpoints copy bytes)");
+    std::vector<unsigned char> bytes(committed_.size() * sizeof(History));
+    if (!bytes.empty()) std::memcpy(bytes.data(), static_cast<const void*>(committed_.data()), bytes.size());
+    return bytes;
+  }
+  void set_history_bytes(const std::vector<unsigned char>& bytes) override {
+    if (bytes.size() != committed_.size() * sizeof(History))
+      throw std::invalid_argument("block '" + name_ + "': " + std::to_string(bytes.size()) +
+                                  " bytes of history for " + std::to_string(size()) + " elements of " +
+                                  std::to_string(sizeof(History)) + " bytes");
+    if (!bytes.empty()) std::memcpy(static_cast<void*>(committed_.data()), bytes.data(), bytes.size());
+    base_ = trial_ = committed_;
+  }
+
   bool augment() override {
     if constexpr (detail::HasAugment<Kernel>::value) {
       bool again = false;

@@ -2,8 +2,13 @@
 // output goes, and the tally of the deck's self-checks.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace tirefe::io {
+struct Checkpoint;
+}
 
 namespace tirefe::macros {
 
@@ -19,6 +24,9 @@ struct DeckSession {
   bool quiet = false;
   std::vector<CheckResult> checks;
   int default_outputs_opened = 0;
+  int models_created = 0;
+  /// --restart: the checkpoint a model continues from (docs/restart.md); cleared once loaded.
+  std::shared_ptr<const io::Checkpoint> restart;
 
   int failed_checks() const {
     int failed = 0;

@@ -110,6 +110,7 @@ const MacroTable& macro_table() {
     add_tire_macros(built);
     add_contact_macros(built);
     add_fitting_macros(built);
+    add_checkpoint_macros(built);
     return built;
   }();
   return table;
