@@ -61,7 +61,8 @@ struct ElementEnergy {
   }
 };
 
-/// Thrown when an element produces NaN or infinity: names the element and its nodes.
+/// Thrown when an element produces NaN or infinity: names the block, the element and the
+/// node and DOF of the first non-finite entry. The Newton solve stops at once; the step is cut.
 class NonFiniteResult : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -178,7 +179,7 @@ class ElementBlockOf final : public ElementBlock {
       trial_[e] = base_[e];
       kernels_[e].evaluate(local, context, base_[e], trial_[e], residual,
                            with_tangent ? &tangent : nullptr);
-      if (!residual.allFinite()) throw_non_finite(e, "residual");
+      if (!residual.allFinite()) throw_non_finite(e, "residual", residual);
       scatter_residual(e, residual, *target.residual);
       if (with_tangent) scatter_tangent(e, tangent, target.tangent_values);
     }
@@ -254,11 +255,18 @@ class ElementBlockOf final : public ElementBlock {
     for (int k = 0; k < kDofs * kDofs; ++k)
       if (slot[k] >= 0) values[slot[k]] += entry[k];
   }
-  [[noreturn]] void throw_non_finite(int e, const char* what) const {
+  /// Names the element, its nodes and the first node and DOF whose entry is NaN or infinite
+  /// (nodes and elements numbered from 1, as in decks).
+  [[noreturn]] void throw_non_finite(int e, const char* what, const Vector& values) const {
+    static const char* const kDofNames[kDofsPerNode] = {"ux", "uy", "rz"};
     std::string nodes;
-    for (int n : nodes_[e]) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n);
-    throw NonFiniteResult("element " + std::to_string(e) + " of block '" + name_ + "' (nodes " + nodes +
-                          ") produced a non-finite " + what);
+    for (int n : nodes_[e]) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n + 1);
+    int first = 0;
+    while (first < kDofs - 1 && std::isfinite(values[first])) ++first;
+    throw NonFiniteResult("element " + std::to_string(e + 1) + " of block '" + name_ + "' (nodes " + nodes +
+                          ") produced a non-finite " + what + " at node " +
+                          std::to_string(nodes_[e][first / kDofsPerNode] + 1) + ", " +
+                          kDofNames[first % kDofsPerNode] + " (" + std::to_string(values[first]) + ")");
   }
 
   std::string name_;
