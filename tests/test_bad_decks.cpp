@@ -3,10 +3,13 @@
 // states its expectation in its first lines:
 //   -- expect line N: text that must appear in the message   (N = 0: no line number)
 //   -- args: key=value ...                                   (optional command-line parameters)
+//   -- keeps: FILE ROWS     (optional: the result file FILE stays readable with at least ROWS history rows)
+// "{here}" in these lines stands for the folder of the bad decks.
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -44,20 +47,31 @@ struct Expectation {
   int line = -1;
   std::string text;
   std::string arguments;
+  std::string kept_file;
+  int kept_rows = 0;
 };
+
+std::string with_folder(std::string text, const fs::path& folder) {
+  for (size_t at; (at = text.find("{here}")) != std::string::npos;) text.replace(at, 6, folder.string());
+  return text;
+}
 
 Expectation read_expectation(const fs::path& deck) {
   std::ifstream in(deck);
   Expectation expectation;
   std::string line;
-  const std::regex expect_pattern(R"(^-- expect line (\d+): (.*)$)"), args_pattern(R"(^-- args: (.*)$)");
+  const std::regex expect_pattern(R"(^-- expect line (\d+): (.*)$)"), args_pattern(R"(^-- args: (.*)$)"),
+      keeps_pattern(R"(^-- keeps: (\S+) (\d+)$)");
   for (int i = 0; i < 5 && std::getline(in, line); ++i) {
     std::smatch match;
     if (std::regex_match(line, match, expect_pattern)) {
       expectation.line = std::stoi(match[1]);
-      expectation.text = match[2];
+      expectation.text = with_folder(match[2], deck.parent_path());
     } else if (std::regex_match(line, match, args_pattern)) {
-      expectation.arguments = match[1];
+      expectation.arguments = with_folder(match[1], deck.parent_path());
+    } else if (std::regex_match(line, match, keeps_pattern)) {
+      expectation.kept_file = match[1];
+      expectation.kept_rows = std::stoi(match[2]);
     }
   }
   return expectation;
@@ -83,6 +97,13 @@ TEST_CASE("every bad deck gets a clear one-line error with file and line", "[dec
       CHECK(result.errors.rfind("tirefe: " + deck + ":" + std::to_string(expectation.line) + ": ", 0) == 0);
     else
       CHECK(result.errors.find(deck) != std::string::npos);
+    if (!expectation.kept_file.empty()) {
+      const fs::path kept = fs::temp_directory_path() / "tirefe_bad_decks" / expectation.kept_file;
+      const auto output = tirefe::io::Hdf5File::open_read_only(kept.string());
+      const std::vector<double> time = output.read_doubles("/history/time");
+      CHECK(static_cast<int>(time.size()) >= expectation.kept_rows);
+      CHECK(std::all_of(time.begin(), time.end(), [](double t) { return std::isfinite(t); }));
+    }
     ++decks;
   }
   CHECK(decks >= 25);

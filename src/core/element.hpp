@@ -21,9 +21,12 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -58,7 +61,8 @@ struct ElementEnergy {
   }
 };
 
-/// Thrown when an element produces NaN or infinity: names the element and its nodes.
+/// Thrown when an element produces NaN or infinity: names the block, the element and the
+/// node and DOF of the first non-finite entry. The Newton solve stops at once; the step is cut.
 class NonFiniteResult : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -97,6 +101,14 @@ class ElementBlock {
   virtual void revert() = 0;
   /// Uzawa update after a converged Newton solve; true if the block wants another solve.
   virtual bool augment() { return false; }
+
+  // Checkpoints: the committed history of every element as plain bytes. The kernel's
+  // type name and the history's size let a restart refuse a block of another kind.
+  virtual std::string kernel_type() const = 0;
+  virtual size_t history_bytes_per_element() const = 0;
+  virtual std::vector<unsigned char> committed_history_bytes() const = 0;
+  /// Sets the committed (and trial) history of every element from such bytes.
+  virtual void set_history_bytes(const std::vector<unsigned char>& bytes) = 0;
 };
 
 struct NoHistory {};
@@ -167,7 +179,7 @@ class ElementBlockOf final : public ElementBlock {
       trial_[e] = base_[e];
       kernels_[e].evaluate(local, context, base_[e], trial_[e], residual,
                            with_tangent ? &tangent : nullptr);
-      if (!residual.allFinite()) throw_non_finite(e, "residual");
+      if (!residual.allFinite()) throw_non_finite(e, "residual", residual);
       scatter_residual(e, residual, *target.residual);
       if (with_tangent) scatter_tangent(e, tangent, target.tangent_values);
     }
@@ -191,6 +203,25 @@ class ElementBlockOf final : public ElementBlock {
     trial_ = committed_;
     base_ = committed_;
   }
+  std::string kernel_type() const override { return typeid(Kernel).name(); }
+  size_t history_bytes_per_element() const override { return sizeof(History); }
+  std::vector<unsigned char> committed_history_bytes() const override {
+    // Plain data owns nothing: numbers and fixed-size Eigen vectors (bitwise copyable,
+    // though Eigen does not declare them trivially copyable); no pointers, no containers.
+    static_assert(std::is_trivially_destructible_v<History>, "element history must be plain data (checkpoints copy bytes)");
+    std::vector<unsigned char> bytes(committed_.size() * sizeof(History));
+    if (!bytes.empty()) std::memcpy(bytes.data(), static_cast<const void*>(committed_.data()), bytes.size());
+    return bytes;
+  }
+  void set_history_bytes(const std::vector<unsigned char>& bytes) override {
+    if (bytes.size() != committed_.size() * sizeof(History))
+      throw std::invalid_argument("block '" + name_ + "': " + std::to_string(bytes.size()) +
+                                  " bytes of history for " + std::to_string(size()) + " elements of " +
+                                  std::to_string(sizeof(History)) + " bytes");
+    if (!bytes.empty()) std::memcpy(static_cast<void*>(committed_.data()), bytes.data(), bytes.size());
+    base_ = trial_ = committed_;
+  }
+
   bool augment() override {
     if constexpr (detail::HasAugment<Kernel>::value) {
       bool again = false;
@@ -224,11 +255,18 @@ class ElementBlockOf final : public ElementBlock {
     for (int k = 0; k < kDofs * kDofs; ++k)
       if (slot[k] >= 0) values[slot[k]] += entry[k];
   }
-  [[noreturn]] void throw_non_finite(int e, const char* what) const {
+  /// Names the element, its nodes and the first node and DOF whose entry is NaN or infinite
+  /// (nodes and elements numbered from 1, as in decks).
+  [[noreturn]] void throw_non_finite(int e, const char* what, const Vector& values) const {
+    static const char* const kDofNames[kDofsPerNode] = {"ux", "uy", "rz"};
     std::string nodes;
-    for (int n : nodes_[e]) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n);
-    throw NonFiniteResult("element " + std::to_string(e) + " of block '" + name_ + "' (nodes " + nodes +
-                          ") produced a non-finite " + what);
+    for (int n : nodes_[e]) nodes += (nodes.empty() ? "" : ", ") + std::to_string(n + 1);
+    int first = 0;
+    while (first < kDofs - 1 && std::isfinite(values[first])) ++first;
+    throw NonFiniteResult("element " + std::to_string(e + 1) + " of block '" + name_ + "' (nodes " + nodes +
+                          ") produced a non-finite " + what + " at node " +
+                          std::to_string(nodes_[e][first / kDofsPerNode] + 1) + ", " +
+                          kDofNames[first % kDofsPerNode] + " (" + std::to_string(values[first]) + ")");
   }
 
   std::string name_;

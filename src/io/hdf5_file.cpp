@@ -172,6 +172,22 @@ void ExtendibleDataset::append(double scalar) {
   append(&scalar);
 }
 
+void ExtendibleDataset::append_rows(const double* values, hsize_t rows) {
+  if (rows == 0) return;
+  auto message = [&] { return describe("append rows to dataset", path_, file_path_); };
+  std::vector<hsize_t> dims = dims_, start(dims_.size(), 0), count = count_;
+  start[0] = dims_[0];
+  dims[0] += rows;
+  count[0] = rows;
+  Hdf5Handle memory = dataspace_of({rows * row_size_});
+  const int rank = static_cast<int>(dims.size());
+  check(H5Dset_extent(dataset_.get(), dims.data()), message);
+  dims_ = dims;
+  check(H5Sset_extent_simple(file_space_.get(), rank, dims_.data(), nullptr), message);
+  check(H5Sselect_hyperslab(file_space_.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), message);
+  check(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space_.get(), H5P_DEFAULT, values), message);
+}
+
 // --- Hdf5File ------------------------------------------------------------------------------
 
 Hdf5File::Hdf5File(std::string path, Hdf5Handle file) : path_(std::move(path)), file_(std::move(file)) {
@@ -361,6 +377,20 @@ std::vector<std::string> Hdf5File::read_strings(const std::string& dataset_path)
     return H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
   };
   return read_string_elements(type.get(), count, read, message);
+}
+
+void Hdf5File::write_bytes(const std::string& dataset_path, const std::vector<unsigned char>& bytes) {
+  write_dataset(dataset_path, {bytes.size()}, H5T_STD_U8LE, H5T_NATIVE_UCHAR, bytes.data());
+}
+
+std::vector<unsigned char> Hdf5File::read_bytes(const std::string& dataset_path) const {
+  return read_numeric<unsigned char>(dataset_path, H5T_NATIVE_UCHAR, nullptr);
+}
+
+ExtendibleDataset* Hdf5File::find_extendible(const std::string& dataset_path) {
+  for (ExtendibleDataset& dataset : datasets_)
+    if (dataset.path() == dataset_path) return &dataset;
+  return nullptr;
 }
 
 bool Hdf5File::exists(const std::string& object_path) const {

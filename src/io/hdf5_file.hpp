@@ -50,6 +50,7 @@ class ExtendibleDataset {
 
   void append(const double* row_values);  // row_size() doubles, row-major
   void append(double scalar);             // only for scalar rows
+  void append_rows(const double* values, hsize_t rows);  // rows * row_size() doubles (restarts)
   hsize_t rows() const { return dims_[0]; }
   size_t row_size() const { return row_size_; }
   const std::string& path() const { return path_; }
@@ -111,6 +112,12 @@ class Hdf5File {
   std::vector<long long> read_ints(const std::string& dataset_path, std::vector<hsize_t>* shape = nullptr) const;
   // String dataset (1-D or scalar -> one element).
   std::vector<std::string> read_strings(const std::string& dataset_path) const;
+  // Raw bytes, 1-D (checkpointed element histories).
+  void write_bytes(const std::string& dataset_path, const std::vector<unsigned char>& bytes);
+  std::vector<unsigned char> read_bytes(const std::string& dataset_path) const;
+  // The extendible datasets this object created, in creation order; null if none has the path.
+  const std::deque<ExtendibleDataset>& extendible_datasets() const { return datasets_; }
+  ExtendibleDataset* find_extendible(const std::string& dataset_path);
   bool exists(const std::string& object_path) const;
 
   // Flush everything so that a process killed afterwards leaves a file readable up to here.

@@ -156,9 +156,13 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   flush();
 }
 
-void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
+void ResultFile::start(const Analysis& analysis) {
   if (!mesh_written_) write_mesh(analysis.model());
   if (channels_.empty()) start_history();
+}
+
+void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
+  start(analysis);
   for (auto& channel : channels_) channel.dataset->append(channel.value(analysis, record));
   ++steps_recorded_;
   const bool frame_due = (field_interval_ > 0 && record.step % field_interval_ == 0) ||

@@ -68,6 +68,10 @@ class ResultFile {
   /// Writes a field frame now, whatever the interval.
   void write_fields(const Analysis& analysis, int step);
   int steps_recorded() const { return steps_recorded_; }
+  /// Writes the mesh and opens the history datasets now (a restart refills them).
+  void start(const Analysis& analysis);
+  /// A restart's count of the rows refilled from its checkpoint.
+  void set_steps_recorded(int steps) { steps_recorded_ = steps; }
   void flush();
 
  private:

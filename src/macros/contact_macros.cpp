@@ -149,6 +149,8 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
     if (block->name() == name) throw ModelError("an element block named '" + name + "' exists already (give 'name')");
   ContactParameters parameters;
   parameters.friction = arguments.number("friction");
+  if (!arguments.has("penalty") || !arguments.has("tangential_penalty"))
+    deck.require_state("a default contact penalty (from the structure's stiffness)");
   parameters.normal_penalty = arguments.has("penalty")
                                   ? arguments.number("penalty")
                                   : structural_penalty(deck.analysis(), nodes, arguments.number("penalty_factor"));

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "io/checkpoint.hpp"
 #include "macros/interrupt.hpp"
 
 namespace tirefe::macros {
@@ -12,7 +13,8 @@ namespace tirefe::macros {
 namespace fs = std::filesystem;
 
 DeckModel::DeckModel(std::string title, DeckSession& session)
-    : title_(std::move(title)), session_(session), analysis_(model_) {
+    : title_(std::move(title)), session_(session), analysis_(model_), index_(++session.models_created) {
+  if (session_.restart && session_.restart->model_index == index_) restart_ = session_.restart;
   load_functions_["ramp"] = Model::kRampLoadFunction;
   load_functions_["constant"] = model_.add_load_function(LoadFunction::constant(1.0));
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
@@ -26,6 +28,51 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
                                (output_ ? "; '" + output_->path() + "' holds every completed step" : ""));
     }
   });
+  analysis_.set_step_end_hook([this](Analysis&, const StepRecord& record) {
+    if (checkpoint_file_.empty()) return;
+    const bool by_steps = checkpoint_steps_ > 0 && record.step % checkpoint_steps_ == 0;
+    const bool by_time = checkpoint_minutes_ > 0.0 &&
+                         std::chrono::steady_clock::now() - last_checkpoint_ >=
+                             std::chrono::duration<double>(60.0 * checkpoint_minutes_);
+    if (by_steps || by_time) write_checkpoint(checkpoint_file_);
+  });
+}
+
+std::string DeckModel::output_path(const std::string& file) const {
+  fs::path path(file);
+  if (path.is_relative()) path = fs::path(session_.output_dir) / path;
+  std::error_code ignored;
+  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ignored);
+  return path.string();
+}
+
+void DeckModel::write_checkpoint(const std::string& file) {
+  if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state
+  if (analysis_.accepted_steps() == 0) throw ModelError("a checkpoint needs at least one solved step");
+  io::write_checkpoint(output_path(file), io::capture_checkpoint(analysis_, output_.get(), index_, title_));
+  last_checkpoint_ = std::chrono::steady_clock::now();
+}
+
+void DeckModel::schedule_checkpoints(const std::string& file, int steps, double minutes) {
+  checkpoint_file_ = file;
+  checkpoint_steps_ = steps;
+  checkpoint_minutes_ = minutes;
+  last_checkpoint_ = std::chrono::steady_clock::now();
+}
+
+void DeckModel::require_state(const std::string& what) const {
+  if (restart_ && skipped_steps_)
+    throw ModelError(what + " needs the state at t = " + std::to_string(analysis_.state().time) +
+                     ", which a restart skips (it continues from t = " +
+                     std::to_string(restart_->analysis.state.time) + ")");
+}
+
+void DeckModel::load_checkpoint() {
+  io::restore_checkpoint(*restart_, analysis_, output_.get());
+  restart_.reset();
+  session_.restart.reset();
+  if (!session_.quiet)
+    std::printf("  restarted at step %d, t = %g\n", analysis_.accepted_steps(), analysis_.state().time);
 }
 
 void DeckModel::define_section(const std::string& name, const BeamSection& section) {
@@ -56,12 +103,8 @@ int DeckModel::load_function(const std::string& name) const {
 
 void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval) {
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
-  fs::path path(file);
-  if (path.is_relative()) path = fs::path(session_.output_dir) / path;
-  std::error_code ignored;
-  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ignored);
-  output_ = std::make_unique<io::ResultFile>(path.string(),
-                                             io::RunMetadata{title_, session_.deck_path, session_.deck_text, session_.parameters});
+  output_ = std::make_unique<io::ResultFile>(
+      output_path(file), io::RunMetadata{title_, session_.deck_path, session_.deck_text, session_.parameters});
   output_->set_field_interval(field_interval);
   output_->set_field_time_interval(field_time_interval);
 }
@@ -78,7 +121,22 @@ io::ResultFile& DeckModel::output_or_default() {
 
 const std::vector<StepRecord>& DeckModel::advance(double duration) {
   output_or_default();
-  return analysis_.advance(duration);
+  if (!restart_) return analysis_.advance(duration);
+  // Restarting: the deck runs again, its solves up to the checkpoint are skipped (only the
+  // time moves on, by the arithmetic of a real step), and the checkpoint is loaded where
+  // the original run wrote it: after the solve that ends on it, or before the one crossing it.
+  State& state = analysis_.mutable_state();
+  const double target = state.time + (duration > 0.0 ? duration : analysis_.time_step());
+  const double checkpoint_time = restart_->analysis.state.time;
+  const double round_off = 1e-12 * std::max(1.0, std::abs(target));
+  if (target - round_off > checkpoint_time) {
+    load_checkpoint();
+    return analysis_.advance_to(target);
+  }
+  state.time = target;
+  skipped_steps_ = true;
+  if (checkpoint_time <= target + round_off) load_checkpoint();
+  return no_records_;
 }
 
 void DeckModel::print_step(const StepRecord& record) const {

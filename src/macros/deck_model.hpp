@@ -2,6 +2,7 @@
 // the deck's named things (sections, load functions), and its result file.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,10 +41,22 @@ class DeckModel {
   io::ResultFile& output_or_default();
 
   /// Advances the analysis; the first step opens the default output if none is open.
+  /// Restarting, it skips the time before the checkpoint and loads the checkpoint when it gets there.
   const std::vector<StepRecord>& advance(double duration);
+
+  /// Writes a checkpoint of the run now (a relative path lands in the output folder).
+  void write_checkpoint(const std::string& file);
+  /// Writes one after every 'steps' accepted steps and after 'minutes' of wall time (0: not by that measure).
+  void schedule_checkpoints(const std::string& file, int steps, double minutes);
+  /// Refuses 'what' while a restart is skipping time whose state it does not have.
+  void require_state(const std::string& what) const;
+  /// True while a restart skips the time before its checkpoint.
+  bool restarting() const { return restart_ != nullptr; }
 
  private:
   void print_step(const StepRecord& record) const;
+  std::string output_path(const std::string& file) const;
+  void load_checkpoint();
 
   std::string title_;
   DeckSession& session_;
@@ -53,6 +66,14 @@ class DeckModel {
   std::map<std::string, int> load_functions_;
   std::unique_ptr<io::ResultFile> output_;
   bool calls_lua_ = false;
+  int index_;  // counted from 1 in the order the deck creates its models
+  std::shared_ptr<const io::Checkpoint> restart_;
+  bool skipped_steps_ = false;
+  std::string checkpoint_file_;
+  int checkpoint_steps_ = 0;
+  double checkpoint_minutes_ = 0.0;
+  std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
+  std::vector<StepRecord> no_records_;
 };
 
 }  // namespace tirefe::macros

@@ -2,9 +2,14 @@
 // output goes, and the tally of the deck's self-checks.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
+
+namespace tirefe::io {
+struct Checkpoint;
+}
 
 namespace tirefe::macros {
 
@@ -23,6 +28,9 @@ struct DeckSession {
   // result file's /parameters (a run's file says which case it is).
   std::vector<std::pair<std::string, std::string>> parameters;
   int default_outputs_opened = 0;
+  int models_created = 0;
+  /// --restart: the checkpoint a model continues from (docs/restart.md); cleared once loaded.
+  std::shared_ptr<const io::Checkpoint> restart;
 
   int failed_checks() const {
     int failed = 0;

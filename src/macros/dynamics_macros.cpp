@@ -26,6 +26,7 @@ int initial_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
 
 int modal_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const int count = static_cast<int>(arguments.integer("modes"));
+  deck.require_state("model:modal");
   const ModalResult result = modal_analysis(deck.analysis(), count);
   const std::string label = arguments.string_or("label", "t" + std::to_string(deck.analysis().state().time));
   deck.output_or_default().write_modes(label, deck.analysis(), result.frequencies_hz, result.rigid_body,

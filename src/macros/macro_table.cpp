@@ -112,6 +112,7 @@ const MacroTable& macro_table() {
     add_fitting_macros(built);
     add_post_macros(built);
     add_vehicle_macros(built);
+    add_checkpoint_macros(built);
     return built;
   }();
   return table;

@@ -46,6 +46,7 @@ void add_contact_macros(MacroTable& table);
 void add_fitting_macros(MacroTable& table);
 void add_post_macros(MacroTable& table);
 void add_vehicle_macros(MacroTable& table);
+void add_checkpoint_macros(MacroTable& table);
 
 // Argument pieces shared by the macro groups.
 const std::vector<std::string>& dof_names();  // ux, uy, rz

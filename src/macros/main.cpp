@@ -1,5 +1,5 @@
 // tirefe: runs an input deck.
-//   tirefe deck.lua [key=value ...] [--output-dir DIR] [--quiet] [--verbose]
+//   tirefe deck.lua [key=value ...] [--output-dir DIR] [--restart FILE] [--quiet] [--verbose]
 //   tirefe --macros        prints the macro reference (Markdown)
 // Exit status: 0 success, 1 deck or model error, 2 usage error, 3 a self-check failed,
 // 128 + signal when SIGINT or SIGTERM stopped the run (after closing its files).
@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 
+#include "io/checkpoint.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/interrupt.hpp"
 #include "macros/lua_sandbox.hpp"
@@ -20,13 +21,14 @@
 namespace {
 
 constexpr const char* kUsage =
-    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--quiet] [--verbose]\n"
+    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet] [--verbose]\n"
     "       tirefe --macros | --version\n";
 
 struct CommandLine {
   std::string deck;
   std::map<std::string, std::string> overrides;
   std::string output_dir = "results";
+  std::string restart;
   bool quiet = false, verbose = false;
 };
 
@@ -35,6 +37,8 @@ bool parse(int argc, char** argv, CommandLine& line) {
     const std::string argument = argv[i];
     if (argument == "--output-dir" && i + 1 < argc) {
       line.output_dir = argv[++i];
+    } else if (argument == "--restart" && i + 1 < argc) {
+      line.restart = argv[++i];
     } else if (argument == "--quiet") {
       line.quiet = true;
     } else if (argument == "--verbose") {
@@ -81,11 +85,23 @@ int main(int argc, char** argv) {
     std::ifstream deck(line.deck, std::ios::binary);  // kept in every output file
     session.deck_text.assign(std::istreambuf_iterator<char>(deck), std::istreambuf_iterator<char>());
   }
+  if (!line.restart.empty()) {
+    try {
+      session.restart = std::make_shared<tirefe::io::Checkpoint>(tirefe::io::read_checkpoint(line.restart));
+    } catch (const std::exception& error) {
+      std::cerr << "tirefe: " << line.deck << ": " << error.what() << "\n";
+      return 1;
+    }
+  }
   LuaSandbox sandbox(TIREFE_LUA_DIR);
   install_stop_handlers();
   try {
     install_macros(sandbox, session);
     sandbox.run_file(line.deck, line.overrides);
+    if (session.restart)
+      throw std::runtime_error("the deck ended before the time of the restart checkpoint '" + line.restart +
+                               "' (t = " + std::to_string(session.restart->analysis.state.time) +
+                               "): it is not the deck that wrote it");
   } catch (const DeckError& error) {
     std::cerr << "tirefe: " << error.what() << "\n";
     if (line.verbose && !sandbox.last_traceback().empty()) std::cerr << sandbox.last_traceback() << "\n";

@@ -276,6 +276,7 @@ int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
 
 int value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const std::vector<int> nodes = target_nodes(deck, arguments);
+  deck.require_state("model:value");
   deck.model().finalize();
   const Analysis& analysis = deck.analysis();
   if (analysis.state().displacement.size() != deck.model().mesh().dof_count())
@@ -302,6 +303,7 @@ int time_macro(lua_State* L, DeckModel& deck, const MacroArguments&) {
 int print_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::vector<int> nodes = target_nodes(deck, arguments);
   const NodalQuantity reader = quantity_reader(arguments.string("quantity"));
+  deck.require_state("model:print");
   if (deck.analysis().state().displacement.size() != deck.model().mesh().dof_count())
     throw ModelError("no step has been solved yet");
   std::printf("  %s at t = %g\n  %6s %14s %14s %14s\n", arguments.string("quantity").c_str(),

@@ -164,10 +164,11 @@ double Analysis::apply_increment(const Eigen::VectorXd& increment) {
   return largest_increment / (1.0 + trial_.displacement.lpNorm<Eigen::Infinity>());
 }
 
-bool Analysis::try_step(double step, StepRecord& record) {
+bool Analysis::try_step(double step, double end_time, StepRecord& record) {
   current_step_ = step;
   trial_ = committed_;
   integrator_.predict(committed_, step, trial_);
+  trial_.time = end_time;
   model_.apply_prescribed_displacements(trial_.time, trial_);
   for (const auto& constraint : model_.prescribed_dofs())
     integrator_.update_rates(committed_, step, constraint.dof, trial_);
@@ -358,7 +359,11 @@ void Analysis::record_step(double step, StepRecord& record) {
   record.time = committed_.time;
   record.step_size = step;
   record.energy = energy_;
+}
+
+void Analysis::notify_step(const StepRecord& record) {
   for (const auto& observer : observers_) observer(*this, record);
+  if (step_end_hook_) step_end_hook_(*this, record);
 }
 
 const StepRecord& Analysis::solve_trial_step(double step) {
@@ -366,7 +371,7 @@ const StepRecord& Analysis::solve_trial_step(double step) {
     throw ModelError("the time step must be positive and finite (got " + std::to_string(step) + ")");
   start_steps();
   trial_record_ = StepRecord{};
-  if (!try_step(step, trial_record_))
+  if (!try_step(step, committed_.time + step, trial_record_))
     throw StepFailure("the step from t = " + std::to_string(committed_.time) + " (dt = " + std::to_string(step) +
                       ") failed: " + last_failure_);
   trial_pending_ = true;
@@ -378,6 +383,7 @@ void Analysis::accept_trial_step() {
   if (!trial_pending_) throw ModelError("there is no trial step to accept");
   trial_pending_ = false;
   record_step(trial_step_size_, trial_record_);
+  notify_step(trial_record_);
 }
 
 void Analysis::discard_trial_step() {
@@ -387,25 +393,28 @@ void Analysis::discard_trial_step() {
 }
 
 const std::vector<StepRecord>& Analysis::advance(double duration) {
+  return advance_to(committed_.time + (duration > 0.0 ? duration : nominal_step_));
+}
+
+const std::vector<StepRecord>& Analysis::advance_to(double target) {
   start_steps();
   records_.clear();
-  if (duration <= 0.0) duration = nominal_step_;
-  const double start = committed_.time;
-  const double target = start + duration;
+  const double duration = target - committed_.time;
   const double time_round_off = 1e-12 * std::max(1.0, std::abs(target));
   double step = std::min(current_step_, control_.max_step > 0.0 ? control_.max_step : current_step_);
-  records_.reserve(static_cast<size_t>(std::min(duration / step, 1e6)) + 16);
+  records_.reserve(static_cast<size_t>(std::min(std::max(duration, 0.0) / step, 1e6)) + 16);
   while (committed_.time < target - time_round_off) {
     const double remaining = target - committed_.time;
-    // Take the rest in one step if a sliver would be left over.
-    step = (step >= remaining || remaining - step < 1e-6 * step) ? remaining : step;
+    // Take the rest in one step if a sliver would be left over; it ends on the target exactly.
+    const bool last = step >= remaining || remaining - step < 1e-6 * step;
+    step = last ? remaining : step;
     // No step is cut below the nominal one halved 2 max_cuts times: otherwise a run that
     // scrapes through with tiny steps, failing again after each, lets the step dwindle
     // from cut to cut without ever stopping.
     const double smallest =
         std::max(control_.min_step, std::ldexp(std::min(nominal_step_, remaining), -2 * control_.max_cuts));
     StepRecord record;
-    while (!try_step(step, record)) {
+    while (!try_step(step, last && record.cuts == 0 ? target : committed_.time + step, record)) {
       ++record.cuts;
       const double cut = 0.5 * step;
       if (record.cuts > control_.max_cuts || cut < smallest * (1.0 - 1e-9)) {
@@ -419,12 +428,61 @@ const std::vector<StepRecord>& Analysis::advance(double duration) {
     }
     record_step(step, record);
     records_.push_back(record);
-    // Grow back toward the nominal step after an easy convergence.
+    // Grow back toward the nominal step after an easy convergence (before the observers,
+    // so that a checkpoint taken by one holds the next step's size).
     if (record.newton_iterations <= control_.easy_iterations)
       step = std::min(nominal_step_, step * control_.growth);
     current_step_ = step;
+    notify_step(record);
   }
   return records_;
+}
+
+AnalysisSnapshot Analysis::snapshot() {
+  AnalysisSnapshot s;
+  s.state = committed_;
+  s.nominal_step = nominal_step_;
+  s.current_step = current_step_;
+  s.external_old = external_old_;
+  s.old_internal_forces = old_internal_forces_;
+  s.reactions = reactions_;
+  s.old_forces_valid = old_forces_valid_;
+  s.acceleration_pending = acceleration_pending_;
+  s.reactions_valid = reactions_valid_;
+  s.energy_started = energy_started_;
+  s.energy = energy_;
+  s.accepted_steps = accepted_steps_;
+  s.integrator_kind = static_cast<int>(integrator_.kind());
+  s.beta = integrator_.beta();
+  s.gamma = integrator_.gamma();
+  s.alpha = integrator_.alpha();
+  analyzed_pattern_ = -1;  // the next factorization starts afresh, as after a restore
+  return s;
+}
+
+void Analysis::restore(const AnalysisSnapshot& s) {
+  if (s.integrator_kind != static_cast<int>(integrator_.kind()) || s.beta != integrator_.beta() ||
+      s.gamma != integrator_.gamma() || s.alpha != integrator_.alpha())
+    throw ModelError("the checkpoint was taken with another integrator than the deck's " + integrator_.name());
+  const int dofs = model_.mesh().dof_count();
+  for (const Eigen::VectorXd* field : {&s.state.displacement, &s.state.velocity, &s.state.acceleration, &s.reactions,
+                                       &s.external_old})
+    if (field->size() != dofs || (s.old_forces_valid && s.old_internal_forces.size() != dofs))
+      throw ModelError("the checkpoint holds " + std::to_string(field->size()) + " DOFs, the model has " +
+                       std::to_string(dofs));
+  committed_ = s.state;
+  nominal_step_ = s.nominal_step;
+  current_step_ = s.current_step;
+  external_old_ = s.external_old;
+  old_internal_forces_ = s.old_internal_forces;
+  reactions_ = s.reactions;
+  old_forces_valid_ = s.old_forces_valid;
+  acceleration_pending_ = s.acceleration_pending;
+  reactions_valid_ = s.reactions_valid;
+  energy_started_ = s.energy_started;
+  energy_ = s.energy;
+  accepted_steps_ = s.accepted_steps;
+  analyzed_pattern_ = -1;
 }
 
 void Analysis::initialize_acceleration() {

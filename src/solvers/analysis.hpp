@@ -66,6 +66,19 @@ struct StepRecord {
   EnergyRecord energy;    // at the end of the step
 };
 
+/// Everything an Analysis carries from one accepted step to the next (checkpoints): with
+/// the element histories and the deck's settings it continues a run bit for bit.
+struct AnalysisSnapshot {
+  State state;
+  double nominal_step = 0.0, current_step = 0.0;
+  Eigen::VectorXd external_old, old_internal_forces, reactions;
+  bool old_forces_valid = false, acceleration_pending = false, reactions_valid = false, energy_started = false;
+  EnergyRecord energy;
+  int accepted_steps = 0;
+  int integrator_kind = 0;  // Integrator::Kind, with its parameters: checked on restore
+  double beta = 0.0, gamma = 0.0, alpha = 0.0;
+};
+
 class Analysis : private StepEquations {
  public:
   explicit Analysis(Model& model);
@@ -83,6 +96,14 @@ class Analysis : private StepEquations {
   /// Advances by 'duration' (default: one nominal step) in as many accepted steps as
   /// it takes; returns the records of the accepted steps. Throws StepFailure.
   const std::vector<StepRecord>& advance(double duration = 0.0);
+  /// The same, up to the time 'target' (the last step lands on it exactly).
+  const std::vector<StepRecord>& advance_to(double target);
+
+  /// The state between steps, for a checkpoint. Taking one also drops the linear
+  /// solver's reused pivots, as a restore does, so that the run goes on as a restarted one would.
+  AnalysisSnapshot snapshot();
+  /// Continues from a snapshot (with the same integrator; throws ModelError otherwise).
+  void restore(const AnalysisSnapshot& snapshot);
 
   /// Solves M a = F - f_int - C v for the accelerations at the current time. Called by
   /// advance() when the analysis enters dynamics or after new initial conditions.
@@ -156,14 +177,17 @@ class Analysis : private StepEquations {
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
     observers_.push_back(std::move(observer));
   }
+  /// Runs after every observer of an accepted step (a checkpoint: the step's output is complete then).
+  void set_step_end_hook(std::function<void(Analysis&, const StepRecord&)> hook) { step_end_hook_ = std::move(hook); }
 
  private:
   void prepare();
   void size_state();
   void start_steps();
   void record_step(double step, StepRecord& record);
+  void notify_step(const StepRecord& record);
   LinearSolver& newton_linear_solver();
-  bool try_step(double step, StepRecord& record);
+  bool try_step(double step, double end_time, StepRecord& record);
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
   void update_committed_reactions();
@@ -204,6 +228,7 @@ class Analysis : private StepEquations {
   double trial_step_size_ = 0.0;
   StepRecord trial_record_;
   std::vector<std::function<void(const Analysis&, const StepRecord&)>> observers_;
+  std::function<void(Analysis&, const StepRecord&)> step_end_hook_;
 };
 
 }  // namespace tirefe

@@ -1,0 +1,29 @@
+// The parsers' fuzz entry points (docs/reliability.md), shared by the libFuzzer targets in
+// fuzz/ and by the corpus replay in the test suite. Each feeds arbitrary bytes to one
+// parser and returns normally whether the input was accepted or rejected with the
+// parser's documented error; anything else (a crash, an undocumented exception, a
+// rejection without the file's name, a non-finite value accepted) is a failure: it aborts
+// under the fuzzer and fails the replay test.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+
+namespace tirefe::fuzz {
+
+/// Broken invariants of a parser (never thrown for merely bad input).
+class FuzzFailure : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
+};
+
+/// The first byte picks a deck macro; the rest is its argument table, called on a small
+/// model through the Lua sandbox and the macro layer (argument validation).
+void deck_macro(const uint8_t* data, size_t size);
+/// A road-profile text file (two columns x y), then the profile built from it and a few projections.
+void road_profile(const uint8_t* data, size_t size);
+/// A CSV data file (header with unit suffixes, rows of numbers).
+void curve_data(const uint8_t* data, size_t size);
+
+}  // namespace tirefe::fuzz

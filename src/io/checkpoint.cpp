@@ -1,0 +1,229 @@
+#include "io/checkpoint.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+namespace tirefe::io {
+
+namespace {
+
+constexpr const char* kFormat = "tirefe checkpoint 1";
+
+std::vector<double> to_std(const Eigen::VectorXd& vector) { return {vector.data(), vector.data() + vector.size()}; }
+Eigen::VectorXd to_eigen(const std::vector<double>& values) {
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+// The snapshot's vectors and numbers, one name each (written and read by the same table).
+struct VectorField {
+  const char* name;
+  Eigen::VectorXd AnalysisSnapshot::*member;
+};
+const VectorField kVectors[] = {{"external_old", &AnalysisSnapshot::external_old},
+                                {"old_internal_forces", &AnalysisSnapshot::old_internal_forces},
+                                {"reactions", &AnalysisSnapshot::reactions}};
+struct NumberField {
+  const char* name;
+  double AnalysisSnapshot::*member;
+};
+const NumberField kNumbers[] = {{"nominal_step", &AnalysisSnapshot::nominal_step},
+                                {"current_step", &AnalysisSnapshot::current_step},
+                                {"beta", &AnalysisSnapshot::beta},
+                                {"gamma", &AnalysisSnapshot::gamma},
+                                {"alpha", &AnalysisSnapshot::alpha}};
+struct EnergyField {
+  const char* name;
+  double EnergyRecord::*member;
+};
+const EnergyField kEnergies[] = {{"energy_kinetic", &EnergyRecord::kinetic},
+                                 {"energy_strain", &EnergyRecord::strain},
+                                 {"external_work", &EnergyRecord::external_work},
+                                 {"energy_initial", &EnergyRecord::initial},
+                                 {"energy_dissipated", &EnergyRecord::dissipated}};
+struct FlagField {
+  const char* name;
+  bool AnalysisSnapshot::*member;
+};
+const FlagField kFlags[] = {{"old_forces_valid", &AnalysisSnapshot::old_forces_valid},
+                            {"acceleration_pending", &AnalysisSnapshot::acceleration_pending},
+                            {"reactions_valid", &AnalysisSnapshot::reactions_valid},
+                            {"energy_started", &AnalysisSnapshot::energy_started}};
+
+long long integer_attribute(const Hdf5File& file, const std::string& object, const char* name) {
+  return static_cast<long long>(file.read_double_attribute(object, name));
+}
+
+}  // namespace
+
+Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_index, const std::string& title) {
+  Checkpoint checkpoint;
+  checkpoint.title = title;
+  checkpoint.model_index = model_index;
+  checkpoint.node_count = analysis.model().mesh().node_count();
+  checkpoint.analysis = analysis.snapshot();
+  for (const auto& block : analysis.model().blocks())
+    checkpoint.blocks.push_back({block->name(), block->kernel_type(),
+                                 static_cast<long long>(block->history_bytes_per_element()), block->size(),
+                                 block->committed_history_bytes()});
+  if (output) {
+    checkpoint.has_output = true;
+    checkpoint.steps_recorded = output->steps_recorded();
+    Hdf5File& file = output->file();
+    for (const ExtendibleDataset& dataset : file.extendible_datasets()) {
+      SavedRows rows;
+      rows.path = dataset.path();
+      std::vector<hsize_t> shape;
+      rows.values = file.read_doubles(dataset.path(), &shape);
+      rows.rows = static_cast<long long>(shape.front());
+      rows.row_shape.assign(shape.begin() + 1, shape.end());
+      checkpoint.rows.push_back(std::move(rows));
+    }
+  }
+  return checkpoint;
+}
+
+void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, ResultFile* output) {
+  const Model& model = analysis.model();
+  auto differs = [](const std::string& what) {
+    return ModelError("the checkpoint is of another model: " + what);
+  };
+  if (checkpoint.node_count != model.mesh().node_count())
+    throw differs("it has " + std::to_string(checkpoint.node_count) + " nodes, the deck's model " +
+                  std::to_string(model.mesh().node_count()));
+  if (checkpoint.blocks.size() != model.blocks().size())
+    throw differs("it has " + std::to_string(checkpoint.blocks.size()) + " element blocks, the deck's model " +
+                  std::to_string(model.blocks().size()));
+  for (size_t b = 0; b < checkpoint.blocks.size(); ++b) {
+    const SavedBlock& saved = checkpoint.blocks[b];
+    const ElementBlock& block = *model.blocks()[b];
+    if (saved.name != block.name() || saved.kernel_type != block.kernel_type() ||
+        saved.bytes_per_element != static_cast<long long>(block.history_bytes_per_element()) ||
+        saved.elements != block.size())
+      throw differs("its block " + std::to_string(b + 1) + " is '" + saved.name + "' with " +
+                    std::to_string(saved.elements) + " elements, the deck's is '" + block.name() + "' with " +
+                    std::to_string(block.size()));
+  }
+  if (checkpoint.has_output != (output != nullptr))
+    throw differs(checkpoint.has_output ? "it wrote a result file, the deck's model writes none"
+                                        : "it wrote no result file, the deck's model does");
+  analysis.model().finalize();
+  analysis.restore(checkpoint.analysis);
+  for (size_t b = 0; b < checkpoint.blocks.size(); ++b)
+    model.blocks()[b]->set_history_bytes(checkpoint.blocks[b].history);
+  if (!output) return;
+  output->start(analysis);
+  Hdf5File& file = output->file();
+  if (file.extendible_datasets().size() != checkpoint.rows.size())
+    throw differs("its result file had " + std::to_string(checkpoint.rows.size()) + " row datasets, the deck's " +
+                  std::to_string(file.extendible_datasets().size()));
+  for (const SavedRows& rows : checkpoint.rows) {
+    ExtendibleDataset* dataset = file.find_extendible(rows.path);
+    long long row_size = 1;
+    for (long long extent : rows.row_shape) row_size *= extent;
+    if (!dataset || dataset->rows() != 0 || static_cast<long long>(dataset->row_size()) != row_size)
+      throw differs("its result file has '" + rows.path + "' which the deck's does not write alike");
+    dataset->append_rows(rows.values.data(), static_cast<hsize_t>(rows.rows));
+  }
+  output->set_steps_recorded(checkpoint.steps_recorded);
+  output->flush();
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
+  const std::string partial = path + ".partial";
+  {
+    Hdf5File file = Hdf5File::create(partial);
+    const AnalysisSnapshot& analysis = checkpoint.analysis;
+    file.write_attribute("/", "title", checkpoint.title);
+    file.write_attribute("/", "model_index", checkpoint.model_index);
+    file.write_attribute("/", "node_count", checkpoint.node_count);
+    file.write_attribute("/", "time", analysis.state.time);
+    file.write_attribute("/", "steps", analysis.accepted_steps);
+    file.write_vector("/analysis/displacement", to_std(analysis.state.displacement));
+    file.write_vector("/analysis/velocity", to_std(analysis.state.velocity));
+    file.write_vector("/analysis/acceleration", to_std(analysis.state.acceleration));
+    for (const VectorField& field : kVectors) file.write_vector("/analysis/" + std::string(field.name), to_std(analysis.*field.member));
+    for (const NumberField& field : kNumbers) file.write_attribute("/analysis", field.name, analysis.*field.member);
+    for (const EnergyField& field : kEnergies) file.write_attribute("/analysis", field.name, analysis.energy.*field.member);
+    for (const FlagField& field : kFlags) file.write_attribute("/analysis", field.name, static_cast<long long>(analysis.*field.member));
+    file.write_attribute("/analysis", "integrator_kind", analysis.integrator_kind);
+    file.write_attribute("/blocks", "count", static_cast<long long>(checkpoint.blocks.size()));
+    for (size_t b = 0; b < checkpoint.blocks.size(); ++b) {
+      const SavedBlock& block = checkpoint.blocks[b];
+      const std::string group = "/blocks/" + std::to_string(b);
+      file.write_bytes(group + "/history", block.history);
+      file.write_attribute(group, "name", block.name);
+      file.write_attribute(group, "kernel_type", block.kernel_type);
+      file.write_attribute(group, "bytes_per_element", block.bytes_per_element);
+      file.write_attribute(group, "elements", block.elements);
+    }
+    file.write_attribute("/rows", "has_output", static_cast<long long>(checkpoint.has_output));
+    file.write_attribute("/rows", "steps_recorded", checkpoint.steps_recorded);
+    file.write_attribute("/rows", "count", static_cast<long long>(checkpoint.rows.size()));
+    for (size_t r = 0; r < checkpoint.rows.size(); ++r) {
+      const SavedRows& rows = checkpoint.rows[r];
+      const std::string group = "/rows/" + std::to_string(r);
+      file.write_vector(group + "/values", rows.values);
+      file.write_int_vector(group + "/row_shape", rows.row_shape);
+      file.write_attribute(group, "path", rows.path);
+      file.write_attribute(group, "rows", rows.rows);
+    }
+    // Written last: a file without it is incomplete.
+    file.write_attribute("/", "format", std::string(kFormat));
+  }
+  std::error_code error;
+  std::filesystem::rename(partial, path, error);
+  if (error) throw IoError("cannot write checkpoint '" + path + "': " + error.message());
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw IoError("restart file '" + path + "' does not exist");
+  try {
+    const Hdf5File file = Hdf5File::open_read_only(path);
+    if (!file.exists("/analysis") || file.read_string_attribute("/", "format") != kFormat)
+      throw IoError("no checkpoint written by this tirefe");
+    Checkpoint checkpoint;
+    AnalysisSnapshot& analysis = checkpoint.analysis;
+    checkpoint.title = file.read_string_attribute("/", "title");
+    checkpoint.model_index = static_cast<int>(integer_attribute(file, "/", "model_index"));
+    checkpoint.node_count = static_cast<int>(integer_attribute(file, "/", "node_count"));
+    analysis.state.time = file.read_double_attribute("/", "time");
+    analysis.accepted_steps = static_cast<int>(integer_attribute(file, "/", "steps"));
+    analysis.state.displacement = to_eigen(file.read_doubles("/analysis/displacement"));
+    analysis.state.velocity = to_eigen(file.read_doubles("/analysis/velocity"));
+    analysis.state.acceleration = to_eigen(file.read_doubles("/analysis/acceleration"));
+    for (const VectorField& field : kVectors) analysis.*field.member = to_eigen(file.read_doubles("/analysis/" + std::string(field.name)));
+    for (const NumberField& field : kNumbers) analysis.*field.member = file.read_double_attribute("/analysis", field.name);
+    for (const EnergyField& field : kEnergies) analysis.energy.*field.member = file.read_double_attribute("/analysis", field.name);
+    for (const FlagField& field : kFlags) analysis.*field.member = integer_attribute(file, "/analysis", field.name) != 0;
+    analysis.integrator_kind = static_cast<int>(integer_attribute(file, "/analysis", "integrator_kind"));
+    const long long blocks = integer_attribute(file, "/blocks", "count");
+    for (long long b = 0; b < blocks; ++b) {
+      const std::string group = "/blocks/" + std::to_string(b);
+      checkpoint.blocks.push_back({file.read_string_attribute(group, "name"),
+                                   file.read_string_attribute(group, "kernel_type"),
+                                   integer_attribute(file, group, "bytes_per_element"),
+                                   integer_attribute(file, group, "elements"), file.read_bytes(group + "/history")});
+    }
+    checkpoint.has_output = integer_attribute(file, "/rows", "has_output") != 0;
+    checkpoint.steps_recorded = static_cast<int>(integer_attribute(file, "/rows", "steps_recorded"));
+    const long long row_sets = integer_attribute(file, "/rows", "count");
+    for (long long r = 0; r < row_sets; ++r) {
+      const std::string group = "/rows/" + std::to_string(r);
+      SavedRows rows;
+      rows.path = file.read_string_attribute(group, "path");
+      rows.rows = integer_attribute(file, group, "rows");
+      rows.row_shape = file.read_ints(group + "/row_shape");
+      rows.values = file.read_doubles(group + "/values");
+      long long row_size = 1;
+      for (long long extent : rows.row_shape) row_size *= extent;
+      if (rows.rows < 0 || row_size <= 0 || static_cast<long long>(rows.values.size()) != rows.rows * row_size)
+        throw IoError("rows of '" + rows.path + "' are incomplete");
+      checkpoint.rows.push_back(std::move(rows));
+    }
+    return checkpoint;
+  } catch (const IoError& error) {
+    throw IoError("restart file '" + path + "' is not a readable checkpoint (" + error.what() + ")");
+  }
+}
+
+}  // namespace tirefe::io

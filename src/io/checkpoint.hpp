@@ -1,0 +1,56 @@
+// Checkpoints (docs/restart.md): the complete state of one model's run between two
+// steps, in an HDF5 file of its own:
+//   /                   attributes: format, title, model_index, node_count, time, steps
+//   /analysis/*         u, v, a, the forces and reactions of the last step, step size,
+//                       energy bookkeeping and the integrator (AnalysisSnapshot)
+//   /blocks/<i>         every element block's committed history as bytes, with the
+//                       block's name, kernel type and history size as attributes
+//   /rows/<i>           every row the result file held (its history, fields and
+//                       contact datasets), so that a restarted run writes a complete file
+// A restart rebuilds the model with the deck, checks that it is the same model (nodes,
+// blocks, integrator) and loads this state into it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/result_file.hpp"
+#include "solvers/analysis.hpp"
+
+namespace tirefe::io {
+
+struct SavedBlock {
+  std::string name, kernel_type;
+  long long bytes_per_element = 0, elements = 0;
+  std::vector<unsigned char> history;
+};
+
+struct SavedRows {
+  std::string path;                  // the dataset in the result file
+  std::vector<long long> row_shape;  // empty for scalar rows
+  long long rows = 0;
+  std::vector<double> values;
+};
+
+struct Checkpoint {
+  std::string title;
+  int model_index = 0;  // which tirefe.model{} of the deck, counted from 1
+  int node_count = 0;
+  AnalysisSnapshot analysis;
+  std::vector<SavedBlock> blocks;
+  bool has_output = false;
+  int steps_recorded = 0;
+  std::vector<SavedRows> rows;
+};
+
+/// The state of 'analysis' and the rows of 'output' (may be null) now.
+Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_index, const std::string& title);
+/// Loads a checkpoint into a model built by the same deck; throws ModelError naming what differs.
+void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, ResultFile* output);
+
+/// Writes beside 'path' first and renames, so a run killed meanwhile keeps the last checkpoint whole.
+void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+/// Throws IoError for a missing, unreadable or incomplete checkpoint file.
+Checkpoint read_checkpoint(const std::string& path);
+
+}  // namespace tirefe::io

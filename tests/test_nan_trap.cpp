@@ -1,0 +1,69 @@
+// NaN traps: an element whose residual turns NaN stops the Newton solve at once, and the
+// step failure names the block, the element and the node and DOF that produced it.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/model.hpp"
+#include "solvers/analysis.hpp"
+
+namespace {
+
+using namespace tirefe;
+
+// A linear spring between two nodes along x whose force turns NaN on its second node
+// beyond a stretch: a stand-in for a material law leaving its domain.
+struct BreakingSpring : KernelShape<2> {
+  double stiffness = 100.0, breaking_stretch = 0.0533;
+  void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
+                Vector& residual, Matrix* tangent) const {
+    const double stretch = local.displacement[3] - local.displacement[0];
+    residual.setZero();
+    residual[0] = -stiffness * stretch * context.factors.force_stiffness;
+    residual[3] = stretch > breaking_stretch ? std::numeric_limits<double>::quiet_NaN()
+                                             : stiffness * stretch * context.factors.force_stiffness;
+    if (tangent) {
+      tangent->setZero();
+      (*tangent)(0, 0) = (*tangent)(3, 3) = stiffness * context.factors.tangent_stiffness;
+      (*tangent)(0, 3) = (*tangent)(3, 0) = -stiffness * context.factors.tangent_stiffness;
+      (*tangent)(1, 1) = (*tangent)(2, 2) = (*tangent)(4, 4) = (*tangent)(5, 5) = 1.0;  // keep it regular
+    }
+  }
+  ElementEnergy energy(const LocalState<kDofs>&, const History&) const { return {}; }
+};
+
+}  // namespace
+
+TEST_CASE("a NaN in an element residual names the block, element, node and DOF", "[reliability][nan]") {
+  Model model;
+  for (int i = 0; i < 3; ++i) model.mesh().add_node({static_cast<double>(i), 0.0});
+  auto& springs = model.add_block<BreakingSpring>("springs");
+  BreakingSpring stiff;
+  stiff.stiffness = 1000.0;
+  springs.add({0, 1}, stiff);
+  springs.add({1, 2}, BreakingSpring{});
+  model.fix(0, 0);
+  // The load f = t stretches the springs by f/k: the second one (nodes 2 and 3 in deck
+  // numbering) by 0.01 per unit of load level, so it breaks beyond a level of 5.33.
+  model.add_nodal_load(2, 0, 1.0, Model::kRampLoadFunction);
+  Analysis analysis(model);
+  analysis.step_control().max_cuts = 2;
+  analysis.set_time_step(1.0);
+  analysis.advance(4.0);  // below the breaking level: fine
+  CHECK(analysis.state().displacement[dof_index(2, 0)] == Approx(0.044));
+  try {
+    analysis.advance(2.0);
+    FAIL("the NaN went unnoticed");
+  } catch (const StepFailure& failure) {
+    const std::string message = failure.what();
+    INFO(message);
+    CHECK(message.find("element 2 of block 'springs' (nodes 2, 3) produced a non-finite residual at node 3, ux") !=
+          std::string::npos);
+  }
+  // The failed step left the committed state untouched, and finite.
+  CHECK(analysis.state().time >= 4.0);
+  CHECK(analysis.state().time < 5.33);
+  CHECK(analysis.state().displacement.allFinite());
+}

@@ -1,0 +1,125 @@
+// Checkpoint and restart, for real: tests/restart_deck.lua (a ring on a road moving under
+// it, with friction, HHT-alpha) runs uninterrupted, then again from its checkpoints: one
+// written between two solves, one written automatically in the middle of a solve. Every
+// row of the restarted result files and the final state must equal the uninterrupted
+// run's bit for bit.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "io/checkpoint.hpp"
+#include "io/hdf5_file.hpp"
+
+namespace fs = std::filesystem;
+using tirefe::io::Hdf5File;
+
+namespace {
+
+const std::string kDeck = std::string(TIREFE_TEST_DATA_DIR) + "/restart_deck.lua";
+
+struct Run {
+  int status;
+  std::string output;  // standard output and error
+};
+
+Run run_deck(const fs::path& folder, const std::string& arguments) {
+  fs::remove_all(folder);
+  const std::string command = std::string(TIREFE_BINARY) + " " + kDeck + " --output-dir " + folder.string() + " " +
+                              arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string output;
+  std::array<char, 512> buffer;
+  while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("a run restarted from a checkpoint continues bit for bit", "[reliability][restart]") {
+  const fs::path root = fs::temp_directory_path() / "tirefe_restart";
+  const fs::path whole = root / "whole";
+  const Run uninterrupted = run_deck(whole, "--quiet");
+  REQUIRE(uninterrupted.status == 0);
+  const auto reference_end = tirefe::io::read_checkpoint((whole / "end.ckpt.h5").string());
+  const Hdf5File reference = Hdf5File::open_read_only((whole / "restart.h5").string());
+  REQUIRE(reference_end.analysis.accepted_steps == 150);
+  // The case is not trivial: the ring slides in contact and the road drags it.
+  const std::vector<double> patch_fx = reference.read_doubles("/history/patch_fx");
+  REQUIRE(patch_fx.size() == 150);
+  CHECK(std::abs(patch_fx.back()) > 50.0);
+
+  for (const char* checkpoint : {"mid.ckpt.h5", "auto.ckpt.h5"}) {
+    DYNAMIC_SECTION("restarted from " << checkpoint) {
+      const auto saved = tirefe::io::read_checkpoint((whole / checkpoint).string());
+      const int start_step = saved.analysis.accepted_steps;
+      CHECK(start_step == (std::string(checkpoint) == "mid.ckpt.h5" ? 60 : 120));
+      const fs::path folder = root / fs::path(checkpoint).stem().stem();
+      fs::create_directories(root);
+      fs::copy_file(whole / checkpoint, root / checkpoint, fs::copy_options::overwrite_existing);
+      const Run restarted = run_deck(folder, "--restart " + (root / checkpoint).string());
+      INFO(restarted.output.substr(0, 2000));
+      REQUIRE(restarted.status == 0);
+      CHECK(restarted.output.find("restarted at step " + std::to_string(start_step)) != std::string::npos);
+      CHECK(restarted.output.find("step     1 ") == std::string::npos);  // nothing before it was recomputed
+
+      // Every row dataset of the result file (history, fields, contact rows).
+      const Hdf5File result = Hdf5File::open_read_only((folder / "restart.h5").string());
+      int compared = 0;
+      for (const auto& rows : reference_end.rows) {
+        INFO(rows.path);
+        CHECK(same_bits(result.read_doubles(rows.path), reference.read_doubles(rows.path)));
+        ++compared;
+      }
+      CHECK(compared >= 20);
+
+      // The final state, element and contact history included.
+      const auto end = tirefe::io::read_checkpoint((folder / "end.ckpt.h5").string());
+      const auto& a = end.analysis;
+      const auto& b = reference_end.analysis;
+      CHECK(a.state.time == b.state.time);
+      CHECK(a.accepted_steps == b.accepted_steps);
+      CHECK(a.state.displacement == b.state.displacement);
+      CHECK(a.state.velocity == b.state.velocity);
+      CHECK(a.state.acceleration == b.state.acceleration);
+      CHECK(a.reactions == b.reactions);
+      CHECK(a.energy.dissipated == b.energy.dissipated);
+      REQUIRE(end.blocks.size() == reference_end.blocks.size());
+      for (size_t k = 0; k < end.blocks.size(); ++k) CHECK(end.blocks[k].history == reference_end.blocks[k].history);
+    }
+  }
+}
+
+TEST_CASE("a restart refuses a checkpoint of another model", "[reliability][restart]") {
+  const fs::path root = fs::temp_directory_path() / "tirefe_restart_other";
+  REQUIRE(run_deck(root / "whole", "--quiet t_mid=0.02 t_end=0.04").status == 0);
+  const std::string checkpoint = (root / "whole" / "mid.ckpt.h5").string();
+  SECTION("another node count") {
+    const Run other = run_deck(root / "other", "--quiet t_mid=0.02 t_end=0.04 elements=20 --restart " + checkpoint);
+    CHECK(other.status == 1);
+    CHECK(other.output.find("restart_deck.lua:33:") != std::string::npos);
+    CHECK(other.output.find("the checkpoint is of another model: it has 24 nodes, the deck's model 20") !=
+          std::string::npos);
+  }
+  SECTION("another integrator") {
+    // Same mesh and blocks; only the deck's integrator differs.
+    const Run other = run_deck(root / "other", "--quiet t_mid=0.02 t_end=0.04 alpha=-0.2 --restart " + checkpoint);
+    CHECK(other.status == 1);
+    CHECK(other.output.find("the checkpoint was taken with another integrator than the deck's") != std::string::npos);
+  }
+  SECTION("another set of element blocks") {
+    const Run other = run_deck(root / "other", "--quiet t_mid=0.02 t_end=0.04 with_contact=0 --restart " + checkpoint);
+    CHECK(other.status == 1);
+    CHECK(other.output.find("it has 2 element blocks, the deck's model 1") != std::string::npos);
+  }
+}
