@@ -8,8 +8,10 @@
 namespace tirefe {
 
 namespace {
-// Reused pivots are accepted while the reciprocal pivot growth stays above this.
-constexpr double kMinimumPivotGrowth = 1e-10;
+// The old pivot order is kept while the smallest pivot of U stays above this fraction of
+// the largest (klu_rcond: O(n), where the pivot growth klu_rgrowth costs as much as a
+// quarter of the refactorisation); below it the matrix is factored afresh with new pivots.
+constexpr double kMinimumPivotRatio = 1e-12;
 }  // namespace
 
 struct KluSolver::Klu {
@@ -55,8 +57,8 @@ void KluSolver::factorize(const Matrix& matrix) {
   if (klu_->numeric) {
     const bool refactored =
         klu_refactor(column_starts, row_indices, values, klu_->symbolic, klu_->numeric, common) &&
-        klu_rgrowth(column_starts, row_indices, values, klu_->symbolic, klu_->numeric, common) &&
-        std::isfinite(common->rgrowth) && common->rgrowth > kMinimumPivotGrowth;
+        klu_rcond(klu_->symbolic, klu_->numeric, common) && std::isfinite(common->rcond) &&
+        common->rcond > kMinimumPivotRatio;
     if (refactored) {
       ++refactorizations_;
       return;
