@@ -27,7 +27,7 @@ local p = tirefe.parameters{
   cleat_start_deg = -90,       -- where the cleat's middle is at rest (degrees from +x; -90: bottom)
   friction = 0.3,
   contact_penalty = 2e7,       -- normal contact penalty [N/m]: 1.5 kN on a node penetrates 0.08 mm
-  tangential_factor = 100,     -- tangential penalty / the structure's own tangential stiffness at a contact node
+  tangential_factor = 30,      -- tangential penalty / the structure's own tangential stiffness at a contact node
   contact_tolerance = 5e-4,    -- penetration left after the Uzawa updates [m]
   multiplier_tolerance = 1e3,  -- relative multiplier change asking for another Uzawa update (1e3: only penetration does)
   speed_kmh = 51.3,            -- final drum surface speed
@@ -35,7 +35,7 @@ local p = tirefe.parameters{
   end_time = 8.0,              -- [s]
   integrator = "hht",          -- hht or newmark
   newmark_gamma = 0.5,         -- Newmark gamma (beta = (gamma + 1/2)^2 / 4); 0.5 is the average acceleration rule
-  newton_tolerance = 1e-6,     -- on the residual relative to the step's force level
+  newton_tolerance = 1e-5,     -- on the residual relative to the step's force level
   alpha = -0.1,                -- HHT alpha
   dt = 5e-4,                   -- time step at full speed while the cleat is away from the tire [s]
   dt_max = 2e-3,               -- ... growing as 1 / speed during the spin-up up to this [s]
