@@ -243,8 +243,9 @@ if last then
   local patch_time = 0.08 / speed
   summary.fz_on_top = ringing(record.fz, last.on + patch_time, last.off - patch_time, 40, 300)
   summary.fz_leaving = ringing(record.fz, last.off + patch_time, last.off + p.ring_time, 40, 300)
-  -- Fx rings at the tire's fore-aft (rotational) mode from the moment the tire hits the cleat.
-  summary.fx_ringing = ringing(record.fx, last.on, last.off + patch_time, 10, 150)
+  -- Fx rings at the tire's fore-aft (rotational) mode while the cleat is within reach of
+  -- the patch, from its first hit on the tire's front to its leaving the rear.
+  summary.fx_ringing = ringing(record.fx, last.on - patch_time, last.off + patch_time, 10, 150)
   summary.fx_peak_to_peak, summary.fz_peak_to_peak = fx_high - fx_low, fz_high - fz_low
   print(string.format("cleat passage at %.3f-%.3f s (%.1f km/h), every %.3f s at full speed", last.on, last.off,
                       p.speed_kmh, math.pi * p.drum_diameter / speed))
