@@ -76,6 +76,20 @@ LocalState<Dofs> random_local_state(std::mt19937& random, double displacement_sc
   return local;
 }
 
+/// |K - K_fd| / |K| for a kernel without history at one state, K its tangent and K_fd
+/// central differences of its residual; 'asymmetry' (if given) gets |K - K^T| / |K|.
+template <class Kernel>
+double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDofs>& local,
+                              const EvaluationContext& context, double* asymmetry = nullptr) {
+  typename Kernel::Vector residual;
+  typename Kernel::Matrix tangent;
+  NoHistory history;
+  kernel.evaluate(local, context, history, history, residual, &tangent);
+  const typename Kernel::Matrix numerical = finite_difference_tangent(kernel, local, context, history);
+  if (asymmetry) *asymmetry = (tangent - tangent.transpose()).norm() / tangent.norm();
+  return (tangent - numerical).norm() / tangent.norm();
+}
+
 /// A fresh temporary folder, removed with its contents at scope exit.
 class TempDir {
  public:

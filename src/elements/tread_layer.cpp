@@ -17,8 +17,7 @@ TreadLayer::TreadLayer(const Eigen::Vector2d& radial, const TreadLayerProperties
   damped_ = properties.radial_damping != 0.0 || properties.circumferential_damping != 0.0;
 }
 
-Eigen::Matrix2d TreadLayer::in_frame(const Eigen::Matrix2d& reference, double theta) {
-  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(theta).toRotationMatrix();
+Eigen::Matrix2d TreadLayer::in_frame(const Eigen::Matrix2d& reference, const Eigen::Matrix2d& rotation) {
   return rotation * reference * rotation.transpose();
 }
 
@@ -26,7 +25,8 @@ void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContex
                           History&, Vector& residual, Matrix* tangent) const {
   const IntegratorFactors& f = context.factors;
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
-  const Eigen::Matrix2d B = in_frame(reference_stiffness_, local.displacement[5]);
+  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(local.displacement[5]).toRotationMatrix();
+  const Eigen::Matrix2d B = in_frame(reference_stiffness_, rotation);
   const Eigen::Vector2d force = B * d;
   const Eigen::Vector2d turned = kQuarterTurn * d;  // J d; d x f = (J d) . f
 
@@ -35,7 +35,7 @@ void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContex
   residual.segment<2>(3) = -f.force_stiffness * force;
   residual[5] = -f.force_stiffness * turned.dot(force);
   if (!tangent) {
-    if (damped_) add_damping(local, context, residual, nullptr);
+    if (damped_) add_damping(local, context, rotation, residual, nullptr);
     return;
   }
 
@@ -51,17 +51,17 @@ void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContex
   tangent->block<2, 1>(3, 5) = -cK * g;
   tangent->block<1, 2>(5, 3) = -cK * g.transpose();
   (*tangent)(5, 5) = cK * (turned.dot(B * turned) - d.dot(force));
-  if (damped_) add_damping(local, context, residual, tangent);
+  if (damped_) add_damping(local, context, rotation, residual, tangent);
 }
 
-void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, Vector& residual,
-                             Matrix* tangent) const {
+void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationContext& context,
+                             const Eigen::Matrix2d& rotation, Vector& residual, Matrix* tangent) const {
   const IntegratorFactors& f = context.factors;
   if (f.force_damping == 0.0 && (!tangent || f.tangent_damping == 0.0)) return;  // quasi-static
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
   const Eigen::Vector2d d_rate = local.velocity.segment<2>(0) - local.velocity.segment<2>(3);
   const double spin = local.velocity[5];
-  const Eigen::Matrix2d C = in_frame(reference_damping_, local.displacement[5]);
+  const Eigen::Matrix2d C = in_frame(reference_damping_, rotation);
   const Eigen::Vector2d turned = kQuarterTurn * d;
   const Eigen::Vector2d w = d_rate - spin * turned;  // rate of d in the turning frame
   const Eigen::Vector2d force = C * w;
@@ -96,7 +96,8 @@ void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationCon
 ElementEnergy TreadLayer::energy(const LocalState<kDofs>& local, const History&) const {
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
   ElementEnergy energy;
-  energy.strain = 0.5 * d.dot(in_frame(reference_stiffness_, local.displacement[5]) * d);
+  energy.strain =
+      0.5 * d.dot(in_frame(reference_stiffness_, Eigen::Rotation2Dd(local.displacement[5]).toRotationMatrix()) * d);
   energy.kinetic = 0.5 * mass_ * local.velocity.segment<2>(0).squaredNorm();
   return energy;
 }

@@ -48,9 +48,9 @@ class TreadLayer : public KernelShape<2> {
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
 
  private:
-  static Eigen::Matrix2d in_frame(const Eigen::Matrix2d& reference, double theta);
-  void add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, Vector& residual,
-                   Matrix* tangent) const;
+  static Eigen::Matrix2d in_frame(const Eigen::Matrix2d& reference, const Eigen::Matrix2d& rotation);
+  void add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, const Eigen::Matrix2d& rotation,
+                   Vector& residual, Matrix* tangent) const;
 
   Eigen::Matrix2d reference_stiffness_;  // k_r E_r E_r^T + k_t E_t E_t^T
   Eigen::Matrix2d reference_damping_;    // c_r E_r E_r^T + c_t E_t E_t^T
