@@ -209,3 +209,33 @@ TEST_CASE("tread layer held on the road side adds its stiffness to the hub-fixed
   CHECK(translation < translation_bound);
   CHECK(translation > bare_translation);
 }
+
+TEST_CASE("a lone tire is solved by the RingSolver, a tire with a tread layer by KLU, to the same answer",
+          "[tire][solver]") {
+  // prefer_ring_solver() picks the structured solver where the pattern fits (the plain
+  // tire: a ring of belt nodes and its spindle) and KLU where it does not (the tread
+  // layer's extra nodes); both inflate to the state a KLU-only analysis reaches.
+  for (const char* set : {"tires.145SR12", "tires.145SR12_tread_layer"}) {
+    INFO(set);
+    const TireParameters parameters = macros::load_tire_parameters(set);
+    Eigen::VectorXd displacement[2];
+    bool ring_used[2] = {false, false};
+    for (int preferred = 0; preferred < 2; ++preferred) {
+      Model model;
+      const Tire tire = build_tire(model, parameters, LoadFunction::linear());
+      model.condense_node(tire.spindle);
+      for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
+      Analysis analysis(model);
+      if (preferred) analysis.prefer_ring_solver(tire.tread_nodes, {tire.spindle});
+      analysis.set_time_step(0.25);
+      analysis.advance(1.0);
+      displacement[preferred] = analysis.state().displacement;
+      ring_used[preferred] = analysis.ring_solver() != nullptr;
+    }
+    const bool layered = parameters.tread_layer.circumferential_stiffness > 0.0;
+    CHECK(!ring_used[0]);
+    CHECK(ring_used[1] == !layered);
+    CHECK((displacement[1] - displacement[0]).lpNorm<Eigen::Infinity>() <=
+          1e-10 * displacement[0].lpNorm<Eigen::Infinity>());
+  }
+}

@@ -46,6 +46,9 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const Tire tire = build_tire(deck.model(), parameters,
                                deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))),
                                name);
+  // Spindle equations last, as the spindle-force condensation and the RingSolver's border want them.
+  deck.model().condense_node(tire.spindle);
+  deck.analysis().prefer_ring_solver(tire.tread_nodes, {tire.spindle});
   lua_createtable(L, 0, 6);
   lua_pushinteger(L, tire.spindle + 1);
   lua_setfield(L, -2, "spindle");

@@ -8,7 +8,7 @@
 namespace tirefe {
 
 Analysis::Analysis(Model& model)
-    : model_(model), assembler_(model), linear_solver_(std::make_unique<KluSolver>()) {}
+    : model_(model), assembler_(model) {}
 
 void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes) {
   for (const std::vector<int>* nodes : {&ring_nodes, &border_nodes})
@@ -16,15 +16,42 @@ void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> bor
   auto solver = std::make_unique<RingSolver>(model_.dof_map(), std::move(ring_nodes), std::move(border_nodes));
   assembler_.update_pattern();
   solver->analyze(assembler_.tangent());  // throws for a model that does not fit, before anything changes
-  linear_solver_ = std::move(solver);
+  ring_ = std::move(solver);
+  ring_use_ = RingUse::Always;
+  select_solver(*ring_);
   analyzed_pattern_ = assembler_.pattern_version();
-  driven_solver_.reset();  // it wrapped the old solver
+}
+
+void Analysis::prefer_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes) {
+  for (const std::vector<int>* nodes : {&ring_nodes, &border_nodes})
+    for (int node : *nodes) model_.mesh().checked(node);
+  ring_ = std::make_unique<RingSolver>(model_.dof_map(), std::move(ring_nodes), std::move(border_nodes));
+  ring_use_ = RingUse::WhereItFits;
+  analyzed_pattern_ = -1;  // chosen at the next step
 }
 
 void Analysis::use_klu_solver() {
-  linear_solver_ = std::make_unique<KluSolver>();
+  ring_use_ = RingUse::Never;
+  select_solver(klu_);
   analyzed_pattern_ = -1;
-  driven_solver_.reset();
+}
+
+void Analysis::select_solver(LinearSolver& solver) {
+  if (linear_solver_ != &solver) driven_solver_.reset();  // it wrapped the other one
+  linear_solver_ = &solver;
+}
+
+void Analysis::analyze_pattern() {
+  if (ring_use_ == RingUse::WhereItFits) {
+    try {
+      ring_->analyze(assembler_.tangent());
+      select_solver(*ring_);
+      return;
+    } catch (const ModelError&) {  // not a lone ring and its border: the general solver
+      select_solver(klu_);
+    }
+  }
+  linear_solver_->analyze(assembler_.tangent());
 }
 
 void Analysis::set_integrator(const Integrator& integrator) {
@@ -52,7 +79,7 @@ void Analysis::prepare() {
   // rebuilt the pattern through assembler() since the last step.
   assembler_.update_pattern();
   if (assembler_.pattern_version() != analyzed_pattern_) {
-    linear_solver_->analyze(assembler_.tangent());
+    analyze_pattern();
     analyzed_pattern_ = assembler_.pattern_version();
   }
   size_state();

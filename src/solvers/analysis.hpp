@@ -3,7 +3,8 @@
 // the element history on success, and on failure reverts, cuts the step and retries.
 // Steps grow back after easy convergence. Observers hear of every accepted step
 // (output writers, logs). The linear solver is KLU unless use_ring_solver() picks the
-// structured RingSolver; either is (re)analysed whenever the tangent's pattern changes.
+// structured RingSolver, or prefer_ring_solver() lets every new pattern choose (the
+// RingSolver where it fits, KLU elsewhere); it is (re)analysed whenever the pattern changes.
 //
 // Energy bookkeeping (docs/dynamics.md), once per accepted step n -> n+1:
 //   W_{n+1} = W_n + (F_n + F_{n+1})/2 . (u_{n+1} - u_n) + (R_n + R_{n+1})/2 . (u_{n+1} - u_n)|prescribed,
@@ -140,10 +141,14 @@ class Analysis : private StepEquations {
   /// ModelError and keeps the current solver. Later changes of structure are checked
   /// again before the next step.
   void use_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes);
+  /// Solves with the RingSolver over these nodes whenever the tangent's pattern fits it
+  /// (checked at every change of pattern), with KLU otherwise: a lone tire on its road
+  /// gets the structured solver, a tire with more structure attached the general one.
+  void prefer_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes);
   /// Back to the general sparse solver.
   void use_klu_solver();
   /// The RingSolver in use, for its border Schur complement; null while KLU solves.
-  RingSolver* ring_solver() { return dynamic_cast<RingSolver*>(linear_solver_.get()); }
+  RingSolver* ring_solver() { return linear_solver_ == ring_.get() ? ring_.get() : nullptr; }
 
   /// Driven DOFs (docs/spindle.md): free DOFs whose displacement at the end of each
   /// step a host gives (a vehicle moving a tire's spindle). Newton solves the other
@@ -187,6 +192,8 @@ class Analysis : private StepEquations {
   void record_step(double step, StepRecord& record);
   void notify_step(const StepRecord& record);
   LinearSolver& newton_linear_solver();
+  void analyze_pattern();
+  void select_solver(LinearSolver& solver);
   bool try_step(double step, double end_time, StepRecord& record);
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
@@ -201,7 +208,11 @@ class Analysis : private StepEquations {
 
   Model& model_;
   Assembler assembler_;
-  std::unique_ptr<LinearSolver> linear_solver_;
+  enum class RingUse { Never, Always, WhereItFits };
+  KluSolver klu_;
+  std::unique_ptr<RingSolver> ring_;
+  RingUse ring_use_ = RingUse::Never;
+  LinearSolver* linear_solver_ = &klu_;  // klu_ or ring_
   int analyzed_pattern_ = -1;  // the Assembler's pattern_version() the solver last analysed
   NewtonSolver newton_;
   Integrator integrator_ = Integrator::quasi_static();
