@@ -262,6 +262,41 @@ TEST_CASE("Newmark average acceleration keeps the SDOF amplitude and lengthens t
   }
 }
 
+TEST_CASE("predictors keep a_n, zero a_{n+1} or u_n with Newmark-consistent rates, and converge to the same steps",
+          "[dynamics]") {
+  using P = Integrator::Predictor;
+  const Integrator scheme = Integrator::hht(-0.1);
+  State committed;
+  committed.resize(1);
+  committed.displacement[0] = 0.3;
+  committed.velocity[0] = -1.2;
+  committed.acceleration[0] = 4.0;
+  const double h = 0.01;
+  for (P predictor : {P::SameAcceleration, P::ZeroAcceleration, P::SameDisplacement}) {
+    State trial = committed;
+    scheme.with_predictor(predictor).predict(committed, h, trial);
+    if (predictor == P::SameAcceleration) CHECK(trial.acceleration[0] == 4.0);
+    if (predictor == P::ZeroAcceleration) CHECK(trial.acceleration[0] == 0.0);
+    if (predictor == P::SameDisplacement) CHECK(trial.displacement[0] == Approx(0.3).epsilon(1e-14));
+    // The predicted rates are the Newmark rates of the predicted displacement.
+    State rates = trial;
+    scheme.update_rates(committed, h, 0, rates);
+    CHECK(rates.velocity[0] == Approx(trial.velocity[0]).epsilon(1e-12));
+    CHECK(rates.acceleration[0] == Approx(trial.acceleration[0]).margin(1e-9));
+  }
+  // A linear SDOF: Newton lands on the step's solution from any start.
+  const double omega = 2.0 * kPi;
+  std::vector<double> reference;
+  for (P predictor : {P::SameAcceleration, P::ZeroAcceleration, P::SameDisplacement}) {
+    Oscillator sdof(1.0, 0.3, omega * omega, scheme.with_predictor(predictor), 0.02);
+    sdof.start(1.0, 0.5);
+    sdof.run(100);
+    if (reference.empty()) reference = sdof.displacement;
+    REQUIRE(sdof.displacement.size() == reference.size());
+    for (size_t n = 0; n < reference.size(); ++n) CHECK(sdof.displacement[n] == Approx(reference[n]).margin(1e-10));
+  }
+}
+
 TEST_CASE("HHT: spectral radius (1+alpha)/(1-alpha) at omega h = 1e4", "[dynamics]") {
   for (double alpha : {-0.1, -0.3}) {
     const Integrator hht = Integrator::hht(alpha);

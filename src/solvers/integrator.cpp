@@ -43,9 +43,20 @@ void Integrator::predict(const State& committed, double step, State& trial) cons
     trial.acceleration.setZero();
     return;
   }
-  trial.acceleration = committed.acceleration;
-  trial.velocity = committed.velocity + step * committed.acceleration;
-  trial.displacement = committed.displacement + step * committed.velocity + (0.5 * step * step) * committed.acceleration;
+  if (predictor_ == Predictor::SameAcceleration) {
+    trial.acceleration = committed.acceleration;
+    trial.velocity = committed.velocity + step * committed.acceleration;
+    trial.displacement = committed.displacement + step * committed.velocity + (0.5 * step * step) * committed.acceleration;
+    return;
+  }
+  if (predictor_ == Predictor::ZeroAcceleration)
+    trial.acceleration.setZero(committed.acceleration.size());
+  else  // SameDisplacement: the acceleration that keeps u_{n+1} = u_n
+    trial.acceleration = (-1.0 / (beta_ * step)) * committed.velocity - ((0.5 - beta_) / beta_) * committed.acceleration;
+  // The Newmark formulas with the predicted a_{n+1}.
+  trial.velocity = committed.velocity + step * ((1.0 - gamma_) * committed.acceleration + gamma_ * trial.acceleration);
+  trial.displacement = committed.displacement + step * committed.velocity +
+                       (step * step) * ((0.5 - beta_) * committed.acceleration + beta_ * trial.acceleration);
 }
 
 void Integrator::update_rates(const State& committed, double step, int dof, State& trial) const {

@@ -8,8 +8,13 @@
 // with alpha in [-1/3, 0], beta = (1-alpha)^2/4, gamma = (1-2 alpha)/2 for HHT.
 // Elements see only the weights and tangent factors (element.hpp):
 //   w = (1+alpha, 1+alpha, 1),  c = ((1+alpha), (1+alpha) gamma/(beta h), 1/(beta h^2)).
-// The predictor keeps the acceleration (a_{n+1} = a_n), which follows smooth motion
-// (a rolling tire) more closely than holding the displacement.
+// Predictors (the start of each step's Newton iterations):
+//   SameAcceleration  a_{n+1} = a_n: follows smooth motion (a rolling tire, a car body);
+//   ZeroAcceleration  a_{n+1} = 0, u and v from the Newmark formulas: better where
+//                     accelerations jump from step to step, as at the nodes of a contact
+//                     patch rolling at speed, whose impact accelerations the first one
+//                     would extrapolate into the road;
+//   SameDisplacement  u_{n+1} = u_n.
 #pragma once
 
 #include <string>
@@ -22,6 +27,7 @@ namespace tirefe {
 class Integrator {
  public:
   enum class Kind { QuasiStatic, Newmark, Hht };
+  enum class Predictor { SameAcceleration, ZeroAcceleration, SameDisplacement };
 
   static Integrator quasi_static() { return Integrator(Kind::QuasiStatic, 0.25, 0.5, 0.0); }
   /// Newmark(beta, gamma); average acceleration by default.
@@ -35,6 +41,13 @@ class Integrator {
   double beta() const { return beta_; }
   double gamma() const { return gamma_; }
   double alpha() const { return alpha_; }
+  Predictor predictor() const { return predictor_; }
+  /// This scheme with another predictor (the default keeps the acceleration).
+  Integrator with_predictor(Predictor predictor) const {
+    Integrator copy = *this;
+    copy.predictor_ = predictor;
+    return copy;
+  }
 
   IntegratorFactors factors(double step) const;
   /// Weight of the new (t_{n+1}) and old (t_n) force levels: 1 + alpha and -alpha.
@@ -61,6 +74,7 @@ class Integrator {
 
   Kind kind_;
   double beta_, gamma_, alpha_;
+  Predictor predictor_ = Predictor::SameAcceleration;
 };
 
 }  // namespace tirefe
