@@ -69,6 +69,7 @@ Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_
     checkpoint.has_output = true;
     checkpoint.steps_recorded = output->steps_recorded();
     Hdf5File& file = output->file();
+    file.flush();  // the rows still in memory
     for (const ExtendibleDataset& dataset : file.extendible_datasets()) {
       SavedRows rows;
       rows.path = dataset.path();

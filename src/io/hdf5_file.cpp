@@ -152,17 +152,15 @@ ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> di
 }
 
 void ExtendibleDataset::append(const double* row_values) {
-  auto message = [&] { return describe("append to dataset", path_, file_path_); };
-  start_[0] = dims_[0];
-  dims_[0] += 1;
-  const int rank = static_cast<int>(dims_.size());
-  if (H5Dset_extent(dataset_.get(), dims_.data()) < 0 ||
-      H5Sset_extent_simple(file_space_.get(), rank, dims_.data(), nullptr) < 0 ||
-      H5Sselect_hyperslab(file_space_.get(), H5S_SELECT_SET, start_.data(), nullptr, count_.data(), nullptr) < 0 ||
-      H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, mem_space_.get(), file_space_.get(), H5P_DEFAULT, row_values) < 0) {
-    dims_[0] -= 1;
-    check(-1, message);
-  }
+  pending_.insert(pending_.end(), row_values, row_values + row_size_);
+}
+
+void ExtendibleDataset::write_pending() {
+  if (pending_.empty()) return;
+  std::vector<double> rows;
+  rows.swap(pending_);  // written or not, they are not written twice
+  pending_.reserve(rows.capacity());
+  append_rows(rows.data(), static_cast<hsize_t>(rows.size() / row_size_));
 }
 
 void ExtendibleDataset::append(double scalar) {
@@ -174,6 +172,7 @@ void ExtendibleDataset::append(double scalar) {
 
 void ExtendibleDataset::append_rows(const double* values, hsize_t rows) {
   if (rows == 0) return;
+  if (!pending_.empty() && values != pending_.data()) write_pending();  // in order
   auto message = [&] { return describe("append rows to dataset", path_, file_path_); };
   std::vector<hsize_t> dims = dims_, start(dims_.size(), 0), count = count_;
   start[0] = dims_[0];
@@ -228,6 +227,12 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
 }
 
 Hdf5File::~Hdf5File() {
+  for (ExtendibleDataset& dataset : datasets_) {
+    try {
+      dataset.write_pending();
+    } catch (const std::exception&) {  // a full disk: the rows already written stay readable
+    }
+  }
   datasets_.clear();
   file_.reset();
 }
@@ -410,6 +415,7 @@ bool Hdf5File::exists(const std::string& object_path) const {
 }
 
 void Hdf5File::flush() {
+  for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
   check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), [&] { return "cannot flush '" + path_ + "'"; });
 }
 

@@ -42,7 +42,9 @@ class Hdf5Handle {
 
 // An extendible, chunked dataset that grows by one "row" per append along its first
 // dimension. A row has a fixed shape (empty shape = a scalar per row -> 1-D dataset of
-// length rows(); shape {n,3} -> dataset rows() x n x 3). Doubles only.
+// length rows(); shape {n,3} -> dataset rows() x n x 3). Doubles only. Appended rows
+// wait in memory until the file is flushed or closed (Hdf5File::flush): one write of many
+// rows costs about what one write of one row does.
 class ExtendibleDataset {
  public:
   ExtendibleDataset(ExtendibleDataset&&) noexcept = default;
@@ -51,7 +53,7 @@ class ExtendibleDataset {
   void append(const double* row_values);  // row_size() doubles, row-major
   void append(double scalar);             // only for scalar rows
   void append_rows(const double* values, hsize_t rows);  // rows * row_size() doubles (restarts)
-  hsize_t rows() const { return dims_[0]; }
+  hsize_t rows() const { return dims_[0] + pending_rows(); }
   size_t row_size() const { return row_size_; }
   const std::string& path() const { return path_; }
 
@@ -60,11 +62,16 @@ class ExtendibleDataset {
   ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path,
                     std::string path);
 
+  hsize_t pending_rows() const { return static_cast<hsize_t>(pending_.size() / row_size_); }
+  /// Writes the rows waiting in memory.
+  void write_pending();
+
   Hdf5Handle dataset_;
   Hdf5Handle file_space_;  // reused across appends: resized in place, never re-created
   Hdf5Handle mem_space_;   // one row, flat
   std::vector<hsize_t> dims_, start_, count_;
   size_t row_size_ = 1;
+  std::vector<double> pending_;   // appended rows not yet written, row-major
   std::string file_path_, path_;  // for error messages only
 };
 
@@ -120,7 +127,8 @@ class Hdf5File {
   ExtendibleDataset* find_extendible(const std::string& dataset_path);
   bool exists(const std::string& object_path) const;
 
-  // Flush everything so that a process killed afterwards leaves a file readable up to here.
+  // Writes the appended rows and flushes everything, so that a process killed afterwards
+  // leaves a file readable up to here.
   void flush();
 
  private:
