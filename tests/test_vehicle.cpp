@@ -66,6 +66,13 @@ TEST_CASE("quarter car: static ride height is weight over stiffness, the tire ca
   const VehicleStatistics& statistics = car.statistics();
   CHECK(statistics.cuts == 0);
   CHECK(statistics.corrector_iterations <= 4 * statistics.steps);
+  // 2.5 s in steps of 2 ms: 1250 of them, whatever the round-off of the summed times (no
+  // sliver of a step at the end).
+  CHECK(statistics.steps == 1250);
+  const double start = car.time() - 2.5;
+  car.advance(0.7, 0.1 / 3.0);  // 21 steps of a step size that is no binary fraction
+  CHECK(car.statistics().steps == 1250 + 21);
+  CHECK(car.time() == Approx(start + 3.2).epsilon(1e-14));
 }
 
 TEST_CASE("quarter car: the wheel-hop frequency is that of the linearised two-mass system", "[vehicle][quarter]") {

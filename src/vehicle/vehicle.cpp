@@ -241,8 +241,11 @@ void Vehicle::step(double h) {
 }
 
 void Vehicle::advance(double duration, double h) {
+  // Times add up with round-off: a remainder within 1e-6 h of a step is taken with it, so
+  // that no sliver of a step (whose inertia terms 1/h^2 would swamp the corrector) is left.
   const double target = committed_.time + duration;
-  while (committed_.time < target - 1e-9 * h) step(std::min(h, target - committed_.time));
+  for (double remaining = duration; remaining > 1e-6 * h; remaining = target - committed_.time)
+    step(remaining < h * (1.0 + 1e-6) ? remaining : h);
 }
 
 }  // namespace tirefe
