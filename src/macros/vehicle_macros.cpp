@@ -12,6 +12,7 @@
 
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
+#include "vehicle/tire_group.hpp"
 #include "vehicle/tire_spindle.hpp"
 #include "vehicle/vehicle.hpp"
 
