@@ -840,11 +840,10 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
   CHECK(file.read_ints("/contact/road/nodes") == std::vector<long long>{0, 1, 2});
 }
 
-TEST_CASE("a discarded result file creates no file and evaluates no channel", "[contact][output]") {
-  // What an MPI rank keeps for a model another rank owns: the deck's output macros work,
-  // nothing reaches the disk.
-  TempDir folder;
-  Model model;
+namespace {
+
+/// One node on a spring (1e3 N/m in x and y), pushed down by 10 N on the ramp; returns it.
+int add_loaded_spring_node(Model& model) {
   SpringMassProperties properties;
   properties.stiffness = {1e3, 1e3, 0.0};
   auto& springs = model.add_block<NodalSpringMass>("springs");
@@ -852,7 +851,19 @@ TEST_CASE("a discarded result file creates no file and evaluates no channel", "[
   springs.add({node}, NodalSpringMass(properties));
   model.fix(node, kRz);
   model.add_nodal_load(node, kUy, -10.0, Model::kRampLoadFunction);
-  ContactBlock& contact = add_contact_block(model, "road", std::make_shared<FlatRoad>(), {node}, penalties(1e6, 1e6, 0.5));
+  return node;
+}
+
+}  // namespace
+
+TEST_CASE("a discarded result file creates no file and evaluates no channel", "[contact][output]") {
+  // What an MPI rank keeps for a model another rank owns: the deck's output macros work,
+  // nothing reaches the disk.
+  TempDir folder;
+  Model model;
+  const int node = add_loaded_spring_node(model);
+  ContactBlock& contact =
+      add_contact_block(model, "road", std::make_shared<FlatRoad>(), {node}, penalties(1e6, 1e6, 0.5));
   Analysis analysis(model);
   int evaluated = 0;
   {
@@ -875,13 +886,7 @@ TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "
   // A contact defined after inflation adds its channels after steps were recorded.
   TempDir folder;
   Model model;
-  SpringMassProperties properties;
-  properties.stiffness = {1e3, 1e3, 0.0};
-  auto& springs = model.add_block<NodalSpringMass>("springs");
-  const int node = model.mesh().add_node(Eigen::Vector2d(0.0, 0.0));
-  springs.add({node}, NodalSpringMass(properties));
-  model.fix(node, kRz);
-  model.add_nodal_load(node, kUy, -10.0, Model::kRampLoadFunction);
+  const int node = add_loaded_spring_node(model);
   Analysis analysis(model);
   int steps_before = 0;
   {

@@ -48,8 +48,8 @@ std::string DeckModel::output_path(const std::string& file) const {
 
 void DeckModel::write_checkpoint(const std::string& file) {
   if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state
-  if (!owned()) return;  // the owner writes it
   if (analysis_.accepted_steps() == 0) throw ModelError("a checkpoint needs at least one solved step");
+  if (!owned()) return;  // the owner writes it (after the same checks: every rank fails alike)
   io::write_checkpoint(output_path(file), io::capture_checkpoint(analysis_, output_.get(), index_, title_));
   last_checkpoint_ = std::chrono::steady_clock::now();
 }
