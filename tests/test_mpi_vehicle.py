@@ -5,11 +5,12 @@ identical: a short run of inputs/vehicle_pothole.lua (four tires, about 200 step
 step cut) threaded with tirefe and on 2 and 4 MPI ranks with tirefe-mpi: every dataset
 under /history of every corner's file is the same bit for bit, the ranks write the
 same files, and rank 0 alone prints.
-stale: tests/mpi_stale_deck.lua on 2 ranks reads a model after rank 1 advanced it: a
-clear error naming the deck line; and when the owner then waits in another vehicle, the
-job still ends (MPI_Abort) instead of hanging.
+failures: the same car with steps too long for its tires stops with the threaded run's
+error, printed once, on every rank; tests/mpi_stale_deck.lua on 2 ranks reads a model
+after rank 1 advanced it: a clear error naming the deck line; and when the owner then
+waits in another vehicle, the job still ends (MPI_Abort) instead of hanging.
 
-    /usr/bin/python3 tests/test_mpi_vehicle.py identical|stale TIREFE TIREFE_MPI MPIRUN
+    /usr/bin/python3 tests/test_mpi_vehicle.py identical|failures TIREFE TIREFE_MPI MPIRUN
 """
 import os
 import shutil
@@ -72,7 +73,15 @@ def identical(tirefe, tirefe_mpi, mpirun, work):
         print(f"{ranks} ranks: {sum(len(d) for d in got.values())} history datasets identical to the threaded run")
 
 
-def stale(tirefe, tirefe_mpi, mpirun, work):
+def failures(tirefe, tirefe_mpi, mpirun, work):
+    deck = os.path.join(ROOT, "inputs", "vehicle_pothole.lua")
+    failing = [*SHORT, "dt=0.02", "speed_kmh=300", "--quiet"]
+    threads, _ = run([tirefe, deck, *failing, "--output-dir", os.path.join(work, "failing_threads")])
+    assert threads.returncode == 1 and "failed after 4 cuts: a tire failed" in threads.stderr, threads.stderr
+    done, _ = run([mpirun, *MPI_OPTIONS, "-np", "2", tirefe_mpi, deck, *failing, "--output-dir",
+                   os.path.join(work, "failing_ranks")])
+    assert done.returncode == 1 and done.stderr.count(threads.stderr) == 1, done.stderr
+
     deck = os.path.join(HERE, "mpi_stale_deck.lua")
     message = "model 'stale quarter car tire' was advanced on MPI rank 1 by tirefe.vehicle"
     done, _ = run([tirefe, deck, "--output-dir", os.path.join(work, "threads"), "--quiet"])
@@ -93,7 +102,7 @@ def main():
     mode, tirefe, tirefe_mpi, mpirun = sys.argv[1:5]
     work = tempfile.mkdtemp(prefix="tirefe_mpi_")
     try:
-        {"identical": identical, "stale": stale}[mode](tirefe, tirefe_mpi, mpirun, work)
+        {"identical": identical, "failures": failures}[mode](tirefe, tirefe_mpi, mpirun, work)
     finally:
         shutil.rmtree(work, ignore_errors=True)
     print("ok")
