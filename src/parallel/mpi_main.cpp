@@ -6,7 +6,7 @@
 // Ending: an error every rank meets (the deck is replicated: nearly every error) is
 // printed once, by rank 0, and every rank exits with the tirefe status. An error some
 // ranks meet alone (a model read after another rank advanced it) is printed by them, and
-// if the other ranks do not end too within a few seconds (they may be waiting for the
+// if the other ranks do not end too within 10 s (they may be waiting for the
 // failed rank in a round of tire replies), the job is ended with MPI_Abort.
 #include <mpi.h>
 
