@@ -16,6 +16,7 @@
 
 #include "contact/rigid_motion.hpp"
 #include "macros/macro_table.hpp"
+#include "vehicle/tire_group.hpp"
 #include "vehicle/tire_on_road.hpp"
 #include "vehicle/vehicle.hpp"
 

@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev liblua5.4-dev libhdf5-dev catch2
   hdf5-tools python3-h5py python3-matplotlib python3-numpy
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -840,10 +840,10 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
   CHECK(file.read_ints("/contact/road/nodes") == std::vector<long long>{0, 1, 2});
 }
 
-TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "[contact][output]") {
-  // A contact defined after inflation adds its channels after steps were recorded.
-  TempDir folder;
-  Model model;
+namespace {
+
+/// One node on a spring (1e3 N/m in x and y), pushed down by 10 N on the ramp; returns it.
+int add_loaded_spring_node(Model& model) {
   SpringMassProperties properties;
   properties.stiffness = {1e3, 1e3, 0.0};
   auto& springs = model.add_block<NodalSpringMass>("springs");
@@ -851,6 +851,42 @@ TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "
   springs.add({node}, NodalSpringMass(properties));
   model.fix(node, kRz);
   model.add_nodal_load(node, kUy, -10.0, Model::kRampLoadFunction);
+  return node;
+}
+
+}  // namespace
+
+TEST_CASE("a discarded result file creates no file and evaluates no channel", "[contact][output]") {
+  // What an MPI rank keeps for a model another rank owns: the deck's output macros work,
+  // nothing reaches the disk.
+  TempDir folder;
+  Model model;
+  const int node = add_loaded_spring_node(model);
+  ContactBlock& contact =
+      add_contact_block(model, "road", std::make_shared<FlatRoad>(), {node}, penalties(1e6, 1e6, 0.5));
+  Analysis analysis(model);
+  int evaluated = 0;
+  {
+    io::ResultFile file(folder.path("elsewhere.h5"), io::RunMetadata{"elsewhere", "", "", {}},
+                        io::ResultStorage::Discarded);
+    file.set_field_interval(1);
+    add_contact_output(file, analysis, contact, "road", 1);
+    file.add_channel("counted", "", [&](const Analysis&, const StepRecord&) { return ++evaluated; });
+    CHECK_THROWS_AS(file.add_channel("counted", "", nullptr), io::IoError);  // the deck's errors stay the same
+    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.set_time_step(0.5);
+    analysis.advance(1.0);
+    CHECK(file.steps_recorded() == 2);
+  }
+  CHECK(evaluated == 0);
+  CHECK(std::filesystem::is_empty(folder.path("")));
+}
+
+TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "[contact][output]") {
+  // A contact defined after inflation adds its channels after steps were recorded.
+  TempDir folder;
+  Model model;
+  const int node = add_loaded_spring_node(model);
   Analysis analysis(model);
   int steps_before = 0;
   {

@@ -9,6 +9,7 @@
 
 #include "contact/rigid_motion.hpp"
 #include "macros/macro_table.hpp"
+#include "vehicle/tire_group.hpp"
 #include "vehicle/tire_on_road.hpp"
 #include "vehicle/vehicle.hpp"
 
@@ -61,6 +62,9 @@ TEST_CASE("quarter car: static ride height is weight over stiffness, the tire ca
   const double expected_jounce = 0.2 * kBodyMass * kGravity / kSpring;
   CHECK(car.jounce(0) == Approx(expected_jounce).epsilon(1e-3));
   CHECK(car.spindle_force(0).y() == Approx(-(kBodyMass + kCarrierMass) * kGravity).epsilon(2e-3));
+  // The vehicle knows the force from the Commit replies only (a tire on another MPI rank
+  // does not advance here): they carry the tire's own committed reaction.
+  CHECK((car.spindle_force(0) - tire.spindle->committed_force()).lpNorm<Eigen::Infinity>() == 0.0);
   CHECK(std::abs(car.state().velocity[0]) < 1e-3);
   // The corrector converges in a few iterations with the direct Jacobian.
   const VehicleStatistics& statistics = car.statistics();

@@ -203,6 +203,16 @@ Hdf5File Hdf5File::create(const std::string& path) {
   return Hdf5File(path, Hdf5Handle(id, H5Fclose));
 }
 
+Hdf5File Hdf5File::create_in_memory(const std::string& name) {
+  silence_hdf5_errors();
+  Hdf5Handle fapl = make_fapl(name);
+  // The core driver without a backing store: the file lives in memory and is never written.
+  check(H5Pset_fapl_core(fapl.get(), 64 * 1024, false), [&] { return "cannot keep '" + name + "' in memory"; });
+  const hid_t id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  check(id, [&] { return "cannot create the in-memory file '" + name + "'"; });
+  return Hdf5File(name, Hdf5Handle(id, H5Fclose));
+}
+
 Hdf5File Hdf5File::open_read_only(const std::string& path) {
   silence_hdf5_errors();
   Hdf5Handle fapl = make_fapl(path);

@@ -79,6 +79,8 @@ class Hdf5File {
  public:
   // Create (truncate) a file. Parent folders must exist.
   static Hdf5File create(const std::string& path);
+  // A file held in memory only and dropped when closed ('name' for messages).
+  static Hdf5File create_in_memory(const std::string& name);
   // Open an existing file read-only (tests, restart, post-processing).
   static Hdf5File open_read_only(const std::string& path);
 

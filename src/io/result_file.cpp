@@ -21,7 +21,9 @@ std::string utc_now() {
 }
 }  // namespace
 
-ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata) : file_(Hdf5File::create(path)) {
+ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage)
+    : file_(storage == ResultStorage::File ? Hdf5File::create(path) : Hdf5File::create_in_memory(path)),
+      discarded_(storage == ResultStorage::Discarded) {
   file_.write_attribute("/", "tirefe_version", std::string(kVersion));
   file_.write_attribute("/", "git_commit", std::string(kGitCommit));
   file_.write_attribute("/", "created", utc_now());
@@ -126,6 +128,7 @@ void ResultFile::write_mesh(const Model& model) {
 void ResultFile::write_modes(const std::string& label, const Analysis& analysis,
                              const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
                              const Eigen::MatrixXd& shapes) {
+  if (discarded_) return;
   if (!mesh_written_) write_mesh(analysis.model());
   const std::string group = "/modes/" + label;
   file_.write_attribute(group, "time", analysis.state().time);
@@ -144,6 +147,7 @@ void ResultFile::write_modes(const std::string& label, const Analysis& analysis,
 }
 
 void ResultFile::write_fields(const Analysis& analysis, int step) {
+  if (discarded_) return;
   if (!mesh_written_) write_mesh(analysis.model());
   const State& state = analysis.state();
   if (state.displacement.size() != static_cast<Eigen::Index>(field_displacement_->row_size()))
@@ -157,11 +161,16 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
 }
 
 void ResultFile::start(const Analysis& analysis) {
+  if (discarded_) return;
   if (!mesh_written_) write_mesh(analysis.model());
   if (channels_.empty()) start_history();
 }
 
 void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
+  if (discarded_) {  // the model's owner records the step; the channels are not evaluated here
+    ++steps_recorded_;
+    return;
+  }
   start(analysis);
   for (auto& channel : channels_) channel.dataset->append(channel.value(analysis, record));
   ++steps_recorded_;

@@ -31,6 +31,10 @@
 
 namespace tirefe::io {
 
+/// Where a result file goes: to disk, or nowhere (an MPI rank that does not own the
+/// model: its writes land in memory and are dropped, and it records no steps).
+enum class ResultStorage { File, Discarded };
+
 struct RunMetadata {
   std::string title;
   std::string deck_path;
@@ -42,12 +46,13 @@ class ResultFile {
  public:
   using Channel = std::function<double(const Analysis&, const StepRecord&)>;
 
-  ResultFile(const std::string& path, const RunMetadata& metadata);
+  ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage = ResultStorage::File);
   /// Closes the file, and writes the XDMF index of its fields beside it (<stem>.xmf).
   ~ResultFile();
   ResultFile(const ResultFile&) = delete;
   ResultFile& operator=(const ResultFile&) = delete;
   const std::string& path() const { return file_.path(); }
+  bool discarded() const { return discarded_; }
   Hdf5File& file() { return file_; }
 
   /// Adds a history channel (one value per accepted step). A channel added after steps were
@@ -85,6 +90,7 @@ class ResultFile {
   void flush_if_due();
 
   Hdf5File file_;
+  bool discarded_;
   std::vector<std::pair<std::string, std::string>> channel_names_;  // name, unit
   std::vector<Channel> pending_channels_;
   std::vector<HistoryChannel> channels_;

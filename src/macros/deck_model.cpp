@@ -49,6 +49,7 @@ std::string DeckModel::output_path(const std::string& file) const {
 void DeckModel::write_checkpoint(const std::string& file) {
   if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state
   if (analysis_.accepted_steps() == 0) throw ModelError("a checkpoint needs at least one solved step");
+  if (!owned()) return;  // the owner writes it (after the same checks: every rank fails alike)
   io::write_checkpoint(output_path(file), io::capture_checkpoint(analysis_, output_.get(), index_, title_));
   last_checkpoint_ = std::chrono::steady_clock::now();
 }
@@ -73,6 +74,11 @@ void DeckModel::load_checkpoint() {
   session_.restart.reset();
   if (!session_.quiet)
     std::printf("  restarted at step %d, t = %g\n", analysis_.accepted_steps(), analysis_.state().time);
+}
+
+void DeckModel::mark_advanced_elsewhere(const std::string& how) {
+  stale_ = "model '" + title_ + "' was advanced on MPI rank " + std::to_string(session_.processes.owner(index_)) +
+           " by " + how + "; read its results from the table " + how + " returns or from its result file";
 }
 
 void DeckModel::define_section(const std::string& name, const BeamSection& section) {
@@ -103,8 +109,11 @@ int DeckModel::load_function(const std::string& name) const {
 
 void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval) {
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
-  output_ = std::make_unique<io::ResultFile>(
-      output_path(file), io::RunMetadata{title_, session_.deck_path, session_.deck_text, session_.parameters});
+  const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters};
+  if (owned())
+    output_ = std::make_unique<io::ResultFile>(output_path(file), metadata);
+  else
+    output_ = std::make_unique<io::ResultFile>(file, metadata, io::ResultStorage::Discarded);
   output_->set_field_interval(field_interval);
   output_->set_field_time_interval(field_time_interval);
 }

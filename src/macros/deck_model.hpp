@@ -21,6 +21,14 @@ class DeckModel {
   DeckModel(std::string title, DeckSession& session);
 
   const std::string& title() const { return title_; }
+  /// Counted from 1 in the order the deck creates its models.
+  int index() const { return index_; }
+  /// This process writes the model's result file and solves it in a vehicle (see DeckProcesses).
+  bool owned() const { return session_.processes.owns(index_); }
+  /// Another process advanced this model ('how' says by what): this copy is stale, and
+  /// every later macro on it is refused with that message.
+  void mark_advanced_elsewhere(const std::string& how);
+  const std::string& stale() const { return stale_; }
   Model& model() { return model_; }
   Analysis& analysis() { return analysis_; }
   DeckSession& session() { return session_; }
@@ -34,7 +42,8 @@ class DeckModel {
   void note_lua_callback() { calls_lua_ = true; }
   bool calls_lua() const { return calls_lua_; }
 
-  /// Opens the result file (a relative path is taken inside the session's output folder).
+  /// Opens the result file (a relative path is taken inside the session's output folder);
+  /// in a process that does not own the model, a discarded one (no file is created).
   void open_output(const std::string& file, int field_interval, double field_time_interval = 0.0);
   io::ResultFile* output() { return output_.get(); }
   /// The result file, opened under a default name if the deck named none.
@@ -74,6 +83,7 @@ class DeckModel {
   double checkpoint_minutes_ = 0.0;
   std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
   std::vector<StepRecord> no_records_;
+  std::string stale_;
 };
 
 }  // namespace tirefe::macros

@@ -1,12 +1,18 @@
 // DeckSession: what one `tirefe deck.lua` run shares across the deck's models: where
-// output goes, and the tally of the deck's self-checks.
+// output goes, the tally of the deck's self-checks, and the processes that run the deck
+// together (one, or the ranks of an MPI run: docs/vehicle.md).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+namespace tirefe {
+class TireExchange;
+class TireSpindle;
+}  // namespace tirefe
 namespace tirefe::io {
 struct Checkpoint;
 }
@@ -17,6 +23,20 @@ struct CheckResult {
   std::string name;
   bool passed;
 };
+
+/// The processes that run one deck together, each the whole deck. Every process computes
+/// every model; model k (counted from 1 in creation order) is owned by process
+/// (k - 1) mod count, which alone writes its result file and solves it in a vehicle.
+struct DeckProcesses {
+  int rank = 0;
+  int count = 1;
+  int owner(int model_index) const { return (model_index - 1) % count; }
+  bool owns(int model_index) const { return owner(model_index) == rank; }
+};
+
+/// Makes the exchange a vehicle asks its tires through; owners[i] is the process of tire i.
+using TireExchangeFactory = std::function<std::unique_ptr<TireExchange>(
+    std::vector<TireSpindle*> tires, std::vector<int> owners, bool threads)>;
 
 struct DeckSession {
   std::string output_dir = "results";
@@ -31,6 +51,9 @@ struct DeckSession {
   int models_created = 0;
   /// --restart: the checkpoint a model continues from (docs/restart.md); cleared once loaded.
   std::shared_ptr<const io::Checkpoint> restart;
+  DeckProcesses processes;
+  /// Unset: a TireGroup in this process (threads). An MPI run installs its own.
+  TireExchangeFactory tire_exchange;
 
   int failed_checks() const {
     int failed = 0;

@@ -121,6 +121,7 @@ const MacroTable& macro_table() {
 DeckModel& check_model(lua_State* L, int index) {
   auto* owner = static_cast<std::unique_ptr<DeckModel>*>(luaL_testudata(L, index, kModelMetatable));
   if (!owner || !*owner) raise_deck_error(L, "expected a model made by tirefe.model{...}");
+  if (!(*owner)->stale().empty()) raise_deck_error(L, (*owner)->stale());
   return **owner;
 }
 

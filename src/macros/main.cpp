@@ -1,120 +1,14 @@
-// tirefe: runs an input deck.
+// tirefe: runs an input deck in this process (docs/decks.md).
 //   tirefe deck.lua [key=value ...] [--output-dir DIR] [--restart FILE] [--quiet] [--verbose]
 //   tirefe --macros        prints the macro reference (Markdown)
 // Exit status: 0 success, 1 deck or model error, 2 usage error, 3 a self-check failed,
 // 128 + signal when SIGINT or SIGTERM stopped the run (after closing its files).
-#include <cstdio>
-#include <exception>
-#include <fstream>
-#include <iterator>
 #include <iostream>
-#include <map>
-#include <string>
 
-#include "io/checkpoint.hpp"
-#include "macros/deck_session.hpp"
-#include "macros/interrupt.hpp"
-#include "macros/lua_sandbox.hpp"
-#include "macros/macro_table.hpp"
-#include "tirefe/version.hpp"
-
-namespace {
-
-constexpr const char* kUsage =
-    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet] [--verbose]\n"
-    "       tirefe --macros | --version\n";
-
-struct CommandLine {
-  std::string deck;
-  std::map<std::string, std::string> overrides;
-  std::string output_dir = "results";
-  std::string restart;
-  bool quiet = false, verbose = false;
-};
-
-bool parse(int argc, char** argv, CommandLine& line) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string argument = argv[i];
-    if (argument == "--output-dir" && i + 1 < argc) {
-      line.output_dir = argv[++i];
-    } else if (argument == "--restart" && i + 1 < argc) {
-      line.restart = argv[++i];
-    } else if (argument == "--quiet") {
-      line.quiet = true;
-    } else if (argument == "--verbose") {
-      line.verbose = true;
-    } else if (argument.rfind("--", 0) == 0) {
-      std::cerr << "tirefe: unknown option '" << argument << "'\n" << kUsage;
-      return false;
-    } else if (const auto equals = argument.find('='); equals != std::string::npos && equals > 0) {
-      line.overrides[argument.substr(0, equals)] = argument.substr(equals + 1);
-    } else if (line.deck.empty()) {
-      line.deck = argument;
-    } else {
-      std::cerr << "tirefe: more than one deck given ('" << line.deck << "', '" << argument << "')\n" << kUsage;
-      return false;
-    }
-  }
-  if (line.deck.empty()) {
-    std::cerr << kUsage;
-    return false;
-  }
-  return true;
-}
-
-}  // namespace
+#include "macros/deck_runner.hpp"
 
 int main(int argc, char** argv) {
-  using namespace tirefe::macros;
-  if (argc == 2 && std::string(argv[1]) == "--macros") {
-    std::cout << macro_reference();
-    return 0;
-  }
-  if (argc == 2 && std::string(argv[1]) == "--version") {
-    std::cout << "tirefe " << tirefe::kVersion << " (" << tirefe::kGitCommit << ")\n";
-    return 0;
-  }
-  CommandLine line;
-  if (!parse(argc, argv, line)) return 2;
-
-  DeckSession session;
-  session.output_dir = line.output_dir;
-  session.quiet = line.quiet;
-  session.deck_path = line.deck;
-  {
-    std::ifstream deck(line.deck, std::ios::binary);  // kept in every output file
-    session.deck_text.assign(std::istreambuf_iterator<char>(deck), std::istreambuf_iterator<char>());
-  }
-  if (!line.restart.empty()) {
-    try {
-      session.restart = std::make_shared<tirefe::io::Checkpoint>(tirefe::io::read_checkpoint(line.restart));
-    } catch (const std::exception& error) {
-      std::cerr << "tirefe: " << line.deck << ": " << error.what() << "\n";
-      return 1;
-    }
-  }
-  LuaSandbox sandbox(TIREFE_LUA_DIR);
-  install_stop_handlers();
-  try {
-    install_macros(sandbox, session);
-    sandbox.run_file(line.deck, line.overrides);
-    if (session.restart)
-      throw std::runtime_error("the deck ended before the time of the restart checkpoint '" + line.restart +
-                               "' (t = " + std::to_string(session.restart->analysis.state.time) +
-                               "): it is not the deck that wrote it");
-  } catch (const DeckError& error) {
-    std::cerr << "tirefe: " << error.what() << "\n";
-    if (line.verbose && !sandbox.last_traceback().empty()) std::cerr << sandbox.last_traceback() << "\n";
-    return stop_signal().load() ? 128 + stop_signal().load() : 1;
-  } catch (const std::exception& error) {
-    std::cerr << "tirefe: " << line.deck << ": " << error.what() << "\n";
-    return 1;
-  }
-  if (!session.checks.empty()) {
-    const int failed = session.failed_checks();
-    std::printf("%s: %d passed, %d failed\n", line.deck.c_str(), static_cast<int>(session.checks.size()) - failed,
-                failed);
-    if (failed > 0) return 3;
-  }
-  return 0;
+  const tirefe::macros::DeckOutcome outcome = tirefe::macros::run_deck_command(argc, argv, {});
+  std::cerr << outcome.error;
+  return outcome.status;
 }

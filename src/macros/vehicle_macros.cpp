@@ -12,6 +12,7 @@
 
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
+#include "vehicle/tire_group.hpp"
 #include "vehicle/tire_spindle.hpp"
 #include "vehicle/vehicle.hpp"
 
@@ -125,7 +126,25 @@ void push_list(lua_State* L, const std::vector<double>& values) {
   }
 }
 
-int vehicle_macro(lua_State* L, DeckSession&, const MacroArguments& arguments) {
+/// The tires of 'decks' behind one exchange: the session's (an MPI run's) or threads here.
+std::unique_ptr<TireExchange> tire_exchange(DeckSession& session, std::vector<TireSpindle*> spindles,
+                                            const std::vector<DeckModel*>& decks, bool threads) {
+  if (!session.tire_exchange) return std::make_unique<TireGroup>(std::move(spindles), threads);
+  std::vector<int> owners;
+  for (const DeckModel* deck : decks) owners.push_back(session.processes.owner(deck->index()));
+  return session.tire_exchange(std::move(spindles), std::move(owners), threads);
+}
+
+/// After a vehicle run (or its failure) the models another process solved are stale here.
+struct RemoteTiresGuard {
+  const std::vector<DeckModel*>& decks;
+  ~RemoteTiresGuard() {
+    for (DeckModel* deck : decks)
+      if (!deck->owned()) deck->mark_advanced_elsewhere("tirefe.vehicle");
+  }
+};
+
+int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
   arguments.push_value("body");
   const MacroArguments body_arguments(L, lua_gettop(L), body_spec());
   Body body{body_arguments.number("mass"), body_arguments.number("pitch_inertia"),
@@ -181,8 +200,8 @@ int vehicle_macro(lua_State* L, DeckSession&, const MacroArguments& arguments) {
   settings.residual_tolerance = arguments.number("tolerance");
   settings.jacobian = arguments.string("jacobian") == "direct" ? SpindleJacobianSource::Direct
                                                                 : SpindleJacobianSource::FiniteDifference;
-  TireGroup group(spindles, threads);
-  Vehicle vehicle(body, corners, group, settings);
+  const std::unique_ptr<TireExchange> tires = tire_exchange(session, spindles, decks, threads);
+  Vehicle vehicle(body, corners, *tires, settings);
 
   // History channels in every corner's result file; the returned arrays.
   auto view = std::make_shared<VehicleView>();
@@ -222,6 +241,7 @@ int vehicle_macro(lua_State* L, DeckSession&, const MacroArguments& arguments) {
     }
   });
   const auto start = std::chrono::steady_clock::now();
+  const RemoteTiresGuard remote_tires{decks};
   try {
     vehicle.advance(arguments.number("duration"), arguments.number("dt"));
   } catch (...) {

@@ -36,11 +36,12 @@ struct SpindleReply {
   /// Force the host applies to the tire to hold the spindle there: (Fx [N], Fy [N],
   /// Mz [N m]); the tire pushes the host's wheel carrier with minus this. HHT-weighted
   /// like the tire's step equations (the physical reaction with Newmark, alpha = 0).
+  /// The answer to Commit or Revert: the physical force at the committed step.
   double force[3] = {};
   /// jacobian[i][j] = d force_i / d (x, y, spin)_j: H_ss of MODEL.md eq. 27 (row and
   /// column 2 zero when the spin is free).
   double jacobian[3][3] = {};
-  double time = 0.0;           // at the end of the solved step [s]
+  double time = 0.0;           // at the end of the solved step (Commit, Revert: the committed one) [s]
   int newton_iterations = 0;   // of the tire, this request
   int augmentations = 0;       // contact multiplier updates, this request
   char message[160] = {};      // why a request failed

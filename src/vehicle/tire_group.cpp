@@ -3,10 +3,10 @@
 namespace tirefe {
 
 TireGroup::TireGroup(std::vector<TireSpindle*> tires, bool concurrent)
-    : tires_(std::move(tires)), concurrent_(concurrent && tires_.size() > 1), commands_(tires_.size()) {
+    : TireExchange(std::move(tires)), concurrent_(concurrent && size() > 1), commands_(size()) {
   if (!concurrent_) return;
-  workers_.reserve(tires_.size() - 1);
-  for (size_t i = 1; i < tires_.size(); ++i) workers_.emplace_back([this, i] { work(i); });
+  workers_.reserve(size() - 1);
+  for (int i = 1; i < size(); ++i) workers_.emplace_back([this, i] { work(i); });
 }
 
 TireGroup::~TireGroup() {
@@ -18,7 +18,7 @@ TireGroup::~TireGroup() {
   for (auto& worker : workers_) worker.join();
 }
 
-void TireGroup::work(size_t tire) {
+void TireGroup::work(int tire) {
   long served = 0;
   for (;;) {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -26,18 +26,23 @@ void TireGroup::work(size_t tire) {
     if (stopping_) return;
     served = round_;
     lock.unlock();
-    (*replies_)[tire] = tires_[tire]->serve((*requests_)[tire]);  // serve() never throws
+    (*replies_)[tire] = spindle(tire).serve((*requests_)[tire]);  // serve() never throws
     lock.lock();
     if (--pending_ == 0) done_.notify_one();
   }
 }
 
+void TireGroup::serve_in_turn(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies) {
+  replies.resize(size());
+  for (int i = 0; i < size(); ++i) replies[i] = spindle(i).serve(requests[i]);
+}
+
 void TireGroup::serve(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies) {
-  replies.resize(tires_.size());
   if (!concurrent_) {
-    for (size_t i = 0; i < tires_.size(); ++i) replies[i] = tires_[i]->serve(requests[i]);
+    serve_in_turn(requests, replies);
     return;
   }
+  replies.resize(size());
   {
     std::lock_guard<std::mutex> lock(mutex_);
     requests_ = &requests;
@@ -46,16 +51,15 @@ void TireGroup::serve(const std::vector<SpindleRequest>& requests, std::vector<S
     ++round_;
   }
   start_.notify_all();
-  replies[0] = tires_[0]->serve(requests[0]);
+  replies[0] = spindle(0).serve(requests[0]);
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [&] { return pending_ == 0; });
 }
 
-void TireGroup::serve_all(SpindleCommand command, std::vector<SpindleReply>& replies) {
+void TireGroup::command_all(SpindleCommand command, std::vector<SpindleReply>& replies) {
   for (auto& request : commands_) request.command = command;
   // Commit and revert are cheap bookkeeping (and commit writes output): in turn.
-  replies.resize(tires_.size());
-  for (size_t i = 0; i < tires_.size(); ++i) replies[i] = tires_[i]->serve(commands_[i]);
+  serve_in_turn(commands_, replies);
 }
 
 }  // namespace tirefe

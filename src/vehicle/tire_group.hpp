@@ -2,8 +2,8 @@
 // request of a round goes to its own tire; with concurrency each tire but the first is
 // solved by its own worker thread (started once, waiting between rounds) while the
 // calling thread solves the first. The tires share nothing, so the replies are those
-// of a sequential round, bit for bit. A tire in another process would sit behind the
-// same requests and replies (spindle_exchange.hpp, docs/spindle.md).
+// of a sequential round, bit for bit. MpiTireGroup (src/parallel/) asks tires on other
+// MPI ranks through the same requests and replies (tire_exchange.hpp, docs/spindle.md).
 #pragma once
 
 #include <condition_variable>
@@ -11,31 +11,27 @@
 #include <thread>
 #include <vector>
 
-#include "vehicle/tire_spindle.hpp"
+#include "vehicle/tire_exchange.hpp"
 
 namespace tirefe {
 
-class TireGroup {
+class TireGroup final : public TireExchange {
  public:
   /// The spindles must outlive the group.
   TireGroup(std::vector<TireSpindle*> tires, bool concurrent);
-  ~TireGroup();
-  TireGroup(const TireGroup&) = delete;
-  TireGroup& operator=(const TireGroup&) = delete;
+  ~TireGroup() override;
 
-  int size() const { return static_cast<int>(tires_.size()); }
-  TireSpindle& tire(int i) { return *tires_[i]; }
   bool concurrent() const { return concurrent_; }
 
-  /// replies[i] = tire i's answer to requests[i].
-  void serve(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies);
-  /// The same command to every tire.
-  void serve_all(SpindleCommand command, std::vector<SpindleReply>& replies);
+  void serve(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies) override;
+
+ protected:
+  void command_all(SpindleCommand command, std::vector<SpindleReply>& replies) override;
 
  private:
-  void work(size_t tire);
+  void work(int tire);
+  void serve_in_turn(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies);
 
-  std::vector<TireSpindle*> tires_;
   bool concurrent_;
   std::vector<SpindleRequest> commands_;
   // The round the workers serve: set under the mutex, read by the workers after it.

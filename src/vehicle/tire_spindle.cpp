@@ -60,8 +60,10 @@ SpindleReply TireSpindle::serve(const SpindleRequest& request) {
         revert();
         break;
     }
+    // The committed step, for a host that does not hold this tire (another MPI rank).
     SpindleReply reply;
     reply.time = analysis_.state().time;
+    force_of(reply) = committed_force();
     return reply;
   } catch (const std::exception& failure) {
     SpindleReply reply;

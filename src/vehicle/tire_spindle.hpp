@@ -32,7 +32,8 @@ class TireSpindle {
   /// Forgets the last trial step.
   void revert();
   /// Dispatches one request (solve, commit or revert); never throws: failures come
-  /// back as status Failed with the message.
+  /// back as status Failed with the message. Commit and Revert answer with the committed
+  /// time and spindle force (committed_force()).
   SpindleReply serve(const SpindleRequest& request);
 
   /// Where the spindle is at the committed time: x, y [m] and spin angle [rad].

@@ -18,7 +18,7 @@ constexpr int kMaxBacktracks = 4;
 
 }  // namespace
 
-Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireGroup& tires, VehicleSettings settings)
+Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, VehicleSettings settings)
     : body_(std::move(body)), corners_(std::move(corners)), tires_(tires), settings_(settings),
       integrator_(settings.alpha == 0.0 ? Integrator::newmark() : Integrator::hht(settings.alpha)) {
   if (corners_.empty()) throw ModelError("a vehicle needs at least one corner");

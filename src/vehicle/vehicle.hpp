@@ -28,7 +28,7 @@
 #include "core/state.hpp"
 #include "solvers/integrator.hpp"
 #include "vehicle/force_curve.hpp"
-#include "vehicle/tire_group.hpp"
+#include "vehicle/tire_exchange.hpp"
 
 namespace tirefe {
 
@@ -78,9 +78,9 @@ struct VehicleStatistics {
 class Vehicle {
  public:
   /// Corner i rides on tires.tire(i) (spin free), whose current spindle position is the
-  /// design position. A single corner makes a quarter car (heave only); more add pitch
+  /// design position; the tires may be solved in threads or on other MPI ranks. A single corner makes a quarter car (heave only); more add pitch
   /// and roll. Starts at rest at the design position unless set_initial_state() says otherwise.
-  Vehicle(Body body, std::vector<Corner> corners, TireGroup& tires, VehicleSettings settings);
+  Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, VehicleSettings settings);
 
   int dof_count() const { return static_cast<int>(mass_.size()); }
   int body_dofs() const { return body_dofs_; }
@@ -100,8 +100,9 @@ class Vehicle {
   double time() const { return committed_.time; }
   /// Jounce of a corner's suspension at the committed state [m].
   double jounce(int corner) const;
-  /// Spindle force of tire i at the committed state (the force on the tire, physical).
-  Eigen::Vector3d spindle_force(int corner) const { return tires_.tire(corner).committed_force(); }
+  /// Spindle force of tire i at the committed state (the force on the tire, physical), as
+  /// its Commit reply gave it.
+  Eigen::Vector3d spindle_force(int corner) const { return tires_.committed_force(corner); }
   const VehicleStatistics& statistics() const { return statistics_; }
   VehicleSettings& settings() { return settings_; }
   const std::vector<Corner>& corners() const { return corners_; }
@@ -121,7 +122,7 @@ class Vehicle {
 
   Body body_;
   std::vector<Corner> corners_;
-  TireGroup& tires_;
+  TireExchange& tires_;
   VehicleSettings settings_;
   Integrator integrator_;
   int body_dofs_ = 1;

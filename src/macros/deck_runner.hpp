@@ -1,0 +1,27 @@
+// The `tirefe` command line: parses it, runs the deck, and says how the run ended. The
+// process around it (tirefe, or tirefe-mpi on every MPI rank) prints the error and
+// exits with the status.
+//   tirefe deck.lua [key=value ...] [--output-dir DIR] [--restart FILE] [--quiet] [--verbose]
+//   tirefe --macros        prints the macro reference (Markdown)
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "macros/deck_session.hpp"
+
+namespace tirefe::macros {
+
+struct DeckOutcome {
+  /// 0 success, 1 deck or model error, 2 usage error, 3 a self-check failed, 128 + signal
+  /// when SIGINT or SIGTERM stopped the run (after closing its files).
+  int status = 0;
+  std::string error;  // for stderr, lines ending in '\n'; empty if none
+};
+
+/// Runs the command line; 'configure' (may be empty) adjusts the session before the deck
+/// runs. Standard output gets --macros, --version, the deck's own output and the
+/// self-check summary.
+DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(DeckSession&)>& configure);
+
+}  // namespace tirefe::macros
