@@ -33,11 +33,15 @@ struct ArchSolution {
   double half_angle, cos_half, sin_half;
 };
 
-/// Root of sin(alpha) - ratio alpha on (0, pi] for 0 <= ratio < 1. The function is
+/// Root of f(alpha) = sin(alpha) - ratio alpha on (0, pi] for 0 <= ratio < 1. f is
 /// positive below the root and negative above (sinc decreases), which keeps a bracket
 /// for the bisection safeguard. The start is the series inversion of sinc about 0,
 /// alpha^2 = 6y + (9/5) y^2 + (144/175) y^3 with y = 1 - ratio: 1e-5 accurate for
-/// service chords (ratio 0.85-0.95), 6 % at ratio 0, so Newton needs 2-4 steps.
+/// service chords (ratio 0.85-0.95), 6 % at ratio 0. Halley's steps (f'' = -sin alpha
+/// comes free with f) converge cubically: the error after a step d is about
+/// K d^3 with K <= 2 / alpha^2, so a step |d| <= 1e-5 alpha leaves 2e-15 alpha and
+/// service chords need one sine and cosine instead of Newton's two. Sine and cosine
+/// follow by Taylor to second order (error d^3/6, below round-off).
 ArchSolution solve_half_angle(double ratio) {
   const double y = 1.0 - ratio;
   double alpha = std::min(std::sqrt(y * (6.0 + y * (1.8 + y * (144.0 / 175.0)))), kPi);
@@ -47,15 +51,16 @@ ArchSolution solve_half_angle(double ratio) {
     const double residual = sin_alpha - ratio * alpha;
     if (residual == 0.0) break;
     (residual > 0.0 ? low : high) = alpha;
-    double next = alpha - residual / (cos_alpha - ratio);
+    const double slope = cos_alpha - ratio;
+    double next = alpha - 2.0 * residual * slope / (2.0 * slope * slope + residual * sin_alpha);
     // A converged step may land on the bracket end just moved to alpha: keep it.
     if (!(next >= low && next <= high)) next = 0.5 * (low + high);
     const double step = next - alpha;
-    // Quadratic convergence: the error after a step d is about 1.5 d^2 / alpha, so
-    // |d| < 1e-8 alpha leaves round-off; sine and cosine follow to first order, with
-    // an error d^2/2 below round-off too.
-    if (std::abs(step) <= 1e-8 * alpha)
-      return {next, cos_alpha - step * sin_alpha, sin_alpha + step * cos_alpha};
+    if (std::abs(step) <= 1e-5 * alpha) {
+      const double half_square = 0.5 * step * step;
+      return {next, cos_alpha - step * sin_alpha - half_square * cos_alpha,
+              sin_alpha + step * cos_alpha - half_square * sin_alpha};
+    }
     alpha = next;
     if (high - low <= 1e-15 * high) break;  // the end of a bisection run
   }
