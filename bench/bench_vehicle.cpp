@@ -3,9 +3,10 @@
 // differences of the spindle force (the paper's comparison): steps, corrector
 // iterations per step, tire solves, tire Newton iterations per solve, wall time. Then a
 // full car (left wheels over the pothole, right wheels on a flat road) with its four
-// tires solved in one thread and in four concurrent threads. The road starts 0.1 s
+// tires solved in one thread, in two lanes and in four (TireGroup). The road starts 0.1 s
 // after the tires are pressed and reaches its speed in 0.5 s; the pothole arrives 0.4 s
-// later.
+// later. Tires and vehicle as inputs/vehicle_pothole.lua sets them: HHT alpha = -0.05,
+// the zero-acceleration predictor, tire Newton and vehicle corrector to 1e-6.
 //   build/bench_vehicle [seconds simulated, default 1.4] [quarter|car|all]
 // Environment: SPEED [km/h, default 36], DEPTH [m, default 0.05], STEP [s, default 5e-4].
 #include <chrono>
@@ -53,7 +54,8 @@ std::unique_ptr<TireOnRoad> road_tire(bool pothole) {
       RoadContact{0.9});
   tire->press(0.010);
   tire->press(0.020);
-  tire->drive(Integrator::hht(-0.05));
+  tire->analysis().newton_settings().residual_tolerance = 1e-6;
+  tire->drive(Integrator::hht(-0.05).with_predictor(Integrator::Predictor::ZeroAcceleration));
   return tire;
 }
 
@@ -79,12 +81,13 @@ struct Run {
 };
 
 Run run(std::vector<std::unique_ptr<TireOnRoad>>& tires, std::vector<Corner> corners, const Body& body,
-        SpindleJacobianSource source, bool concurrent, double duration) {
+        SpindleJacobianSource source, int lanes, double duration) {
   std::vector<TireSpindle*> spindles;
   for (auto& tire : tires) spindles.push_back(&tire->spindle());
-  TireGroup group(spindles, concurrent);
+  TireGroup group(spindles, lanes > 1, lanes);
   VehicleSettings settings;
   settings.alpha = -0.05;
+  settings.residual_tolerance = 1e-6;
   settings.jacobian = source;
   Vehicle car(body, std::move(corners), group, settings);
   Run result;
@@ -118,21 +121,22 @@ int main(int argc, char** argv) {
     for (SpindleJacobianSource source : {SpindleJacobianSource::Direct, SpindleJacobianSource::FiniteDifference}) {
       std::vector<std::unique_ptr<TireOnRoad>> tires;
       tires.push_back(road_tire(true));
-      const Run r = run(tires, {corner(0, 0)}, Body{kCornerMass}, source, false, duration);
+      const Run r = run(tires, {corner(0, 0)}, Body{kCornerMass}, source, 1, duration);
       print(source == SpindleJacobianSource::Direct ? "  direct Jacobian H_ss" : "  finite-difference Jacobian", r,
             duration);
     }
   }
   if (parts != "quarter") {
     std::printf("full car (4 x %.0f kg), left wheels over the pothole\n", kCornerMass);
-    for (bool concurrent : {false, true}) {
+    for (int lanes : {1, 2, 4}) {
       std::vector<std::unique_ptr<TireOnRoad>> tires;
       for (bool pothole : {true, false, true, false}) tires.push_back(road_tire(pothole));
       const std::vector<Corner> corners{corner(1.3, 0.75), corner(1.3, -0.75), corner(-1.4, 0.75),
                                         corner(-1.4, -0.75)};
       const Run r = run(tires, corners, Body{4 * kCornerMass, 2500.0, 550.0}, SpindleJacobianSource::Direct,
-                        concurrent, duration);
-      print(concurrent ? "  4 tires, 4 threads" : "  4 tires, 1 thread", r, duration);
+                        lanes, duration);
+      const std::string label = "  4 tires, " + std::to_string(lanes) + (lanes == 1 ? " thread" : " threads");
+      print(label.c_str(), r, duration);
     }
   }
   return 0;

@@ -138,8 +138,9 @@ TEST_CASE("quarter car: the direct spindle Jacobian gives the finite-difference 
   CHECK(3 * direct.second.tire_solves < 2 * difference.second.tire_solves);
 }
 
-TEST_CASE("full car: four tires solved in concurrent threads give the sequential run bit for bit", "[vehicle][car]") {
-  auto run = [](bool concurrent) {
+TEST_CASE("full car: four tires solved in two or four concurrent lanes give the sequential run bit for bit",
+          "[vehicle][car]") {
+  auto run = [](int lanes) {
     std::vector<std::unique_ptr<PressedTire>> tires;
     std::vector<TireSpindle*> spindles;
     std::vector<Corner> corners;
@@ -154,15 +155,17 @@ TEST_CASE("full car: four tires solved in concurrent threads give the sequential
       corner.y = positions[i][1];
       corners.push_back(corner);
     }
-    TireGroup group(spindles, concurrent);
+    TireGroup group(spindles, lanes > 1, lanes);
+    REQUIRE(group.lanes() == lanes);
     VehicleSettings settings;
     settings.alpha = -0.05;
     Vehicle car({4 * kBodyMass, 1500.0, 400.0}, corners, group, settings);
     car.advance(0.04, 2e-3);
     return Eigen::VectorXd(car.state().displacement);
   };
-  const Eigen::VectorXd sequential = run(false), concurrent = run(true);
+  const Eigen::VectorXd sequential = run(1);
   CHECK(std::abs(sequential[1]) > 1e-5);  // pitch
   CHECK(std::abs(sequential[2]) > 1e-5);  // roll
-  CHECK((sequential - concurrent).lpNorm<Eigen::Infinity>() == 0.0);
+  CHECK((sequential - run(2)).lpNorm<Eigen::Infinity>() == 0.0);
+  CHECK((sequential - run(4)).lpNorm<Eigen::Infinity>() == 0.0);
 }

@@ -1,12 +1,16 @@
 #include "vehicle/tire_group.hpp"
 
+#include <algorithm>
+
 namespace tirefe {
 
-TireGroup::TireGroup(std::vector<TireSpindle*> tires, bool concurrent)
-    : TireExchange(std::move(tires)), concurrent_(concurrent && size() > 1), commands_(size()) {
-  if (!concurrent_) return;
-  workers_.reserve(size() - 1);
-  for (int i = 1; i < size(); ++i) workers_.emplace_back([this, i] { work(i); });
+TireGroup::TireGroup(std::vector<TireSpindle*> tires, bool concurrent, int lanes)
+    : TireExchange(std::move(tires)), commands_(size()) {
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  lanes_ = concurrent ? std::clamp(lanes > 0 ? lanes : cores, 1, std::max(1, size())) : 1;
+  concurrent_ = lanes_ > 1;
+  workers_.reserve(lanes_ - 1);
+  for (int lane = 1; lane < lanes_; ++lane) workers_.emplace_back([this, lane] { work(lane); });
 }
 
 TireGroup::~TireGroup() {
@@ -18,7 +22,12 @@ TireGroup::~TireGroup() {
   for (auto& worker : workers_) worker.join();
 }
 
-void TireGroup::work(int tire) {
+void TireGroup::serve_lane(int lane) {
+  for (int tire = lane; tire < size(); tire += lanes_)
+    (*replies_)[tire] = spindle(tire).serve((*requests_)[tire]);  // serve() never throws
+}
+
+void TireGroup::work(int lane) {
   long served = 0;
   for (;;) {
     std::unique_lock<std::mutex> lock(mutex_);
@@ -26,7 +35,7 @@ void TireGroup::work(int tire) {
     if (stopping_) return;
     served = round_;
     lock.unlock();
-    (*replies_)[tire] = spindle(tire).serve((*requests_)[tire]);  // serve() never throws
+    serve_lane(lane);
     lock.lock();
     if (--pending_ == 0) done_.notify_one();
   }
@@ -51,7 +60,7 @@ void TireGroup::serve(const std::vector<SpindleRequest>& requests, std::vector<S
     ++round_;
   }
   start_.notify_all();
-  replies[0] = spindle(0).serve(requests[0]);
+  serve_lane(0);
   std::unique_lock<std::mutex> lock(mutex_);
   done_.wait(lock, [&] { return pending_ == 0; });
 }
