@@ -23,7 +23,7 @@
 -- Fundamentals of Vehicle Dynamics, SAE 1992, chapters 5-6); the paper's own
 -- multibody model is not published.
 
-local p = tirefe.parameters{ dt = 5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, depth = 0.10, length = 0.76,
+local p = tirefe.parameters{ dt = 5e-4, dt_pothole = 2.5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, depth = 0.10, length = 0.76,
                              speed_kmh = 48.0, mu = 0.9, threads = 1,
                              newton_tolerance = 1e-6,   -- tire Newton, on |R| / R_ref: spindle forces to ~5 mN
                              vehicle_tolerance = 1e-6,  -- vehicle corrector, on |r|_inf / total weight (~14 mN)
@@ -91,7 +91,11 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
     bumper_gap = 0.06, bumper_stiffness = 2e7, fore_aft_stiffness = 3e5, fore_aft_damping = 3e3 }
 end
 
+-- The wheels cross the chuckhole with half the step: its edges' impacts last a few ms.
+local front_crossing = start + p.ramp + 1.0
+local rear_crossing = front_crossing + wheelbase / v
 local run = tirefe.vehicle{ body = body, corners = corners, duration = p.settle + p.ramp + p.cruise, dt = p.dt,
+                            fine_steps = { { front_crossing - 0.02, rear_crossing + (p.length + 0.3) / v, p.dt_pothole } },
                             threads = p.threads == 1, history_every = 10,
                             tolerance = p.vehicle_tolerance }
 print(string.format("vehicle: %d steps, %.2f corrector iterations/step, %.2f tire Newton iterations/solve, "

@@ -8,6 +8,7 @@
 #include "vehicle/tire_on_road.hpp"
 #include "vehicle/tire_spindle.hpp"
 #include "solvers/driven_solver.hpp"
+#include "solvers/ring_solver.hpp"
 
 using namespace tirefe;
 
@@ -185,5 +186,38 @@ TEST_CASE("spindle Jacobian H_ss with a driven spin (a braked wheel) equals cent
     const double scale = structural.col(j).cwiseAbs().maxCoeff();
     CHECK(scale > 0.0);
     CHECK((jacobian.col(j) - difference.col(j)).cwiseAbs().maxCoeff() < 1e-5 * scale);
+  }
+}
+
+TEST_CASE("driven-DOF solves and H_ss through the RingSolver's border equal those through KLU, on a rolling tire",
+          "[spindle][linear]") {
+  // The ring route reads H from the border Schur complement and needs no column solves;
+  // the general route solves for the columns with KLU's factors. Same matrix: the
+  // effective tangent of a tire rolling with friction (stick and slip in the patch).
+  RollingTire rolling;
+  rolling.roll(20);
+  rolling.solve(0.0, -kDeflection);
+  Analysis& analysis = rolling.tire.analysis();
+  const SparseMatrix& tangent = analysis.assembler().tangent();
+  const DofMap& dofs = analysis.model().dof_map();
+  const int spindle = rolling.tire.tire().spindle;
+  for (int driven_count : {2, 3}) {  // free spin, driven spin
+    INFO(driven_count << " driven equations");
+    std::vector<int> driven;
+    for (int c = 0; c < driven_count; ++c) driven.push_back(dofs.equation(dof_index(spindle, c)));
+    KluSolver klu;
+    RingSolver ring(dofs, rolling.tire.tire().tread_nodes, {spindle});
+    DrivenDofSolver general(klu, driven), structured(ring, driven);
+    for (DrivenDofSolver* solver : {&general, &structured}) {
+      solver->analyze(tangent);
+      solver->factorize(tangent);
+    }
+    const Eigen::MatrixXd h_general = general.schur_complement(), h_ring = structured.schur_complement();
+    CHECK((h_ring - h_general).norm() <= 1e-9 * h_general.norm());
+    Eigen::VectorXd x_general = Eigen::VectorXd::LinSpaced(tangent.rows(), -1.0, 2.0), x_ring = x_general;
+    general.solve(x_general);
+    structured.solve(x_ring);
+    CHECK((x_ring - x_general).norm() <= 1e-9 * x_general.norm());
+    for (int equation : driven) CHECK(x_ring[equation] == 0.0);
   }
 }

@@ -1,5 +1,6 @@
 #include "solvers/driven_solver.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace tirefe {
@@ -17,9 +18,35 @@ void DrivenDofSolver::analyze(const Matrix& pattern) {
   inner_.analyze(pattern);
   columns_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
   coupling_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
+  ring_ = dynamic_cast<RingSolver*>(&inner_);
+  driven_in_border_.clear();
+  free_in_border_.clear();
+  if (!ring_) return;
+  const std::vector<int>& border = ring_->border_equations();
+  if (border.size() > static_cast<size_t>(kMaxDriven)) {  // H_b of several border nodes: the general route
+    ring_ = nullptr;
+    return;
+  }
+  for (int equation : driven_) {
+    const auto place = std::find(border.begin(), border.end(), equation);
+    if (place == border.end()) {  // a driven equation in the ring: the general route
+      ring_ = nullptr;
+      return;
+    }
+    driven_in_border_.push_back(static_cast<int>(place - border.begin()));
+  }
+  for (int i = 0; i < static_cast<int>(border.size()); ++i)
+    if (std::find(driven_in_border_.begin(), driven_in_border_.end(), i) == driven_in_border_.end())
+      free_in_border_.push_back(i);
+  border_rhs_.setZero(static_cast<Eigen::Index>(border.size()));
+  free_rhs_.setZero(static_cast<Eigen::Index>(free_in_border_.size()));
 }
 
 void DrivenDofSolver::factorize(const Matrix& matrix) {
+  if (ring_) {
+    factorize_on_ring(matrix);
+    return;
+  }
   inner_.factorize(matrix);
   const int count = static_cast<int>(driven_.size());
   columns_.setZero();
@@ -34,8 +61,43 @@ void DrivenDofSolver::factorize(const Matrix& matrix) {
   refactorizations_ = inner_.refactorization_count();
 }
 
+void DrivenDofSolver::factorize_on_ring(const Matrix& matrix) {
+  ring_->factorize(matrix);
+  const Eigen::MatrixXd& border = ring_->border_schur_complement();
+  const int driven = static_cast<int>(driven_in_border_.size()), free = static_cast<int>(free_in_border_.size());
+  SmallMatrix free_block(free, free), driven_free(driven, free), free_driven(free, driven);
+  for (int i = 0; i < free; ++i) {
+    for (int j = 0; j < free; ++j) free_block(i, j) = border(free_in_border_[i], free_in_border_[j]);
+    for (int j = 0; j < driven; ++j) free_driven(i, j) = border(free_in_border_[i], driven_in_border_[j]);
+  }
+  for (int i = 0; i < driven; ++i) {
+    for (int j = 0; j < driven; ++j) schur_(i, j) = border(driven_in_border_[i], driven_in_border_[j]);
+    for (int j = 0; j < free; ++j) driven_free(i, j) = border(driven_in_border_[i], free_in_border_[j]);
+  }
+  free_inverse_ = free ? SmallMatrix(free_block.inverse()) : SmallMatrix(0, 0);  // the spindle's free rz, if any
+  driven_from_free_ = driven_free * free_inverse_;
+  if (free) schur_ -= driven_from_free_ * free_driven;
+  fresh_factorizations_ = inner_.factorization_count();
+  refactorizations_ = inner_.refactorization_count();
+}
+
+void DrivenDofSolver::solve_on_ring(Eigen::VectorXd& right_hand_side) const {
+  ring_->condense(right_hand_side, border_rhs_);
+  for (size_t i = 0; i < free_in_border_.size(); ++i) free_rhs_[static_cast<Eigen::Index>(i)] = border_rhs_[free_in_border_[i]];
+  for (size_t i = 0; i < driven_.size(); ++i) {
+    const Eigen::Index row = static_cast<Eigen::Index>(i);
+    right_hand_side[driven_[i]] += driven_from_free_.row(row).dot(free_rhs_) - border_rhs_[driven_in_border_[i]];
+  }
+  inner_.solve(right_hand_side);
+}
+
 void DrivenDofSolver::solve(Eigen::VectorXd& right_hand_side) const {
   for (int equation : driven_) right_hand_side[equation] = 0.0;
+  if (ring_) {
+    solve_on_ring(right_hand_side);
+    for (int equation : driven_) right_hand_side[equation] = 0.0;  // round-off of the border solve
+    return;
+  }
   inner_.solve(right_hand_side);
   for (size_t i = 0; i < driven_.size(); ++i) driven_part_[static_cast<Eigen::Index>(i)] = right_hand_side[driven_[i]];
   right_hand_side.noalias() -= coupling_ * driven_part_;

@@ -10,6 +10,14 @@
 //     Z_s = H^-1,  H = A_ss - A_su A_uu^-1 A_us          (eq. 27, the spindle Jacobian)
 //     Z_u = -A_uu^-1 A_us H^-1,
 // and a solve of A [y_u; y_s] = [b_u; 0] gives A_uu^-1 b_u = y_u - Z_u H y_s.
+//
+// With a RingSolver whose border holds the driven equations (the spindle) the factors
+// give the border Schur complement H_b directly (over the driven equations s and the
+// border's free ones f, a free spin's rz), so no columns are solved: per iteration,
+//     H   = H_ss - H_sf H_ff^-1 H_fs,
+//     x_u = A^-1 [b_u; b_s + delta]  with  delta = H_sf H_ff^-1 y_f - y_s,
+// y_b = the condensed border right-hand side of [b_u; 0] (one forward sweep): the delta
+// makes the border solution [0; H_ff^-1 y_f], i.e. x_s = 0, and the rest follows.
 // A must be regular (a dynamic tangent is: the driven node has mass).
 #pragma once
 
@@ -17,6 +25,7 @@
 #include <vector>
 
 #include "solvers/linear_solver.hpp"
+#include "solvers/ring_solver.hpp"
 
 namespace tirefe {
 
@@ -44,8 +53,19 @@ class DrivenDofSolver final : public LinearSolver {
   const std::vector<int>& driven_equations() const { return driven_; }
 
  private:
+  void factorize_on_ring(const Matrix& matrix);
+  void solve_on_ring(Eigen::VectorXd& right_hand_side) const;
+
   LinearSolver& inner_;
   std::vector<int> driven_;
+  // The ring route: inner_ as a RingSolver whose border holds every driven equation; the
+  // driven and free equations' places in its border Schur complement H_b.
+  RingSolver* ring_ = nullptr;
+  std::vector<int> driven_in_border_, free_in_border_;
+  SmallMatrix free_inverse_;      // H_ff^-1
+  SmallMatrix driven_from_free_;  // H_sf H_ff^-1
+  mutable Eigen::VectorXd border_rhs_;
+  mutable SmallVector free_rhs_;
   Eigen::MatrixXd columns_;   // Z = A^-1 [0; I]
   Eigen::MatrixXd coupling_;  // Z_u H = -A_uu^-1 A_us (rows over every equation, 0 at s)
   SmallMatrix schur_;         // H

@@ -1,5 +1,6 @@
 #include "vehicle/vehicle.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -238,6 +239,20 @@ void Vehicle::step(double h) {
   if (!(h > 0.0) || !std::isfinite(h)) throw ModelError("the vehicle time step must be positive and finite");
   if (!started_) initialize_acceleration();
   take_step(h, 0);
+}
+
+void Vehicle::advance(double duration, double h, std::vector<StepWindow> windows) {
+  for (const StepWindow& window : windows)
+    if (!(window.to > window.from) || !(window.step > 0.0))
+      throw ModelError("a step window needs from < to and a positive step");
+  std::sort(windows.begin(), windows.end(), [](const StepWindow& a, const StepWindow& b) { return a.from < b.from; });
+  const double end = committed_.time + duration;
+  for (const StepWindow& window : windows) {
+    const double from = std::clamp(window.from, committed_.time, end), to = std::clamp(window.to, from, end);
+    if (from > committed_.time) advance(from - committed_.time, h);
+    if (to > committed_.time) advance(to - committed_.time, window.step);
+  }
+  if (end > committed_.time) advance(end - committed_.time, h);
 }
 
 void Vehicle::advance(double duration, double h) {

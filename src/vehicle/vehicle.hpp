@@ -95,6 +95,12 @@ class Vehicle {
   /// Advances by one step h (cut into halves if the corrector fails; throws StepFailure).
   void step(double h);
   void advance(double duration, double h);
+  /// Advances by 'duration' in steps h, and in steps of each window's own size while the
+  /// time is inside it (windows in absolute time, e.g. around an obstacle's impacts).
+  struct StepWindow {
+    double from = 0.0, to = 0.0, step = 0.0;  // [s]
+  };
+  void advance(double duration, double h, std::vector<StepWindow> windows);
 
   const State& state() const { return committed_; }
   double time() const { return committed_.time; }
