@@ -77,6 +77,12 @@ TEST_CASE("quarter car: static ride height is weight over stiffness, the tire ca
   car.advance(0.7, 0.1 / 3.0);  // 21 steps of a step size that is no binary fraction
   CHECK(car.statistics().steps == 1250 + 21);
   CHECK(car.time() == Approx(start + 3.2).epsilon(1e-14));
+  // A window of quarter steps: 5 steps of 10 ms, 20 of 2.5 ms, then 10 of 10 ms.
+  const double now = car.time();
+  car.advance(0.2, 0.01, {{now + 0.05, now + 0.1, 0.0025}});
+  CHECK(car.statistics().steps == 1271 + 35);
+  CHECK(car.time() == Approx(now + 0.2).epsilon(1e-14));
+  CHECK_THROWS_AS(car.advance(0.1, 0.01, {{now + 0.3, now + 0.25, 0.001}}), ModelError);
 }
 
 TEST_CASE("quarter car: the wheel-hop frequency is that of the linearised two-mass system", "[vehicle][quarter]") {
