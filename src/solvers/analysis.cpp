@@ -407,13 +407,21 @@ const StepRecord& Analysis::solve_trial_step(double step) {
 }
 
 void Analysis::accept_trial_step() {
-  if (!trial_pending_) throw ModelError("there is no trial step to accept");
-  trial_pending_ = false;
-  record_step(trial_step_size_, trial_record_);
+  if (!trial_recorded_) record_trial_step();
+  trial_recorded_ = false;
   notify_step(trial_record_);
 }
 
+void Analysis::record_trial_step() {
+  if (trial_recorded_) return;
+  if (!trial_pending_) throw ModelError("there is no trial step to accept");
+  trial_pending_ = false;
+  record_step(trial_step_size_, trial_record_);
+  trial_recorded_ = true;
+}
+
 void Analysis::discard_trial_step() {
+  if (trial_recorded_) throw ModelError("a recorded trial step can only be accepted");
   if (!trial_pending_) return;
   model_.revert_history();
   trial_pending_ = false;

@@ -166,6 +166,10 @@ class Analysis : private StepEquations {
   const StepRecord& solve_trial_step(double step);
   /// Commits the trial step as advance() commits a step (observers hear of it).
   void accept_trial_step();
+  /// The computing part of accept_trial_step(), which then only tells the observers: the
+  /// state, history and energies move on. Tires of one vehicle do this concurrently and
+  /// write their output in turn. Only accept_trial_step() may follow it.
+  void record_trial_step();
   /// Forgets the trial step.
   void discard_trial_step();
   bool has_trial_step() const { return trial_pending_; }
@@ -236,6 +240,7 @@ class Analysis : private StepEquations {
   std::unique_ptr<DrivenDofSolver> driven_solver_;
   int driven_pattern_ = -1;  // the pattern driven_solver_ was built for
   bool trial_pending_ = false;
+  bool trial_recorded_ = false;  // record_trial_step() done, observers not yet told
   double trial_step_size_ = 0.0;
   StepRecord trial_record_;
   std::vector<std::function<void(const Analysis&, const StepRecord&)>> observers_;

@@ -44,7 +44,22 @@ const SpindleReply& TireSpindle::solve_step(const SpindleInput& input) {
   return reply_;
 }
 
-void TireSpindle::commit() { analysis_.accept_trial_step(); }
+void TireSpindle::commit() {
+  if (!commit_failure_.empty()) {
+    const std::string failure = std::move(commit_failure_);
+    commit_failure_.clear();
+    throw StepFailure(failure);
+  }
+  analysis_.accept_trial_step();
+}
+
+void TireSpindle::prepare_commit() {
+  try {
+    analysis_.record_trial_step();
+  } catch (const std::exception& failure) {
+    commit_failure_ = failure.what();
+  }
+}
 
 void TireSpindle::revert() { analysis_.discard_trial_step(); }
 

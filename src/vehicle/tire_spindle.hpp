@@ -29,6 +29,10 @@ class TireSpindle {
   const SpindleReply& solve_step(const SpindleInput& input);
   /// Accepts the last trial step: the tire's state and history advance.
   void commit();
+  /// The computing part of commit() (Analysis::record_trial_step), which may run in a
+  /// thread of its own; commit() then only writes the output. Never throws: a failure
+  /// is kept and reported by the commit() that follows.
+  void prepare_commit();
   /// Forgets the last trial step.
   void revert();
   /// Dispatches one request (solve, commit or revert); never throws: failures come
@@ -50,6 +54,7 @@ class TireSpindle {
   SpinMode spin_;
   int driven_count_;  // 2 with free spin, else 3
   SpindleReply reply_;
+  std::string commit_failure_;  // of prepare_commit()
 };
 
 }  // namespace tirefe
