@@ -23,7 +23,8 @@
 -- Fundamentals of Vehicle Dynamics, SAE 1992, chapters 5-6); the paper's own
 -- multibody model is not published.
 
-local p = tirefe.parameters{ dt = 5e-4, dt_pothole = 2.5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, depth = 0.10, length = 0.76,
+local p = tirefe.parameters{ dt = 5e-4, dt_pothole = 5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, lead = 1.0,
+                             depth = 0.10, length = 0.76,
                              speed_kmh = 48.0, mu = 0.9, threads = 1,
                              newton_tolerance = 1e-6,   -- tire Newton, on |R| / R_ref: spindle forces to ~5 mN
                              vehicle_tolerance = 1e-6,  -- vehicle corrector, on |r|_inf / total weight (~14 mN)
@@ -39,7 +40,7 @@ local body = { mass = sprung, pitch_inertia = sprung * (1.2 * wheelbase / 2)^2,
 local carrier = 35.0
 local v = p.speed_kmh / 3.6
 local start = 2.0 + p.settle                         -- inflation 1 s, press 1 s, settling
-local ahead = 0.5 * v * p.ramp + v * 1.0             -- the chuckhole reaches the front wheel 1 s into the cruise
+local ahead = 0.5 * v * p.ramp + v * p.lead          -- the chuckhole reaches the front wheel 'lead' into the cruise
 
 local corners = {}
 for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
@@ -91,18 +92,56 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
     bumper_gap = 0.06, bumper_stiffness = 2e7, fore_aft_stiffness = 3e5, fore_aft_damping = 3e3 }
 end
 
--- The wheels cross the chuckhole with half the step: its edges' impacts last a few ms.
-local front_crossing = start + p.ramp + 1.0
+-- The step while the wheels cross the chuckhole (dt_pothole; docs/vehicle.md: its edges' strikes).
+local front_crossing = start + p.ramp + p.lead
 local rear_crossing = front_crossing + wheelbase / v
 local run = tirefe.vehicle{ body = body, corners = corners, duration = p.settle + p.ramp + p.cruise, dt = p.dt,
                             fine_steps = { { front_crossing - 0.02, rear_crossing + (p.length + 0.3) / v, p.dt_pothole } },
-                            threads = p.threads == 1, history_every = 10,
+                            threads = p.threads == 1,
                             tolerance = p.vehicle_tolerance }
 print(string.format("vehicle: %d steps, %.2f corrector iterations/step, %.2f tire Newton iterations/solve, "
                     .. "%d cuts, %d backtracks, wall %.1f s for %.1f s simulated", run.steps,
                     run.corrector_iterations / run.steps, run.tire_newton_iterations / run.tire_solves, run.cuts,
                     run.backtracks, run.wall_time, p.settle + p.ramp + p.cruise))
-local lf = run.corners[1]
-local peak = 0
-for i = 1, #lf.fy do peak = math.max(peak, -lf.fy[i]) end
-print(string.format("left-front vertical spindle force: static %.0f N, peak %.0f N", -lf.fy[1], peak))
+-- Loads before the chuckhole and peaks at it, from every step (fx, fy: the force on the tire).
+local function sample_before(series, time)
+  local value = series[1]
+  for i = 1, #run.time do
+    if run.time[i] <= time then value = series[i] end
+  end
+  return value
+end
+local static, peak, peak_time, total = {}, {}, {}, 0
+for index, name in ipairs({ "LF", "RF", "LR", "RR" }) do
+  local corner = run.corners[index]
+  static[index] = -sample_before(corner.fy, front_crossing - 0.02)
+  total = total + static[index]
+  peak[index], peak_time[index] = 0, 0
+  local low_x, high_x = 0, 0
+  for i = 1, #corner.fy do
+    if run.time[i] >= front_crossing - 0.02 then  -- after the settling
+      if -corner.fy[i] > peak[index] then peak[index], peak_time[index] = -corner.fy[i], run.time[i] end
+      low_x, high_x = math.min(low_x, -corner.fx[i]), math.max(high_x, -corner.fx[i])
+    end
+  end
+  print(string.format("%s spindle: Fz before the chuckhole %.0f N, then peak %.0f N at t = %.4f s; Fx %.0f to %.0f N", name,
+                      static[index], peak[index], peak_time[index], low_x, high_x))
+end
+
+-- Checks, for a run that reaches past the crossing: the tires carry the car's weight,
+-- split front to rear by the centre of mass; the left wheels strike the chuckhole's far
+-- edge a wheelbase apart in time; the right side stays near its load.
+if start + p.ramp + p.cruise < rear_crossing + (p.length + 0.3) / v then
+  print("no checks: the run ends before the left wheels have crossed the chuckhole")
+  return
+end
+local weight = (sprung + 4 * carrier) * g
+tirefe.check{ name = "static tire loads = weight of the car [N]", value = total, expected = weight, relative = 0.01 }
+tirefe.check{ name = "left-front static load [N]", value = static[1],
+              expected = sprung * g * (wheelbase - a) / wheelbase / 2 + carrier * g, relative = 0.01 }
+tirefe.check{ name = "left-front strike after the far edge arrives [s]", value = peak_time[1],
+              expected = front_crossing + p.length / v, tolerance = 0.03 }
+tirefe.check{ name = "left-rear strike a wheelbase later [s]", value = peak_time[3] - peak_time[1],
+              expected = wheelbase / v, tolerance = 0.01 }
+tirefe.check{ name = "left-front peak / static load", value = peak[1] / static[1], expected = 4, tolerance = 2.5 }
+tirefe.check{ name = "right-front peak / static load", value = peak[2] / static[2], expected = 1, tolerance = 0.5 }

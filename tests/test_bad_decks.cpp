@@ -150,6 +150,29 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
     CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
 }
 
+TEST_CASE("vehicle pothole deck, short version: loads, strikes, four result files and the plots", "[decks][vehicle]") {
+  // A 0.5 s ramp and the chuckhole 0.1 s into the cruise instead of 5 s and 1 s: the same
+  // crossing at 48 km/h by the left wheels, with the deck's own checks (docs/vehicle.md).
+  const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
+  const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "vehicle_pothole.lua").string();
+  const RunResult result = run_tirefe(deck + " settle=0.05 ramp=0.5 cruise=0.45 lead=0.1");
+  INFO("errors: " << result.errors);
+  REQUIRE(result.exit_status == 0);
+  for (const char* corner : {"LF", "RF", "LR", "RR"}) {
+    const fs::path file = output / ("vehicle_pothole_" + std::string(corner) + ".h5");
+    const tirefe::io::Hdf5File hdf5 = tirefe::io::Hdf5File::open_read_only(file.string());
+    const std::vector<double> time = hdf5.read_doubles("/history/time");
+    CHECK(time.back() == Approx(3.0).epsilon(1e-9));
+    for (const char* channel : {"spindle_fx", "spindle_fz", "vehicle_heave", "vehicle_pitch", "vehicle_roll", "jounce"})
+      CHECK(hdf5.read_doubles(std::string("/history/") + channel).size() == time.size());
+  }
+  const std::string plot = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_vehicle.py").string() +
+                           " 2.6 3.0 " + (output / "vehicle_pothole_LF.h5").string() + " " +
+                           (output / "vehicle_pothole_LR.h5").string() + " > /dev/null";
+  REQUIRE(std::system(plot.c_str()) == 0);
+  CHECK(fs::file_size(output / "vehicle_pothole_LF_spindle.png") > 10000);
+}
+
 TEST_CASE("a deck whose self-check fails exits with status 3", "[decks]") {
   const fs::path deck = fs::temp_directory_path() / "tirefe_failing_check.lua";
   std::ofstream(deck) << "tirefe.check{ name = \"one is two\", value = 1, expected = 2, tolerance = 0.5 }\n";
