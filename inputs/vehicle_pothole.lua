@@ -23,7 +23,7 @@
 -- Fundamentals of Vehicle Dynamics, SAE 1992, chapters 5-6); the paper's own
 -- multibody model is not published.
 
-local p = tirefe.parameters{ dt = 5e-4, dt_pothole = 5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, lead = 1.0,
+local p = tirefe.parameters{ dt = 5e-4, dt_pothole = 2.5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, lead = 1.0,
                              depth = 0.10, length = 0.76,
                              speed_kmh = 48.0, mu = 0.9, threads = 1,
                              newton_tolerance = 1e-6,   -- tire Newton, on |R| / R_ref: spindle forces to ~5 mN
