@@ -4,14 +4,18 @@
 -- load, so the dynamic part runs from t = 2 s to 10 s); 1 s dynamic settling; the ground under
 -- the car accelerates at a constant rate from 0 to 48 km/h over 5 s (the tires roll
 -- freely, no drive torque); 2 s at 48 km/h, during which the LEFT wheels cross a
--- chuckhole 760 mm long and 100 mm deep (1 s into the cruise) while the right side stays
+-- chuckhole 760 mm long and 100 mm deep ('lead' = 1 s into the cruise) while the right side stays
 -- flat. Each corner's tire writes vehicle_pothole_<corner>.h5 with its spindle forces
 -- and the body motions; the left-front and left-rear Fx, Fz around the pothole and
 -- their spectra (wheel hop ~10 Hz; the first vertical tire mode ~90 Hz) are plotted by
 --   /usr/bin/python3 post/plot_vehicle.py 8.9 10 results/vehicle_pothole_LF.h5 results/vehicle_pothole_LR.h5
--- Wall time on the shared 2-core machine: 287 s (165 s CPU) for the 8 s dynamic part.
+-- Wall time on the 2-core machine: about 40 s (75-80 s CPU, the tires in two lanes) for
+-- the 8 s dynamic part (docs/vehicle.md). The deck checks itself once the left wheels
+-- have crossed: the weight and its split, the strike times.
 --
---   tirefe inputs/vehicle_pothole.lua [dt=5e-4] [settle=1] [ramp=5] [cruise=2] [depth=0.1]
+--   tirefe inputs/vehicle_pothole.lua [dt=5e-4] [dt_pothole=2.5e-4] [settle=1] [ramp=5] [cruise=2]
+--                                     [lead=1] [depth=0.1] [threads=1]
+--   mpirun -np 4 build/tirefe-mpi inputs/vehicle_pothole.lua      (the tires as MPI ranks)
 --
 -- The car: a mid-size sedan of ~1300 kg (curb mass, sprung 1160 kg) with a 2.7 m
 -- wheelbase (centre of mass 1.1 m behind the front axle) and a 1.5 m track; pitch and
