@@ -100,7 +100,7 @@ end
 local front_crossing = start + p.ramp + p.lead
 local rear_crossing = front_crossing + wheelbase / v
 local run = tirefe.vehicle{ body = body, corners = corners, duration = p.settle + p.ramp + p.cruise, dt = p.dt,
-                            fine_steps = { { front_crossing - 0.02, rear_crossing + (p.length + 0.3) / v, p.dt_pothole } },
+                            step_windows = { { front_crossing - 0.02, rear_crossing + (p.length + 0.3) / v, p.dt_pothole } },
                             threads = p.threads == 1,
                             tolerance = p.vehicle_tolerance }
 print(string.format("vehicle: %d steps, %.2f corrector iterations/step, %.2f tire Newton iterations/solve, "

@@ -244,10 +244,10 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   const RemoteTiresGuard remote_tires{decks};
   try {
     std::vector<Vehicle::StepWindow> windows;
-    if (arguments.has("fine_steps"))
-      for (const auto& row : arguments.number_matrix("fine_steps")) {
+    if (arguments.has("step_windows"))
+      for (const auto& row : arguments.number_matrix("step_windows")) {
         if (row.size() != 3 || !(row[1] > row[0]) || !(row[2] > 0.0))
-          throw ModelError("each 'fine_steps' window is {from [s], to [s], dt [s]} with from < to and dt > 0");
+          throw ModelError("each 'step_windows' window is {from [s], to [s], dt [s]} with from < to and dt > 0");
         windows.push_back({row[0], row[1], row[2]});
       }
     vehicle.advance(arguments.number("duration"), arguments.number("dt"), windows);
@@ -362,8 +362,8 @@ void add_vehicle_macros(MacroTable& table) {
           "bumper_gap, bumper_stiffness, fore_aft_stiffness, fore_aft_damping} (docs/vehicle.md)"},
          {"duration", VT::Number, true, "s", "simulated time", std::nullopt, Range::Positive},
          {"dt", VT::Number, true, "s", "vehicle (and tire) time step", std::nullopt, Range::Positive},
-         {"fine_steps", VT::NumberMatrix, false, "s",
-          "windows {{from, to, dt}, ...} of absolute time stepped with their own dt (an obstacle's impacts)"},
+         {"step_windows", VT::NumberMatrix, false, "s",
+          "windows {{from, to, dt}, ...} of absolute time stepped with their own dt (finer at an obstacle, coarser where nothing happens)"},
          {"gravity", VT::Number, false, "m/s^2", "acting on the body and the carriers", std::string("9.81"),
           Range::NonNegative},
          {"tolerance", VT::Number, false, "", "corrector: |r|_inf / total weight", std::string("1e-8"), Range::Positive},
