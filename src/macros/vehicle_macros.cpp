@@ -144,7 +144,19 @@ struct RemoteTiresGuard {
   }
 };
 
+std::vector<Vehicle::StepWindow> step_windows_of(const MacroArguments& arguments) {
+  std::vector<Vehicle::StepWindow> windows;
+  if (!arguments.has("step_windows")) return windows;
+  for (const auto& row : arguments.number_matrix("step_windows")) {
+    if (row.size() != 3 || !(row[1] > row[0]) || !(row[2] > 0.0))
+      throw ModelError("each 'step_windows' window is {from [s], to [s], dt [s]} with from < to and dt > 0");
+    windows.push_back({row[0], row[1], row[2]});
+  }
+  return windows;
+}
+
 int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
+  const std::vector<Vehicle::StepWindow> windows = step_windows_of(arguments);
   arguments.push_value("body");
   const MacroArguments body_arguments(L, lua_gettop(L), body_spec());
   Body body{body_arguments.number("mass"), body_arguments.number("pitch_inertia"),
@@ -243,13 +255,6 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   const auto start = std::chrono::steady_clock::now();
   const RemoteTiresGuard remote_tires{decks};
   try {
-    std::vector<Vehicle::StepWindow> windows;
-    if (arguments.has("step_windows"))
-      for (const auto& row : arguments.number_matrix("step_windows")) {
-        if (row.size() != 3 || !(row[1] > row[0]) || !(row[2] > 0.0))
-          throw ModelError("each 'step_windows' window is {from [s], to [s], dt [s]} with from < to and dt > 0");
-        windows.push_back({row[0], row[1], row[2]});
-      }
     vehicle.advance(arguments.number("duration"), arguments.number("dt"), windows);
   } catch (...) {
     view->vehicle = nullptr;
