@@ -1,5 +1,8 @@
 #include "parallel/mpi_tire_group.hpp"
 
+#include <algorithm>
+#include <thread>
+
 namespace tirefe {
 
 MpiTireGroup::MpiTireGroup(std::vector<TireSpindle*> tires, const std::vector<int>& owners, bool concurrent,
@@ -23,7 +26,15 @@ MpiTireGroup::MpiTireGroup(std::vector<TireSpindle*> tires, const std::vector<in
       }
     }
   }
-  solver_ = std::make_unique<TireGroup>(std::move(mine), concurrent);
+  // The ranks on this machine share its cores: each gets its share of lanes, so that
+  // threads never outnumber the cores (a waiting lane spins while it has one).
+  MPI_Comm node;
+  MPI_Comm_split_type(comm_, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node);
+  int ranks_here = 1;
+  MPI_Comm_size(node, &ranks_here);
+  MPI_Comm_free(&node);
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  solver_ = std::make_unique<TireGroup>(std::move(mine), concurrent, std::max(1, cores / ranks_here));
   local_requests_.resize(local_.size());
   gathered_.resize(gathered_tire_.size());
 }
