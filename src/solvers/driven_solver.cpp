@@ -16,23 +16,22 @@ DrivenDofSolver::DrivenDofSolver(LinearSolver& inner, std::vector<int> driven)
 
 void DrivenDofSolver::analyze(const Matrix& pattern) {
   inner_.analyze(pattern);
-  columns_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
-  coupling_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
   ring_ = dynamic_cast<RingSolver*>(&inner_);
   driven_in_border_.clear();
   free_in_border_.clear();
-  if (!ring_) return;
-  const std::vector<int>& border = ring_->border_equations();
-  if (border.size() > static_cast<size_t>(kMaxDriven)) {  // H_b of several border nodes: the general route
+  if (!ring_ || !analyze_ring_route()) {  // the general route: the columns Z
     ring_ = nullptr;
-    return;
+    columns_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
+    coupling_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
   }
+}
+
+bool DrivenDofSolver::analyze_ring_route() {
+  const std::vector<int>& border = ring_->border_equations();
+  if (border.size() > static_cast<size_t>(kMaxDriven)) return false;  // H_b of several border nodes
   for (int equation : driven_) {
     const auto place = std::find(border.begin(), border.end(), equation);
-    if (place == border.end()) {  // a driven equation in the ring: the general route
-      ring_ = nullptr;
-      return;
-    }
+    if (place == border.end()) return false;  // a driven equation in the ring
     driven_in_border_.push_back(static_cast<int>(place - border.begin()));
   }
   for (int i = 0; i < static_cast<int>(border.size()); ++i)
@@ -40,6 +39,7 @@ void DrivenDofSolver::analyze(const Matrix& pattern) {
       free_in_border_.push_back(i);
   border_rhs_.setZero(static_cast<Eigen::Index>(border.size()));
   free_rhs_.setZero(static_cast<Eigen::Index>(free_in_border_.size()));
+  return true;
 }
 
 void DrivenDofSolver::factorize(const Matrix& matrix) {

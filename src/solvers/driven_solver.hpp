@@ -53,6 +53,8 @@ class DrivenDofSolver final : public LinearSolver {
   const std::vector<int>& driven_equations() const { return driven_; }
 
  private:
+  /// Maps the driven equations into the RingSolver's border; false if they do not all lie there.
+  bool analyze_ring_route();
   void factorize_on_ring(const Matrix& matrix);
   void solve_on_ring(Eigen::VectorXd& right_hand_side) const;
 

@@ -43,7 +43,7 @@ void Integrator::predict(const State& committed, double step, State& trial) cons
     trial.acceleration.setZero();
     return;
   }
-  if (predictor_ == Predictor::SameAcceleration) {
+  if (predictor_ == Predictor::SameAcceleration) {  // the Newmark formulas below with a_{n+1} = a_n, summed exactly
     trial.acceleration = committed.acceleration;
     trial.velocity = committed.velocity + step * committed.acceleration;
     trial.displacement = committed.displacement + step * committed.velocity + (0.5 * step * step) * committed.acceleration;
