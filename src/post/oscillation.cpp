@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "post/golden_section.hpp"
+
 namespace tirefe::post {
 
 namespace {
@@ -34,25 +36,6 @@ double misfit(const Window& window, double omega, double sigma, Eigen::Vector4d*
   const Eigen::Vector4d c = basis.colPivHouseholderQr().solve(window.value);
   if (coefficients) *coefficients = c;
   return (basis * c - window.value).norm();
-}
-
-/// Minimum of f on [low, high] by golden sections (f unimodal near the grid's best point).
-template <class Function>
-double golden_minimum(Function f, double low, double high, int iterations = 60) {
-  const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = low, b = high;
-  double x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  for (int i = 0; i < iterations; ++i) {
-    if (f1 < f2) {
-      b = x2, x2 = x1, f2 = f1;
-      x1 = b - ratio * (b - a), f1 = f(x1);
-    } else {
-      a = x1, x1 = x2, f1 = f2;
-      x2 = a + ratio * (b - a), f2 = f(x2);
-    }
-  }
-  return 0.5 * (a + b);
 }
 
 }  // namespace
@@ -96,9 +79,9 @@ Oscillation dominant_oscillation(const std::vector<double>& times, const std::ve
   // Refine omega and sigma alternately within one grid cell.
   const double omega_cell = kTwoPi * frequency_step, sigma_cell = search.max_decay_rate / decay_steps;
   for (int sweep = 0; sweep < 3; ++sweep) {
-    best_omega = golden_minimum([&](double omega) { return misfit(window, omega, best_sigma); },
+    best_omega = golden_section_minimum([&](double omega) { return misfit(window, omega, best_sigma); },
                                 std::max(best_omega - omega_cell, 1e-9), best_omega + omega_cell);
-    best_sigma = golden_minimum([&](double sigma) { return misfit(window, best_omega, sigma); },
+    best_sigma = golden_section_minimum([&](double sigma) { return misfit(window, best_omega, sigma); },
                                 std::max(best_sigma - sigma_cell, 0.0), best_sigma + sigma_cell);
   }
   Eigen::Vector4d c;

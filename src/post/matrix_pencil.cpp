@@ -1,0 +1,68 @@
+#include "post/matrix_pencil.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <stdexcept>
+
+namespace tirefe::post {
+
+namespace {
+
+constexpr double kTwoPi = 6.28318530717958647692;
+
+}  // namespace
+
+std::vector<DampedComponent> matrix_pencil(const SignalWindow& window, const PencilSettings& settings) {
+  const Eigen::Index n = static_cast<Eigen::Index>(window.value.size());
+  if (n < 8) throw std::invalid_argument("matrix pencil: a window needs at least 8 samples");
+  const Eigen::Index pencil = n / 2;
+  Eigen::MatrixXd hankel(n - pencil, pencil + 1);
+  for (Eigen::Index r = 0; r < hankel.rows(); ++r)
+    for (Eigen::Index c = 0; c < hankel.cols(); ++c) hankel(r, c) = window.value[static_cast<size_t>(r + c)];
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(hankel, Eigen::ComputeThinV);
+  const Eigen::VectorXd& singular = svd.singularValues();
+  if (!(singular[0] > 0.0)) return {};  // a straight line: nothing rings
+  Eigen::Index order = 0;
+  while (order < singular.size() && order < settings.max_order &&
+         singular[order] > settings.relative_threshold * singular[0])
+    ++order;
+  const Eigen::MatrixXd kept = svd.matrixV().leftCols(order);
+  const Eigen::MatrixXd v1 = kept.topRows(pencil), v2 = kept.bottomRows(pencil);
+  const Eigen::MatrixXd shift = v1.completeOrthogonalDecomposition().solve(v2);
+  const Eigen::VectorXcd poles = Eigen::EigenSolver<Eigen::MatrixXd>(shift, false).eigenvalues();
+
+  // Amplitudes: least squares of y_k = sum_i a_i z_i^k.
+  Eigen::MatrixXcd vandermonde(n, order);
+  for (Eigen::Index i = 0; i < order; ++i) {
+    std::complex<double> power = 1.0;
+    for (Eigen::Index k = 0; k < n; ++k, power *= poles[i]) vandermonde(k, i) = power;
+  }
+  Eigen::VectorXcd samples(n);
+  for (Eigen::Index k = 0; k < n; ++k) samples[k] = window.value[static_cast<size_t>(k)];
+  const Eigen::VectorXcd amplitudes = vandermonde.colPivHouseholderQr().solve(samples);
+
+  std::vector<DampedComponent> components;
+  for (Eigen::Index i = 0; i < order; ++i) {
+    const double omega = std::arg(poles[i]) / window.step;
+    if (!(omega > 0.0)) continue;  // the conjugate, or a non-oscillating exponential
+    DampedComponent component;
+    component.frequency = omega / kTwoPi;
+    component.decay_rate = -std::log(std::abs(poles[i])) / window.step;
+    component.damping_ratio = component.decay_rate / std::hypot(component.decay_rate, omega);
+    component.amplitude = 2.0 * std::abs(amplitudes[i]);
+    // The sinusoid's square averages half its envelope's square over a period.
+    const double ratio = std::norm(poles[i]);
+    const double envelope_sum = std::abs(ratio - 1.0) < 1e-12 ? static_cast<double>(n)
+                                                               : (std::pow(ratio, static_cast<double>(n)) - 1.0) /
+                                                                     (ratio - 1.0);
+    component.energy = 0.5 * component.amplitude * component.amplitude * envelope_sum;
+    components.push_back(component);
+  }
+  std::sort(components.begin(), components.end(),
+            [](const DampedComponent& a, const DampedComponent& b) { return a.energy > b.energy; });
+  return components;
+}
+
+}  // namespace tirefe::post
