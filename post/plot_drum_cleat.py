@@ -2,11 +2,17 @@
 """Plots of a drum-cleat run (inputs/drum_cleat.lua), written next to its HDF5 file:
 
   <stem>_forces.png     spindle Fx and Fz over the whole run, and the spin rate
-  <stem>_impact.png     Fx and Fz around the last cleat passage at full speed
-  <stem>_spectrum.png   FFT magnitude of Fx and Fz from the cleat's arrival to the next passage
+  <stem>_impact.png     Fx, Fz and the spin rate around the last cleat passage at full speed,
+                        with the four windows the ringing is read in
+  <stem>_spectrum.png   the Hann-windowed spectrum of each of those windows, with the deck's
+                        readings (spectrum peak, matrix pencil) and the measured frequencies
   <stem>_snapshots.png  the deformed tire on the cleat at a few instants
 
     /usr/bin/python3 post/plot_drum_cleat.py results/drum_cleat.h5
+
+The spectra are computed here with numpy's FFT (zero-padded) from the same samples the deck
+read; the script checks that each window's FFT peak is the deck's spectrum reading within
+an FFT bin and exits with status 3 if not.
 """
 import math
 import os
@@ -27,6 +33,7 @@ class Run:
         self.path = path
         with h5py.File(path, "r") as result:
             self.parameters = dict(result["parameters"].attrs) if "parameters" in result else {}
+            self.results = dict(result["results"].attrs) if "results" in result else {}
             history = result["history"]
             self.time = history["time"][:]
             self.fx = history["spindle_fx"][:]
@@ -106,19 +113,44 @@ def plot_forces(run, stem):
     return path
 
 
+# The ringing windows the deck reads (lua/cleat_ringing.lua), in its /results.
+WINDOWS = (("fz_on_top", "fz", "Fz on top of the cleat", 88, (40, 200)),
+           ("fz_leaving", "fz", "Fz after leaving it", 85, (40, 200)),
+           ("fx_from_hit", "fx", "Fx from the first hit", 35, (15, 200)),
+           ("fx_leaving", "fx", "Fx after leaving it", 35, (15, 200)))
+WINDOW_COLOURS = ("tab:cyan", "tab:olive", "tab:pink", "tab:purple")
+
+
+def recorded_windows(run):
+    """(name, force, title, measured, band, start, end) of the windows the deck recorded."""
+    found = []
+    for name, force, title, measured, band in WINDOWS:
+        if name + "_from_s" in run.results:
+            found.append((name, force, title, measured, band, float(run.results[name + "_from_s"]),
+                          float(run.results[name + "_to_s"])))
+    return found
+
+
 def plot_impact(run, stem, passage):
     on, off = passage
     window = (run.time >= on - 0.03) & (run.time <= off + 0.25)
-    figure, axes = plt.subplots(2, 1, figsize=(9, 6), sharex=True)
-    for axis, values, label, colour in ((axes[0], run.fz, "Fz [N]", "tab:blue"), (axes[1], run.fx, "Fx [N]", "tab:red")):
-        axis.plot(run.time[window] * 1e3, values[window], color=colour, linewidth=1.0)
-        axis.axvspan(on * 1e3, off * 1e3, color="0.88", linewidth=0, label="cleat under the patch centre")
+    milliseconds = (run.time[window] - on) * 1e3
+    figure, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
+    series = ((run.fz, "Fz [N]", "tab:blue", "fz"), (run.fx, "Fx [N]", "tab:red", "fx"),
+              (run.spin, "spin rate [rad/s]", "tab:green", None))
+    for axis, (values, label, colour, force) in zip(axes, series):
+        axis.plot(milliseconds, values[window], color=colour, linewidth=1.0)
+        axis.axvspan(0.0, (off - on) * 1e3, color="0.9", linewidth=0, label="cleat under the patch centre")
+        for (name, window_force, title, _, _, start, end), shade in zip(recorded_windows(run), WINDOW_COLOURS):
+            if window_force == force:
+                axis.axvspan((start - on) * 1e3, (end - on) * 1e3, ymin=0.0, ymax=0.06, color=shade, linewidth=0,
+                             label=title + " (read)")
         axis.set_ylabel(label)
         axis.grid(True, alpha=0.3)
-    axes[0].legend(fontsize=8)
-    axes[1].set_xlabel("time [ms]")
+        axis.legend(fontsize=7, loc="upper right")
+    axes[2].set_xlabel("time after the cleat's leading edge reaches the patch centre [ms]")
     speed = float(run.parameter("speed_kmh", 51.3))
-    figure.suptitle(f"cleat impact at {speed:g} km/h")
+    figure.suptitle(f"cleat impact at {speed:g} km/h (t = 0 at {on:.4f} s)")
     figure.tight_layout()
     path = stem + "_impact.png"
     figure.savefig(path, dpi=120)
@@ -126,39 +158,65 @@ def plot_impact(run, stem, passage):
     return path
 
 
-def spectrum(time, values, start, end):
-    """FFT magnitude of the detrended, Hann-windowed signal resampled on a uniform grid."""
-    window = (time >= start) & (time <= end)
-    t, y = time[window], values[window]
-    step = np.min(np.diff(t))
-    grid = np.arange(t[0], t[-1], step)
+def window_samples(time, values, start, end):
+    """The deck's preparation (src/post/signal_window.hpp): uniform resampling at the median
+    spacing from the first sample in [start, end], least-squares line removed."""
+    inside = (time >= start) & (time <= end)
+    t, y = time[inside], values[inside]
+    step = float(np.median(np.diff(t)))
+    grid = t[0] + step * np.arange(int(np.floor((t[-1] - t[0]) / step * (1 + 1e-12))) + 1)
     sampled = np.interp(grid, t, y)
-    sampled = sampled - np.polyval(np.polyfit(grid, sampled, 1), grid)
-    padded = 8 * len(grid)
-    magnitude = np.abs(np.fft.rfft(sampled * np.hanning(len(grid)), padded)) * 2 / len(grid)
+    return step, sampled - np.polyval(np.polyfit(grid - grid[0], sampled, 1), grid - grid[0])
+
+
+def spectrum(step, samples, padding=64):
+    """Single-sided amplitude of the Hann-windowed samples, FFT zero-padded 'padding' times."""
+    weights = np.hanning(len(samples))
+    padded = padding * len(samples)
+    magnitude = np.abs(np.fft.rfft(samples * weights, padded)) * 2 / weights.sum()
     return np.fft.rfftfreq(padded, step), magnitude
 
 
-def plot_spectrum(run, stem, passage):
-    on, off = passage
-    end = min(on + math.pi * run.drum_radius * 2 / (float(run.parameter("speed_kmh", 51.3)) / 3.6) - 0.01, run.time[-1])
-    figure, axis = plt.subplots(figsize=(8, 4.5))
-    for values, label, colour in ((run.fz, "Fz", "tab:blue"), (run.fx, "Fx", "tab:red")):
-        frequency, magnitude = spectrum(run.time, values, on, end)
-        keep = frequency <= 250
-        axis.plot(frequency[keep], magnitude[keep], label=label, color=colour)
-    for measured in (35, 85, 88):
-        axis.axvline(measured, color="0.5", linestyle=":", linewidth=0.8)
-    axis.set_xlabel("frequency [Hz]  (dotted: measured 35, 85, 88 Hz)")
-    axis.set_ylabel("amplitude [N]")
-    axis.set_title(f"spindle forces from the cleat's arrival to the next passage ({on:.3f}-{end:.3f} s)")
-    axis.grid(True, alpha=0.3)
-    axis.legend()
+def plot_spectrum(run, stem):
+    """One panel per ringing window; returns the path and the windows whose FFT peak
+    disagrees with the deck's spectrum reading by more than one FFT bin."""
+    windows = recorded_windows(run)
+    if not windows:
+        return None, []
+    figure, axes = plt.subplots(2, 2, figsize=(11, 7.5))
+    disagreements = []
+    for axis, (name, force, title, measured, band, start, end) in zip(axes.ravel(), windows):
+        step, samples = window_samples(run.time, run.fx if force == "fx" else run.fz, start, end)
+        frequency, magnitude = spectrum(step, samples)
+        keep = frequency <= 200
+        axis.plot(frequency[keep], magnitude[keep], color="tab:red" if force == "fx" else "tab:blue")
+        in_band = (frequency >= band[0]) & (frequency <= band[1])
+        fft_peak = frequency[in_band][np.argmax(magnitude[in_band])]
+        deck_spectrum = float(run.results[name + "_spectrum_Hz"])
+        deck_pencil = float(run.results[name + "_pencil_Hz"])
+        if abs(fft_peak - deck_spectrum) > frequency[1]:
+            disagreements.append(f"{title}: numpy FFT peak {fft_peak:.2f} Hz, deck {deck_spectrum:.2f} Hz")
+        axis.axvline(deck_spectrum, color="k", linewidth=0.9, label=f"spectrum peak {deck_spectrum:.1f} Hz")
+        axis.axvline(deck_pencil, color="tab:orange", linestyle="--", linewidth=1.2,
+                     label=f"matrix pencil {deck_pencil:.1f} Hz "
+                           f"(damping {float(run.results[name + '_damping_ratio']):.3f})")
+        axis.axvline(measured, color="0.5", linestyle=":", linewidth=1.2, label=f"measured {measured} Hz")
+        axis.axvspan(0, band[0], color="0.93", linewidth=0)
+        axis.set_xlim(0, 200)
+        axis.set_title(f"{title}: {(start - run.results.get('cleat_on_s', start)) * 1e3:.0f} to "
+                       f"{(end - run.results.get('cleat_on_s', start)) * 1e3:.0f} ms", fontsize=9)
+        axis.set_xlabel("frequency [Hz]")
+        axis.set_ylabel(f"{force.upper()[0]}{force[1]} amplitude [N]")
+        axis.grid(True, alpha=0.3)
+        axis.legend(fontsize=7)
+    speed = float(run.parameter("speed_kmh", 51.3))
+    figure.suptitle(f"spectra of the ringing windows, {speed:g} km/h (Hann, zero-padded; grey: outside the band read; "
+                    "times from the leading edge at the patch centre)", fontsize=9)
     figure.tight_layout()
     path = stem + "_spectrum.png"
     figure.savefig(path, dpi=120)
     plt.close(figure)
-    return path
+    return path, disagreements
 
 
 def drum_outline(run, angle):
@@ -214,14 +272,20 @@ def main(argv):
     stem = os.path.splitext(argv[1])[0]
     written = [plot_forces(run, stem)]
     passage = run.last_full_speed_passage()
+    disagreements = []
+    if "cleat_on_s" in run.results:
+        passage = (float(run.results["cleat_on_s"]), float(run.results["cleat_off_s"]))
     if passage:
-        written += [plot_impact(run, stem, passage), plot_spectrum(run, stem, passage), plot_snapshots(run, stem, passage)]
+        spectrum_path, disagreements = plot_spectrum(run, stem)
+        written += [plot_impact(run, stem, passage), spectrum_path, plot_snapshots(run, stem, passage)]
     else:
         print("no cleat passage in the run: only the force history is plotted")
     for path in written:
         if path:
             print("wrote", path)
-    return 0
+    for line in disagreements:
+        print("spectrum disagrees with the deck's reading:", line)
+    return 3 if disagreements else 0
 
 
 if __name__ == "__main__":

@@ -135,8 +135,8 @@ REDUCTIONS = {
 
 
 def metric_value(metric, folder):
-    if metric.get("reduce") not in REDUCTIONS:
-        raise MetricError(f"'reduce' must be one of {', '.join(REDUCTIONS)}")
+    if "result" not in metric and metric.get("reduce") not in REDUCTIONS:
+        raise MetricError(f"'reduce' must be one of {', '.join(REDUCTIONS)}, or name a 'result'")
     if "file" in metric:
         path = os.path.join(folder, metric["file"])
     else:
@@ -145,6 +145,11 @@ def metric_value(metric, folder):
             raise MetricError(f"{len(files)} HDF5 files in the run folder: name one with 'file'")
         path = files[0]
     with h5py.File(path, "r") as result:
+        if "result" in metric:  # a value the deck recorded with model:result
+            values = result["results"].attrs if "results" in result else {}
+            if metric["result"] not in values:
+                raise MetricError(f"no result '{metric['result']}' in {os.path.basename(path)}")
+            return float(values[metric["result"]])
         channel = metric["channel"]
         if channel not in result["history"]:
             raise MetricError(f"no history channel '{channel}' in {os.path.basename(path)}")

@@ -126,7 +126,7 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
   // impact as in the full run (docs/drum_cleat.md).
   const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
   const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "drum_cleat.lua").string();
-  const RunResult result = run_tirefe(deck + " spin_up_time=0.5 end_time=2.95 check=true output=drum_short.h5");
+  const RunResult result = run_tirefe(deck + " spin_up_time=0.5 end_time=3.0 check=true output=drum_short.h5");
   INFO("errors: " << result.errors);
   REQUIRE(result.exit_status == 0);
 
@@ -135,7 +135,7 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
   const std::vector<double> time = hdf5.read_doubles("/history/time");
   const std::vector<double> fz = hdf5.read_doubles("/history/spindle_fz");
   REQUIRE(fz.size() == time.size());
-  CHECK(time.back() == Approx(2.95).epsilon(1e-9));
+  CHECK(time.back() == Approx(3.0).epsilon(1e-9));
   // The drum channels exist from the contact's definition on (after inflation), NaN before.
   const std::vector<double> angle = hdf5.read_doubles("/history/drum_surface_angle");
   CHECK(std::isnan(angle.front()));

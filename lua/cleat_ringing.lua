@@ -1,0 +1,69 @@
+-- The ringing of the spindle forces after a cleat, read the way a tire engineer reads a
+-- drum-cleat test (docs/drum_cleat.md): four windows, each read by tirefe.ringing (a Hann
+-- spectrum peak and a matrix-pencil fit of the same samples; their mean, and half their
+-- difference as the uncertainty).
+--
+--   local ringing = require("cleat_ringing")
+--   local readings = ringing.read{ time = t, fx = fx, fz = fz, on = 7.537, off = 7.584, speed = 14.25 }
+--   print(readings.fx_leaving.frequency, readings.fx_leaving.uncertainty)
+--
+-- on / off: when the cleat's leading / trailing edge passes the middle of the contact
+-- patch [s]; speed: the drum's surface speed [m/s]. The patch reaches 'reach' (80 mm)
+-- either side of its middle, so the tire first touches the cleat reach / speed before 'on'
+-- and has left it reach / speed after 'off'.
+local M = {}
+
+M.reach = 0.08  -- [m]
+
+-- name, force, start, duration [s], band [Hz]. The vertical windows look above 40 Hz
+-- (below lie the fore-aft mode and the passage itself); the longitudinal ones from 15 Hz,
+-- above the passage's own content (a 46 ms pulse at 51.3 km/h), up to 200 Hz.
+M.windows = {
+  { name = "fz_on_top", force = "fz", what = "Fz on top of the cleat", band = { 40, 200 },
+    span = function(on, off, lag) return on + lag, off - lag end },
+  { name = "fz_leaving", force = "fz", what = "Fz after leaving it, 100 ms", band = { 40, 200 },
+    span = function(_, off, lag) return off + lag, off + lag + 0.10 end },
+  { name = "fx_from_hit", force = "fx", what = "Fx from the first hit, 150 ms", band = { 15, 200 },
+    span = function(on, _, lag) return on - lag, on - lag + 0.15 end },
+  { name = "fx_leaving", force = "fx", what = "Fx after leaving it, 120 ms", band = { 15, 200 },
+    span = function(_, off, lag) return off + lag, off + lag + 0.12 end },
+}
+
+-- The last time any window needs samples, after 'off'.
+function M.duration_after(speed)
+  return M.reach / speed + 0.12
+end
+
+function M.read(args)
+  local lag = M.reach / args.speed
+  local readings = {}
+  for _, window in ipairs(M.windows) do
+    local from, to = window.span(args.on, args.off, lag)
+    local reading = tirefe.ringing{ time = args.time, values = args[window.force], from = from, to = to,
+                                    min_frequency = window.band[1], max_frequency = window.band[2] }
+    reading.from, reading.to, reading.what = from, to, window.what
+    readings[window.name] = reading
+  end
+  return readings
+end
+
+-- Prints the readings as a table and records them in the model's /results:
+-- <window>_Hz, <window>_uncertainty_Hz, <window>_spectrum_Hz, <window>_pencil_Hz,
+-- <window>_damping_ratio, <window>_from_s, <window>_to_s.
+function M.report(model, readings, measured)
+  print("  ringing                          spectrum   pencil  (damping)   reading        measured")
+  for _, window in ipairs(M.windows) do
+    local r = readings[window.name]
+    print(string.format("  %-32s %6.1f Hz %6.1f Hz  (%5.3f)   %5.1f +- %4.1f Hz   %s", r.what, r.spectrum_frequency,
+                        r.pencil_frequency, r.damping_ratio, r.frequency, r.uncertainty,
+                        measured and measured[window.name] and string.format("%g Hz", measured[window.name]) or "-"))
+    local results = { Hz = r.frequency, uncertainty_Hz = r.uncertainty, spectrum_Hz = r.spectrum_frequency,
+                      pencil_Hz = r.pencil_frequency, damping_ratio = r.damping_ratio, from_s = r.from, to_s = r.to }
+    for suffix, value in pairs(results) do
+      local unit = suffix:match("_s$") and "s" or (suffix:match("Hz$") and "Hz" or nil)
+      model:result{ name = window.name .. "_" .. suffix, value = value, unit = unit }
+    end
+  end
+end
+
+return M
