@@ -87,12 +87,11 @@ tirefe.check{ name = "paper's model: fore-aft mode vs the paper's model (44 Hz)"
               expected = 44.0, relative = 0.05 }
 tirefe.check{ name = "paper's model: vertical mode vs the paper's model (84-89 Hz)", value = paper.vertical,
               expected = 86.5, relative = 0.03 }
--- The tread layer puts the rubber's shear compliance in series with the tire against the
--- sticking patch: the fore-aft mode drops well below the paper's model while the vertical
--- mode, where the patch is compressed through the much stiffer radial spring, stays put.
--- (The calibrated set meets the measured 88 / 85 / 35 Hz in the drum-cleat run itself,
--- rolling at 51.3 km/h and loaded to 9 kN on the cleat: docs/calibration.md.)
-tirefe.check{ name = "tread layer: fore-aft mode below 0.7 x the paper's model", value = layer.fore_aft / paper.fore_aft,
-              expected = 0.6, tolerance = 0.1 }
+-- The calibrated set (the tread rubber's shear compliance in series with the tire against
+-- the sticking patch, and the rig wheel's rotating inertia) puts the static fore-aft mode
+-- at the measured 35 Hz, where its rolling tire also rings after the cleat
+-- (docs/calibration.md), while the vertical mode stays near the paper's model.
+tirefe.check{ name = "tread layer: fore-aft mode vs measured 35 Hz", value = layer.fore_aft, expected = 35.0,
+              relative = 0.05 }
 tirefe.check{ name = "tread layer: vertical mode within 3 % of the paper's model", value = layer.vertical / paper.vertical,
               expected = 1.0, tolerance = 0.03 }
