@@ -10,7 +10,8 @@ namespace tirefe::post {
 
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
 
 }  // namespace
 
@@ -52,12 +53,15 @@ std::vector<DampedComponent> matrix_pencil(const SignalWindow& window, const Pen
     component.decay_rate = -std::log(std::abs(poles[i])) / window.step;
     component.damping_ratio = component.decay_rate / std::hypot(component.decay_rate, omega);
     component.amplitude = 2.0 * std::abs(amplitudes[i]);
-    // The sinusoid's square averages half its envelope's square over a period.
+    // Hann-weighted, as the spectrum weighs the window: the sinusoid's square averages half
+    // its envelope's square over a period.
     const double ratio = std::norm(poles[i]);
-    const double envelope_sum = std::abs(ratio - 1.0) < 1e-12 ? static_cast<double>(n)
-                                                               : (std::pow(ratio, static_cast<double>(n)) - 1.0) /
-                                                                     (ratio - 1.0);
-    component.energy = 0.5 * component.amplitude * component.amplitude * envelope_sum;
+    double envelope = 1.0, weighted = 0.0;
+    for (Eigen::Index k = 0; k < n; ++k, envelope *= ratio) {
+      const double s = std::sin(kPi * static_cast<double>(k) / static_cast<double>(n - 1));
+      weighted += s * s * envelope;
+    }
+    component.energy = 0.5 * component.amplitude * component.amplitude * weighted;
     components.push_back(component);
   }
   std::sort(components.begin(), components.end(),

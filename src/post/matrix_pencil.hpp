@@ -27,7 +27,7 @@ struct DampedComponent {
   double decay_rate = 0.0;     // sigma [1/s]; negative: growing
   double damping_ratio = 0.0;  // sigma / sqrt(sigma^2 + omega^2)
   double amplitude = 0.0;      // 2 |a| at the window's start
-  double energy = 0.0;         // sum over the window of the component's square
+  double energy = 0.0;         // sum over the window of its square, Hann-weighted as the spectrum
 };
 
 struct PencilSettings {
@@ -35,7 +35,8 @@ struct PencilSettings {
   int max_order = 24;                // exponentials at most (12 sinusoids)
 };
 
-/// The oscillating components (omega > 0) of the window, by decreasing energy. Throws
+/// The oscillating components (omega > 0) of the window, by decreasing energy (weighted by
+/// the Hann window, so that "dominant" means what it means for the spectrum). Throws
 /// std::invalid_argument for a window of fewer than 8 samples.
 std::vector<DampedComponent> matrix_pencil(const SignalWindow& window, const PencilSettings& settings = {});
 
