@@ -24,7 +24,9 @@ VARIANTS = {
     "reference": [],
     "dt / 2": ["dt=2.5e-4", "dt_cleat=1.25e-4"],
     "150 elements": ["elements=150"],
+    "150 el, dt / 2": ["elements=150", "dt=2.5e-4", "dt_cleat=1.25e-4"],
     "Newmark g=0.6": ["integrator=newmark", "newmark_gamma=0.6"],
+    "Newmark g=0.5": ["integrator=newmark", "newmark_gamma=0.5"],
 }
 QUANTITIES = [("fz_on_top_Hz", "Fz on top [Hz]"), ("fz_leaving_Hz", "Fz leaving [Hz]"),
               ("fx_from_hit_Hz", "Fx from hit [Hz]"), ("fx_leaving_Hz", "Fx leaving [Hz]"),
