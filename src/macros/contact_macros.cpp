@@ -6,7 +6,6 @@
 // model's analysis, so it dies with the model (a new model at the same address starts
 // empty); contact blocks hold their surface themselves.
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <memory>
 
@@ -112,11 +111,7 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
   const double level = arguments.number("level");
   std::vector<Eigen::Vector2d> points;
   if (arguments.has("file")) {
-    // A relative path is taken beside the deck, like require.
-    std::filesystem::path file(arguments.string("file"));
-    if (file.is_relative() && !deck.session().deck_path.empty())
-      file = std::filesystem::path(deck.session().deck_path).parent_path() / file;
-    points = RoadProfile::read_points(file.string());
+    points = RoadProfile::read_points(deck_relative(deck.session(), arguments.string("file")));
   } else if (arguments.has("points")) {
     for (const auto& row : arguments.number_matrix("points")) {
       if (row.size() != 2) throw ModelError("each profile point is {x, y}");

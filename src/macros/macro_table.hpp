@@ -58,6 +58,11 @@ int deck_node(DeckModel& deck, long long number);
 /// 0-based nodes named by the 'node' or 'set' argument (exactly one of them).
 std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments);
 
+/// A file a deck reads: a relative path is taken from the deck's folder (every deck input).
+std::string deck_relative(const DeckSession& session, const std::string& file);
+/// A file a deck writes: a relative path goes in the output folder, created as needed.
+std::string deck_output_path(const DeckSession& session, const std::string& file);
+
 /// The tire parameters of a Lua module in lua/ (e.g. "tires.145SR12"), read with the
 /// tire macro's own spec: one source of truth for decks, tests and benchmarks.
 TireParameters load_tire_parameters(const std::string& module);
