@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 #include "macros/deck_model.hpp"
 
@@ -109,6 +110,7 @@ const MacroTable& macro_table() {
     add_model_macros(built);
     add_dynamics_macros(built);
     add_tire_macros(built);
+    add_tire_file_macros(built);
     add_contact_macros(built);
     add_fitting_macros(built);
     add_post_macros(built);
@@ -132,6 +134,12 @@ std::string deck_output_path(const DeckSession& session, const std::string& file
   std::error_code ignored;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
   return path.string();
+}
+
+const MacroSpec& model_macro_spec(const std::string& name) {
+  for (const auto& macro : macro_table().model_macros)
+    if (macro.spec.name == name) return macro.spec;
+  throw std::logic_error("no model macro '" + name + "'");
 }
 
 DeckModel& check_model(lua_State* L, int index) {
