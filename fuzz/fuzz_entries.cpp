@@ -5,13 +5,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "contact/rigid_surface.hpp"
+#include "contact/road_file.hpp"
 #include "core/mesh.hpp"
 #include "fitting/curve_data.hpp"
 #include "io/hdf5_file.hpp"
+#include "io/teim_orbit.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
@@ -120,6 +123,36 @@ void curve_data(const uint8_t* data, size_t size) {
     }
   } catch (const fitting::CurveDataError& error) {
     require_names_file(error, file);
+  }
+}
+
+void property_file(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  const fs::path tire = write_file("tire.tir", text);
+  std::unique_ptr<lua_State, void (*)(lua_State*)> state(luaL_newstate(), lua_close);
+  try {
+    macros::push_tire_property_file(state.get(), tire.string());
+    lua_pushnil(state.get());
+    while (lua_next(state.get(), -2)) {
+      require(lua_type(state.get(), -1) == LUA_TNUMBER && std::isfinite(lua_tonumber(state.get(), -1)),
+              "a tire parameter that is not a finite number was accepted");
+      lua_pop(state.get(), 1);
+    }
+  } catch (const io::TeimOrbitError& error) {
+    require_names_file(error, tire);
+  }
+  const fs::path road = write_file("road.rdf", text);
+  for (const RoadTrack track : {RoadTrack::Left, RoadTrack::Right}) {
+    try {
+      const RoadShape shape = read_road_data_file(road.string(), track);
+      for (size_t i = 0; i < shape.points.size(); ++i) {
+        require(shape.points[i].allFinite(), "a non-finite road point was accepted");
+        require(i == 0 || shape.points[i].x() >= shape.points[i - 1].x(), "a decreasing x was accepted");
+      }
+      require(std::isfinite(shape.level) && std::isfinite(shape.diameter), "a non-finite road was accepted");
+    } catch (const io::TeimOrbitError& error) {
+      require_names_file(error, road);
+    }
   }
 }
 

@@ -25,5 +25,7 @@ void deck_macro(const uint8_t* data, size_t size);
 void road_profile(const uint8_t* data, size_t size);
 /// A CSV data file (header with unit suffixes, rows of numbers).
 void curve_data(const uint8_t* data, size_t size);
+/// A TeimOrbit file read as a tire property file (.tir) and as a road data file (.rdf).
+void property_file(const uint8_t* data, size_t size);
 
 }  // namespace tirefe::fuzz

@@ -31,4 +31,5 @@ TEST_CASE("the fuzz corpus replays cleanly through every parser", "[reliability]
   CHECK(replay("deck_macro", tirefe::fuzz::deck_macro) >= 20);
   CHECK(replay("road_profile", tirefe::fuzz::road_profile) >= 3);
   CHECK(replay("curve_data", tirefe::fuzz::curve_data) >= 3);
+  CHECK(replay("property_file", tirefe::fuzz::property_file) >= 4);
 }

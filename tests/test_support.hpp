@@ -5,9 +5,11 @@
 #include <unistd.h>
 
 #include <Eigen/Dense>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "core/element.hpp"
@@ -89,6 +91,16 @@ double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDo
   if (asymmetry) *asymmetry = (tangent - tangent.transpose()).norm() / tangent.norm();
   return (tangent - numerical).norm() / tangent.norm();
 }
+
+/// 'text' with the first 'from' replaced by 'to' ('from' must be there).
+inline std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("the text holds no '" + from + "'");
+  return text.replace(at, from.size(), to);
+}
+
+/// The same double to the last bit (and the sign of a zero).
+inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 /// A fresh temporary folder, removed with its contents at scope exit.
 class TempDir {

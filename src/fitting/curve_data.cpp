@@ -25,8 +25,30 @@ std::vector<std::string> split_fields(const std::string& line) {
   }
 }
 
-DataColumn column_from_header(const std::string& header) {
+const UnitSuffix* known_unit(const std::string& unit) {
+  for (const UnitSuffix& known : unit_suffixes())
+    if (unit == known.suffix) return &known;
+  return nullptr;
+}
+
+/// "name [unit]" (the unit must be known), "name_unit" (a known suffix) or a bare name.
+DataColumn column_from_header(const std::string& header, const std::string& where) {
   DataColumn column{header, header, "", "", {}};
+  const auto bracket = header.find('[');
+  if (bracket != std::string::npos) {
+    const std::string unit = trimmed(header.substr(bracket + 1, header.size() - bracket - 2));
+    column.name = trimmed(header.substr(0, bracket));
+    const UnitSuffix* known = known_unit(unit);
+    if (header.back() != ']' || column.name.empty() || !known) {
+      std::string units;
+      for (const UnitSuffix& suffix : unit_suffixes()) units += (units.empty() ? "" : " ") + std::string(suffix.suffix);
+      throw CurveDataError(where + "column '" + header + "': write the unit as 'name [unit]' with a known unit (" +
+                           units + ")");
+    }
+    column.unit = unit;
+    column.si_unit = known->si_unit;
+    return column;
+  }
   const auto underscore = header.rfind('_');
   if (underscore == std::string::npos || underscore == 0) return column;
   const std::string suffix = header.substr(underscore + 1);
@@ -40,9 +62,8 @@ DataColumn column_from_header(const std::string& header) {
 }
 
 double to_si(const std::string& unit) {
-  for (const UnitSuffix& known : unit_suffixes())
-    if (unit == known.suffix) return known.to_si;
-  return 1.0;
+  const UnitSuffix* known = known_unit(unit);
+  return known ? known->to_si : 1.0;
 }
 
 std::string header_list(const std::vector<DataColumn>& columns) {
@@ -57,7 +78,8 @@ const std::vector<UnitSuffix>& unit_suffixes() {
   static const std::vector<UnitSuffix> units{
       {"m", 1.0, "m"},      {"mm", 1e-3, "m"},      {"cm", 1e-2, "m"},
       {"N", 1.0, "N"},      {"kN", 1e3, "N"},       {"N/m", 1.0, "N/m"},
-      {"N/mm", 1e3, "N/m"}, {"Pa", 1.0, "Pa"},      {"kPa", 1e3, "Pa"},
+      {"in", 0.0254, "m"},  {"ft", 0.3048, "m"},    {"N/mm", 1e3, "N/m"},
+      {"Pa", 1.0, "Pa"},    {"kPa", 1e3, "Pa"},
       {"MPa", 1e6, "Pa"},   {"bar", 1e5, "Pa"},     {"psi", 6894.757293168, "Pa"},
       {"s", 1.0, "s"},      {"ms", 1e-3, "s"},      {"Hz", 1.0, "Hz"},
       {"rad", 1.0, "rad"},  {"deg", 3.14159265358979323846 / 180.0, "rad"},
@@ -79,7 +101,7 @@ CurveData CurveData::read_csv(const std::string& path) {
     if (data.columns_.empty()) {  // the header
       for (const std::string& header : fields) {
         if (header.empty()) throw CurveDataError(where + "empty column name in the header");
-        DataColumn column = column_from_header(header);
+        DataColumn column = column_from_header(header, where);
         for (const auto& existing : data.columns_)
           if (existing.name == column.name)
             throw CurveDataError(where + "two columns named '" + column.name + "' ('" + existing.header + "', '" +
@@ -100,6 +122,7 @@ CurveData CurveData::read_csv(const std::string& path) {
         throw CurveDataError(where + "column '" + column.header + "': '" + fields[c] + "' is not a finite number");
       column.values.push_back(value * to_si(column.unit));
     }
+    data.row_lines_.push_back(number);
   }
   if (data.columns_.empty()) throw CurveDataError(path + ": no header line (column names) found");
   if (data.rows() == 0) throw CurveDataError(path + ": no data rows after the header");

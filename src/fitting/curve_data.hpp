@@ -5,11 +5,12 @@
 //   5.0, 960, 208
 //
 // The first line that is not blank or a comment is the header: comma-separated column
-// names, each usually ending in a unit suffix (_mm, _N, _kPa, ...; unit_suffixes()). Every
-// value is converted to SI on reading and the column is known by its name without the
-// suffix (deflection_mm -> "deflection" in m); a header without a known suffix is taken
-// as is, without conversion. A row with the wrong number of values or a value that is not
-// a finite number is an error naming the file and the line.
+// names, each usually ending in a unit suffix (_mm, _N, _kPa, ...; unit_suffixes()) or
+// followed by the unit in brackets ("x [mm]"). Every value is converted to SI on reading
+// and the column is known by its name without the unit (deflection_mm -> "deflection" in
+// m); a header without a known suffix is taken as is, without conversion, while a unit in
+// brackets must be a known one. A row with the wrong number of values or a value that is
+// not a finite number is an error naming the file and the line.
 #pragma once
 
 #include <stdexcept>
@@ -48,12 +49,15 @@ class CurveData {
   const std::string& path() const { return path_; }
   const std::vector<DataColumn>& columns() const { return columns_; }
   size_t rows() const { return columns_.empty() ? 0 : columns_.front().values.size(); }
+  /// The file line of a data row (0-based), for messages about its values.
+  int line(size_t row) const { return row_lines_.at(row); }
   /// A column by its name or its full header; CurveDataError listing the columns otherwise.
   const DataColumn& column(const std::string& name) const;
 
  private:
   std::string path_;
   std::vector<DataColumn> columns_;
+  std::vector<int> row_lines_;
 };
 
 }  // namespace tirefe::fitting

@@ -5,13 +5,17 @@
 // Surfaces are kept by name per model. The registry lives in a step observer of the
 // model's analysis, so it dies with the model (a new model at the same address starts
 // empty); contact blocks hold their surface themselves.
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
+#include <utility>
 
 #include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
+#include "contact/road_file.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 
@@ -77,46 +81,104 @@ MotionFunction motion_of(DeckModel& deck, const MacroArguments& arguments) {
   return MotionFunction();
 }
 
+bool has_extension(const std::string& file, const std::string& extension) {
+  std::string found = std::filesystem::path(file).extension().string();
+  for (char& c : found) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return found == extension;
+}
+
+const char* surface_type(RoadShape::Kind kind) {
+  return kind == RoadShape::Kind::Flat ? "flat" : kind == RoadShape::Kind::Drum ? "drum" : "profile";
+}
+
+std::optional<RoadTrack> track_of(const MacroArguments& arguments) {
+  if (!arguments.has("track")) return std::nullopt;
+  return arguments.string("track") == "left" ? RoadTrack::Left : RoadTrack::Right;
+}
+
+/// A profile's points from its file: a road data file's, a CSV file's or 'x y' text's,
+/// placed on the road by 'start' (along x) and 'offset' (up).
+std::vector<Eigen::Vector2d> file_profile(const std::string& file, const std::optional<RoadShape>& road,
+                                          const MacroArguments& arguments) {
+  std::vector<Eigen::Vector2d> points = road                            ? road->points
+                                        : has_extension(file, ".csv") ? read_road_csv(file, track_of(arguments))
+                                                                        : RoadProfile::read_points(file);
+  if (!road && !has_extension(file, ".csv") && arguments.has("track"))
+    throw ModelError("'track' needs a file with tracks (.csv or .rdf); '" + file + "' has one profile");
+  const Eigen::Vector2d shift(arguments.number("start"), arguments.number("offset"));
+  for (Eigen::Vector2d& point : points) point += shift;
+  return points;
+}
+
 std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroArguments& arguments) {
-  const std::string type = arguments.string("type");
+  // A road data file names its own type.
+  const std::string file = arguments.has("file") ? deck_relative(deck.session(), arguments.string("file")) : "";
+  std::optional<RoadShape> road;
+  if (has_extension(file, ".rdf")) road = read_road_data_file(file, track_of(arguments));
+  if (!arguments.has("type") && !road)
+    throw ModelError("give 'type' (flat, drum or profile), or a road data file (.rdf) as 'file'");
+  const std::string type = arguments.has("type") ? arguments.string("type") : surface_type(road->kind);
+  if (road && type != surface_type(road->kind))
+    throw ModelError("type '" + type + "', but '" + file + "' holds a " + road->road_type + " road (type '" +
+                     surface_type(road->kind) + "')");
   const double edge_radius = arguments.number("edge_radius");
   const MotionFunction motion = motion_of(deck, arguments);
   auto refuse = [&](std::initializer_list<const char*> keys) {
     for (const char* key : keys)
       if (arguments.has(key)) throw ModelError(std::string("'") + key + "' does not apply to a " + type + " surface");
   };
+  auto refuse_with_file = [&](std::initializer_list<const char*> keys) {
+    for (const char* key : keys)
+      if (arguments.has(key))
+        throw ModelError(std::string("'") + key + "' is given by the file '" + file + "'; leave it out");
+  };
+  if (!arguments.has("file")) {
+    for (const char* key : {"start", "offset", "track"})
+      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' places a road read from a 'file'");
+  }
   if (type == "flat") {
-    refuse({"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "file", "points", "pothole", "cleat",
-            "level", "edge_radius"});
-    return std::make_shared<FlatRoad>(pair_of(arguments, "point", Eigen::Vector2d::Zero()),
-                                      pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
+    refuse({"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "points", "pothole", "cleat",
+            "level", "edge_radius", "start"});
+    if (!road) refuse({"file", "offset"});
+    if (road) refuse_with_file({"point", "direction"});
+    const Eigen::Vector2d point =
+        road ? Eigen::Vector2d(0.0, road->level + arguments.number("offset")) : pair_of(arguments, "point", {0, 0});
+    return std::make_shared<FlatRoad>(point, pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
                                       RigidMotion::translation(motion));
   }
   if (type == "drum") {
-    refuse({"point", "direction", "file", "points", "pothole", "cleat", "level"});
-    if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
+    refuse({"point", "direction", "points", "pothole", "cleat", "level", "start", "offset"});
+    if (!road) refuse({"file"});
     Cleat cleat;
-    cleat.height = arguments.number("cleat_height");
-    cleat.arc_length = arguments.number("cleat_length");
-    cleat.angle = arguments.number("cleat_angle");
-    cleat.edge_radius = edge_radius;
+    double diameter = 0.0;
+    if (road) {
+      refuse_with_file({"diameter", "cleat_height", "cleat_length", "cleat_angle"});
+      if (road->cleat.edge_radius > 0.0) refuse_with_file({"edge_radius"});
+      diameter = road->diameter;
+      cleat = road->cleat;
+      if (cleat.edge_radius == 0.0) cleat.edge_radius = edge_radius;
+    } else {
+      if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
+      diameter = arguments.number("diameter");
+      cleat.height = arguments.number("cleat_height");
+      cleat.arc_length = arguments.number("cleat_length");
+      cleat.angle = arguments.number("cleat_angle");
+      cleat.edge_radius = edge_radius;
+    }
     if ((cleat.height > 0.0) != (cleat.arc_length > 0.0))
       throw ModelError("a cleat needs both 'cleat_height' and 'cleat_length'");
-    return std::make_shared<Drum>(arguments.number("diameter"), pair_of(arguments, "centre", Eigen::Vector2d::Zero()),
-                                  motion, cleat);
+    return std::make_shared<Drum>(diameter, pair_of(arguments, "centre", Eigen::Vector2d::Zero()), motion, cleat);
   }
   refuse({"point", "direction", "diameter", "centre", "cleat_height", "cleat_length", "cleat_angle"});
   const int sources =
       arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
   if (sources != 1) throw ModelError("a profile needs exactly one of 'file', 'points', 'pothole' or 'cleat'");
+  if (arguments.has("level") && !arguments.has("pothole") && !arguments.has("cleat"))
+    throw ModelError("'level' is the road around a 'pothole' or 'cleat' (a file's road is raised by 'offset')");
   const double level = arguments.number("level");
   std::vector<Eigen::Vector2d> points;
   if (arguments.has("file")) {
-    // A relative path is taken beside the deck, like require.
-    std::filesystem::path file(arguments.string("file"));
-    if (file.is_relative() && !deck.session().deck_path.empty())
-      file = std::filesystem::path(deck.session().deck_path).parent_path() / file;
-    points = RoadProfile::read_points(file.string());
+    points = file_profile(file, road, arguments);
   } else if (arguments.has("points")) {
     for (const auto& row : arguments.number_matrix("points")) {
       if (row.size() != 2) throw ModelError("each profile point is {x, y}");
@@ -192,6 +254,28 @@ int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
   return 1;
 }
 
+int surface_projection_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const std::shared_ptr<const RigidSurface> surface = named_surface(deck, arguments.string("surface"));
+  const Eigen::Vector2d point = pair_of(arguments, "point", Eigen::Vector2d::Zero());
+  const SurfaceProjection projection =
+      surface->project(point, arguments.number_or("time", deck.analysis().state().time));
+  lua_createtable(L, 0, 5);
+  for (const auto& [name, value] : {std::pair<const char*, double>{"gap", projection.gap},
+                                    {"x", projection.point.x()},
+                                    {"y", projection.point.y()},
+                                    {"coordinate", projection.coordinate}}) {
+    lua_pushnumber(L, value);
+    lua_setfield(L, -2, name);
+  }
+  lua_createtable(L, 2, 0);
+  for (int i = 0; i < 2; ++i) {
+    lua_pushnumber(L, projection.normal[i]);
+    lua_rawseti(L, -2, i + 1);
+  }
+  lua_setfield(L, -2, "normal");
+  return 1;
+}
+
 }  // namespace
 
 void add_contact_macros(MacroTable& table) {
@@ -200,12 +284,15 @@ void add_contact_macros(MacroTable& table) {
   };
   add({"surface",
        "Defines a named rigid surface for contact (docs/contact.md): a flat road, a drum (optionally with a cleat) "
-       "or a road profile (points, a file, a pothole or a cleat on a level road). The solid lies on the right "
-       "when walking along the surface (below a road, inside a drum). Roads and profiles translate along x, drums "
-       "turn about their centre: by 'speed' (ramped from rest over 'ramp_time' from 'start_time') or by "
-       "'amplitude' times a load function.",
+       "or a road profile (points, a file, a pothole or a cleat on a level road). A road file is a two-column "
+       "'x y' text, a CSV file with a header (x_m, z_mm, ...) or an ADAMS road data file (.rdf: flat, poly_line, "
+       "plank, pot_hole or drum, which sets the type); 'start' and 'offset' place it, 'track' picks the left or "
+       "right track of a file with two. The solid lies on the right when walking along the surface (below a "
+       "road, inside a drum). Roads and profiles translate along x, drums turn about their centre: by 'speed' "
+       "(ramped from rest over 'ramp_time' from 'start_time') or by 'amplitude' times a load function.",
        {{"name", VT::String, true, "", "surface name"},
-        {"type", VT::String, true, "", "kind of surface", std::nullopt, Range::Any, {"flat", "drum", "profile"}},
+        {"type", VT::String, false, "", "kind of surface (required unless 'file' is a road data file)", std::nullopt,
+         Range::Any, {"flat", "drum", "profile"}},
         {"point", VT::NumberList, false, "m", "flat: a point of the road {x, y}", std::string("{0, 0}")},
         {"direction", VT::NumberList, false, "", "flat: direction along the road {dx, dy}", std::string("{1, 0}")},
         {"diameter", VT::Number, false, "m", "drum: diameter", std::nullopt, Range::Positive},
@@ -217,7 +304,12 @@ void add_contact_macros(MacroTable& table) {
         {"cleat_angle", VT::Number, false, "rad", "drum: angular position of the cleat's middle at rest, from +x",
          std::string("1.5707963267948966")},
         {"file", VT::String, false, "",
-         "profile: two-column text file 'x y' ('#' comments), relative to the deck's folder"},
+         "profile: two-column text file 'x y' ('#' comments) or CSV file (.csv) with a header; any type: a road "
+         "data file (.rdf); relative to the deck's folder"},
+        {"start", VT::Number, false, "m", "file: where the file's x = 0 lies along the road", std::string("0")},
+        {"offset", VT::Number, false, "m", "file: height added to the file's road", std::string("0")},
+        {"track", VT::String, false, "", "file: the track of a file with a left and a right one", std::nullopt,
+         Range::Any, {"left", "right"}},
         {"points", VT::NumberMatrix, false, "m", "profile: {x, y} points, x not decreasing"},
         {"pothole", VT::NumberList, false, "m", "profile: a pothole {start, length, depth} in a level road"},
         {"cleat", VT::NumberList, false, "m", "profile: a cleat {start, length, height} on a level road"},
@@ -273,6 +365,15 @@ void add_contact_macros(MacroTable& table) {
         {"quantity", VT::String, true, "", "what to return", std::nullopt, Range::Any, kQuantities}},
        "local fy = model:contact_value{ name = \"contact_drum\", quantity = \"fy\" }"},
       contact_value_macro);
+  add({"surface_projection",
+       "Projects a point onto a surface (docs/contact.md, as the contact does): returns {gap (negative inside "
+       "the solid), x, y (the closest point), normal = {nx, ny} (outward), coordinate (arc length s)}, for decks "
+       "that check a surface's geometry.",
+       {{"surface", VT::String, true, "", "surface name"},
+        {"point", VT::NumberList, true, "m", "the point {x, y}"},
+        {"time", VT::Number, false, "s", "time of the surface's motion (default: the model's time)"}},
+       "local p = model:surface_projection{ surface = \"road\", point = { 1.2, 0.1 } }\nprint(p.gap, p.y)"},
+      surface_projection_macro);
 }
 
 }  // namespace tirefe::macros

@@ -7,6 +7,7 @@
 
 #include "io/checkpoint.hpp"
 #include "macros/interrupt.hpp"
+#include "macros/macro_table.hpp"
 
 namespace tirefe::macros {
 
@@ -38,13 +39,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
   });
 }
 
-std::string DeckModel::output_path(const std::string& file) const {
-  fs::path path(file);
-  if (path.is_relative()) path = fs::path(session_.output_dir) / path;
-  std::error_code ignored;
-  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ignored);
-  return path.string();
-}
+std::string DeckModel::output_path(const std::string& file) const { return deck_output_path(session_, file); }
 
 void DeckModel::write_checkpoint(const std::string& file) {
   if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state

@@ -10,7 +10,6 @@
 // Unreachable models are collected before and after every call, so the result files they
 // opened are closed before the next call reopens them.
 #include <cmath>
-#include <filesystem>
 #include <iostream>
 #include <limits>
 
@@ -26,7 +25,6 @@ namespace tirefe::macros {
 namespace {
 
 using VT = ValueType;
-namespace fs = std::filesystem;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 const MacroSpec& parameter_entry_spec() {
@@ -65,13 +63,6 @@ std::vector<fitting::FitParameter> read_parameters(lua_State* L, const MacroArgu
   }
   lua_pop(L, 1);
   return parameters;
-}
-
-/// A file named in a deck: relative paths are taken from the deck's folder.
-std::string deck_relative(const DeckSession& session, const std::string& file) {
-  fs::path path(file);
-  if (path.is_relative() && !session.deck_path.empty()) path = fs::path(session.deck_path).parent_path() / path;
-  return path.string();
 }
 
 /// Pushes {name = {values...}, ...} with every column in SI.
@@ -263,11 +254,8 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   const fitting::FitResult result = fitting::fit(problem, fit_options(arguments, session));
 
   if (arguments.has("output")) {
-    fs::path path(arguments.string("output"));
-    if (path.is_relative()) path = fs::path(session.output_dir) / path;
-    std::error_code ignored;
-    if (path.has_parent_path()) fs::create_directories(path.parent_path(), ignored);
-    fitting::write_fit_file(path.string(), problem, result, axes, session.deck_path);
+    fitting::write_fit_file(deck_output_path(session, arguments.string("output")), problem, result, axes,
+                            session.deck_path);
   }
   push_result(L, result, problem.parameters);
   return 1;

@@ -2,10 +2,10 @@
 // generated Markdown reference. One checker per value type serves validation and accessors.
 #include "macros/macro_spec.hpp"
 
+#include "core/spelling.hpp"
 #include "macros/lua_sandbox.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -77,14 +77,8 @@ Problem check_number(lua_State* L, int index, ValueType type, const ParameterSpe
   int exact = 0;
   if (type == ValueType::Integer) lua_tointegerx(L, index, &exact);  // accepts integral floats such as 1e3
   if (type == ValueType::Integer && !exact) return type_problem(L, index, type, what);
-  const bool ok = p.range == Range::Positive      ? value > 0
-                  : p.range == Range::NonNegative ? value >= 0
-                  : p.range == Range::Fraction01  ? value >= 0 && value <= 1
-                                                  : true;
-  if (ok) return std::nullopt;
-  const char* bound = p.range == Range::Positive ? "positive" : p.range == Range::NonNegative ? "non-negative"
-                                                                                              : "between 0 and 1";
-  return what + " must be " + bound + " (got " + format_number(value) + ")";
+  if (const auto problem = range_problem(p, value)) return what + " " + *problem;
+  return std::nullopt;
 }
 
 // A table whose keys are exactly 1..#t; 'index' must be absolute.
@@ -171,37 +165,11 @@ Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec
   return std::nullopt;
 }
 
-// Edit distance ignoring case; a substitution costs a little more the further apart the letters
-// are, so that neighbours (EJ -> EI rather than EA) win ties.
-double typo_distance(const std::string& a, const std::string& b) {
-  std::vector<double> row(b.size() + 1), next(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<double>(j);
-  for (size_t i = 1; i <= a.size(); ++i) {
-    next[0] = static_cast<double>(i);
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const int x = std::tolower(static_cast<unsigned char>(a[i - 1]));
-      const int y = std::tolower(static_cast<unsigned char>(b[j - 1]));
-      const double substitute = row[j - 1] + (x == y ? 0.0 : 1.0 + std::abs(x - y) / 1000.0);
-      next[j] = std::min({row[j] + 1.0, next[j - 1] + 1.0, substitute});
-    }
-    std::swap(row, next);
-  }
-  return row[b.size()];
-}
-
 std::string unknown_key_message(const MacroSpec& spec, const std::string& key) {
   std::vector<std::string> known;
-  const std::string* best = nullptr;
-  double best_distance = 0;
-  for (const auto& p : spec.parameters) {
-    known.push_back(p.key);
-    const double distance = typo_distance(key, p.key);
-    if (distance < 2.5 && distance < static_cast<double>(p.key.size()) && (!best || distance < best_distance)) {
-      best = &p.key;
-      best_distance = distance;
-    }
-  }
-  const std::string hint = best ? "did you mean '" + *best + "'?; " : "";
+  for (const auto& p : spec.parameters) known.push_back(p.key);
+  const std::string best = closest_name(key, known);
+  const std::string hint = best.empty() ? "" : "did you mean '" + best + "'?; ";
   return "macro '" + spec.name + "': unknown key '" + key + "' (" + hint + "known keys: " + join(known) + ")";
 }
 
@@ -222,6 +190,17 @@ std::vector<double> to_number_list(lua_State* L, int index) {
 }
 
 }  // namespace
+
+std::optional<std::string> range_problem(const ParameterSpec& p, double value) {
+  const bool ok = p.range == Range::Positive      ? value > 0
+                  : p.range == Range::NonNegative ? value >= 0
+                  : p.range == Range::Fraction01  ? value >= 0 && value <= 1
+                                                  : true;
+  if (ok) return std::nullopt;
+  const char* bound = p.range == Range::Positive ? "positive" : p.range == Range::NonNegative ? "non-negative"
+                                                                                              : "between 0 and 1";
+  return std::string("must be ") + bound + " (got " + format_number(value) + ")";
+}
 
 MacroArguments::MacroArguments(lua_State* L, int table_index, const MacroSpec& spec)
     : L_(L), table_(lua_absindex(L, table_index)), spec_(spec) {

@@ -45,6 +45,9 @@ struct MacroSpec {
   std::string example;
 };
 
+/// Why a number is outside the parameter's range ("must be positive (got -1)"), or nothing.
+std::optional<std::string> range_problem(const ParameterSpec& p, double value);
+
 // The validated view of one macro call's argument table. The constructor raises a Lua error
 // at the deck line (raise_deck_error) on any violation of the spec. Accessors on a key absent
 // from the call return its spec default; with no default they throw (a binding bug, reported

@@ -1,7 +1,9 @@
 #include "macros/macro_table.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <memory>
+#include <stdexcept>
 
 #include "macros/deck_model.hpp"
 
@@ -108,6 +110,7 @@ const MacroTable& macro_table() {
     add_model_macros(built);
     add_dynamics_macros(built);
     add_tire_macros(built);
+    add_tire_file_macros(built);
     add_contact_macros(built);
     add_fitting_macros(built);
     add_post_macros(built);
@@ -116,6 +119,27 @@ const MacroTable& macro_table() {
     return built;
   }();
   return table;
+}
+
+std::string deck_relative(const DeckSession& session, const std::string& file) {
+  std::filesystem::path path(file);
+  if (path.is_relative() && !session.deck_path.empty())
+    path = std::filesystem::path(session.deck_path).parent_path() / path;
+  return path.string();
+}
+
+std::string deck_output_path(const DeckSession& session, const std::string& file) {
+  std::filesystem::path path(file);
+  if (path.is_relative()) path = std::filesystem::path(session.output_dir) / path;
+  std::error_code ignored;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
+  return path.string();
+}
+
+const MacroSpec& model_macro_spec(const std::string& name) {
+  for (const auto& macro : macro_table().model_macros)
+    if (macro.spec.name == name) return macro.spec;
+  throw std::logic_error("no model macro '" + name + "'");
 }
 
 DeckModel& check_model(lua_State* L, int index) {

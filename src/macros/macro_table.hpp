@@ -42,6 +42,7 @@ const MacroTable& macro_table();
 void add_model_macros(MacroTable& table);
 void add_dynamics_macros(MacroTable& table);
 void add_tire_macros(MacroTable& table);
+void add_tire_file_macros(MacroTable& table);
 void add_contact_macros(MacroTable& table);
 void add_fitting_macros(MacroTable& table);
 void add_post_macros(MacroTable& table);
@@ -58,9 +59,23 @@ int deck_node(DeckModel& deck, long long number);
 /// 0-based nodes named by the 'node' or 'set' argument (exactly one of them).
 std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments);
 
-/// The tire parameters of a Lua module in lua/ (e.g. "tires.145SR12"), read with the
-/// tire macro's own spec: one source of truth for decks, tests and benchmarks.
-TireParameters load_tire_parameters(const std::string& module);
+/// A file a deck reads: a relative path is taken from the deck's folder (every deck input).
+std::string deck_relative(const DeckSession& session, const std::string& file);
+/// A file a deck writes: a relative path goes in the output folder, created as needed.
+std::string deck_output_path(const DeckSession& session, const std::string& file);
+
+/// The spec of a model macro by name (model:tire's is "tire").
+const MacroSpec& model_macro_spec(const std::string& name);
+
+/// The tire parameters of a Lua module in lua/ (e.g. "tires.145SR12") or of a tire property
+/// file (a path ending in .tir), read with the tire macro's own spec: one source of truth for
+/// decks, tests and benchmarks.
+TireParameters load_tire_parameters(const std::string& source);
+/// Pushes the model:tire parameter table of a tire property file (docs/tire.md); throws a
+/// std::exception naming the file, line and key for a bad file.
+int push_tire_property_file(lua_State* L, const std::string& path);
+/// Markdown table of the property file's keys (docs/tire.md holds it).
+std::string tire_property_file_reference();
 
 /// Installs tirefe.* and the model methods into the sandbox's Lua state.
 void install_macros(LuaSandbox& sandbox, DeckSession& session);

@@ -1,5 +1,6 @@
 // model:tire{...}: builds a ring tire from named physical parameters (src/tire/).
-// Tire parameter sets live in lua/tires/*.lua: model:tire(require("tires.145SR12")).
+// Tire parameter sets live in lua/tires/*.lua: model:tire(require("tires.145SR12")), or in
+// tire property files (tire_file_macros.cpp).
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
@@ -82,25 +83,29 @@ ParameterSpec optional_non_negative(const char* key, const char* unit, const cha
 
 /// Protected: parses the table at index 2 into the TireParameters at index 1.
 int parse_tire_table(lua_State* L) {
-  const MacroSpec* spec = nullptr;
-  for (const auto& macro : macro_table().model_macros)
-    if (macro.spec.name == "tire") spec = &macro.spec;
-  *static_cast<TireParameters*>(lua_touserdata(L, 1)) = tire_parameters(MacroArguments(L, 2, *spec));
+  *static_cast<TireParameters*>(lua_touserdata(L, 1)) = tire_parameters(MacroArguments(L, 2, model_macro_spec("tire")));
   return 0;
 }
 
+/// Protected: the table of the tire property file named at index 1.
+int read_tire_property_file(lua_State* L) { return push_tire_property_file(L, luaL_checkstring(L, 1)); }
+
 }  // namespace
 
-TireParameters load_tire_parameters(const std::string& module) {
+TireParameters load_tire_parameters(const std::string& source) {
   LuaSandbox sandbox(TIREFE_LUA_DIR);
   lua_State* L = sandbox.state();
   TireParameters parameters;
   lua_pushcfunction(L, parse_tire_table);
   lua_pushlightuserdata(L, &parameters);
-  lua_getglobal(L, "require");
-  lua_pushstring(L, module.c_str());
+  const bool property_file = source.size() > 4 && source.compare(source.size() - 4, 4, ".tir") == 0;
+  if (property_file)
+    lua_pushcfunction(L, protected_call<read_tire_property_file>);
+  else
+    lua_getglobal(L, "require");
+  lua_pushstring(L, source.c_str());
   if (lua_pcall(L, 1, 1, 0) != LUA_OK || lua_pcall(L, 2, 0, 0) != LUA_OK)
-    throw ModelError("tire parameters '" + module + "': " + lua_tostring(L, -1));
+    throw ModelError("tire parameters '" + source + "': " + lua_tostring(L, -1));
   return parameters;
 }
 

@@ -1,0 +1,51 @@
+// Road files: the 2D roads of ADAMS road data files (.rdf, TeimOrbit format) and road
+// profiles measured into CSV files, read as the shapes of tirefe's rigid surfaces
+// (docs/contact.md gives the keys and the mapping).
+//
+// A road data file's [MODEL] METHOD = '2D' road types map onto the surfaces:
+//   flat                    a flat road at height OFFSET
+//   poly_line               a profile through (XZ_DATA): {x z}, {x z_l z_r} or {x_l z_l x_r z_r}
+//   plank                   a profile: a step of HEIGHT from START over LENGTH, its edges
+//                           cut by 45 degree bevels BEVEL_EDGE_LENGTH long
+//   pot_hole                a profile: a rectangular hole DEPTH deep from START over LENGTH
+//   drum                    a drum of DIAMETER with at most one cleat
+// Heights are relative to the road's OFFSET. A CSV profile has a position column (x or
+// distance) and a height column (z or height), or one per track (z_left and z_right), each
+// with a length unit in its header (x_mm, "z [in]"; none: metres).
+//
+// Left and right tracks: a file with two picks one by 'track'; a file with one serves
+// both. A point equal to the one before is skipped (one track may stand still while the
+// other steps). Everything is in metres, in the file's own frame: placing it on the deck's
+// road (start, offset) is the caller's.
+#pragma once
+
+#include <Eigen/Dense>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/rigid_surface.hpp"
+
+namespace tirefe {
+
+enum class RoadTrack { Left, Right };
+
+struct RoadShape {
+  enum class Kind { Flat, Profile, Drum };
+  Kind kind = Kind::Profile;
+  std::string road_type;                // as the file names it, e.g. "plank"
+  double level = 0.0;                   // flat: the road's height [m]
+  std::vector<Eigen::Vector2d> points;  // profile: the polyline of the track [m]
+  double diameter = 0.0;                // drum [m]
+  Cleat cleat;                          // drum; height 0: none
+};
+
+/// The 2D road of an ADAMS road data file; io::TeimOrbitError naming the file and line for a
+/// bad file, an unknown key or a road type tirefe does not model.
+RoadShape read_road_data_file(const std::string& path, std::optional<RoadTrack> track);
+
+/// A road profile from a CSV file with a header; ModelError (or fitting::CurveDataError)
+/// naming the file and line otherwise.
+std::vector<Eigen::Vector2d> read_road_csv(const std::string& path, std::optional<RoadTrack> track);
+
+}  // namespace tirefe

@@ -1,0 +1,207 @@
+// Tire property files (.tir, TeimOrbit format: src/io/teim_orbit.hpp): tirefe.read_tire{...}
+// returns the model:tire parameter table a file holds, tirefe.write_tire{...} writes one
+// (docs/tire.md). The table below is the whole mapping: each file key, the dimension its
+// value is converted by, and the model:tire key it becomes; ranges, defaults and meanings
+// are those of model:tire's own spec.
+#include <cmath>
+
+#include "io/teim_orbit.hpp"
+#include "macros/deck_session.hpp"
+#include "macros/macro_table.hpp"
+
+namespace tirefe::macros {
+
+namespace {
+
+using VT = ValueType;
+using io::Dimension;
+
+constexpr const char* kFormat = "TIREFE";  // [MODEL] PROPERTY_FILE_FORMAT of tirefe's ring tire
+
+struct TireFileKey {
+  const char* section;
+  const char* key;
+  Dimension dimension;
+  const char* parameter;   // the model:tire key
+  double file_scale = 1.0;  // file value = file_scale * parameter (0.5: a radius for a diameter)
+};
+
+constexpr Dimension kLength{1};
+constexpr Dimension kForce{0, 1};
+constexpr Dimension kMass{0, 0, 1};
+constexpr Dimension kPerLength2Force{-2, 1};        // N/m^2
+constexpr Dimension kDamping{-2, 1, 0, 1};          // N s/m^2
+constexpr Dimension kMassPerLength{-1, 0, 1};       // kg/m
+
+// In file order. [DIMENSION] UNLOADED_RADIUS and RIM_RADIUS and [OPERATING_CONDITIONS]
+// INFLPRES are the standard names of MF-Tyre files; the other sections are tirefe's own.
+const TireFileKey kTireFileKeys[] = {
+    {"MODEL", "ELEMENTS", {}, "elements"},
+    {"DIMENSION", "UNLOADED_RADIUS", kLength, "outer_diameter", 0.5},
+    {"DIMENSION", "RIM_RADIUS", kLength, "rim_diameter", 0.5},
+    {"OPERATING_CONDITIONS", "INFLPRES", Dimension{0, 0, 0, 0, 0, 1}, "pressure"},
+    {"TREAD", "WIDTH", kLength, "tread_width"},
+    {"TREAD", "AXIAL_STIFFNESS", kForce, "tread_EA"},
+    {"TREAD", "SHEAR_STIFFNESS", kForce, "tread_GA"},
+    {"TREAD", "BENDING_STIFFNESS", Dimension{2, 1}, "tread_EI"},
+    {"TREAD", "MASS_PER_LENGTH", kMassPerLength, "tread_mass_per_length"},
+    {"TREAD", "ROTARY_INERTIA_PER_LENGTH", Dimension{1, 0, 1}, "tread_rotary_inertia_per_length"},
+    {"TREAD", "CURVATURE_DAMPING", Dimension{2, 1, 0, 1}, "tread_curvature_damping"},
+    {"SIDEWALL", "LENGTH", kLength, "sidewall_length"},
+    {"SIDEWALL", "BENDING_STIFFNESS", Dimension{1, 1}, "k_sw"},
+    {"SIDEWALL", "BENDING_SIGN", {}, "k_sw_sign"},
+    {"SIDEWALL", "SHEAR_STIFFNESS", Dimension{-1, 1, 0, 0, -1}, "k_gamma"},
+    {"SIDEWALL", "RADIAL_DAMPING", kDamping, "sidewall_radial_damping"},
+    {"SIDEWALL", "CIRCUMFERENTIAL_DAMPING", kDamping, "sidewall_circumferential_damping"},
+    {"TREAD_LAYER", "RADIAL_STIFFNESS", kPerLength2Force, "tread_layer_radial_stiffness"},
+    {"TREAD_LAYER", "CIRCUMFERENTIAL_STIFFNESS", kPerLength2Force, "tread_layer_circumferential_stiffness"},
+    {"TREAD_LAYER", "MASS_PER_LENGTH", kMassPerLength, "tread_layer_mass_per_length"},
+    {"TREAD_LAYER", "RADIAL_DAMPING", kDamping, "tread_layer_radial_damping"},
+    {"TREAD_LAYER", "CIRCUMFERENTIAL_DAMPING", kDamping, "tread_layer_circumferential_damping"},
+    {"RIM", "MASS", kMass, "rim_mass"},
+    {"RIM", "ROTARY_INERTIA", Dimension{2, 0, 1}, "rim_rotary_inertia"},
+};
+
+/// The model:tire keys that place a tire in a model rather than describe it.
+const char* const kPlacementKeys[] = {"name", "pressure_load_function", "x", "y"};
+
+const ParameterSpec& tire_parameter(const std::string& key) {
+  for (const ParameterSpec& parameter : model_macro_spec("tire").parameters)
+    if (parameter.key == key) return parameter;
+  throw std::logic_error("model:tire has no key '" + key + "'");
+}
+
+std::string file_key(const TireFileKey& key) { return std::string("[") + key.section + "] " + key.key; }
+
+int read_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
+  return push_tire_property_file(L, deck_relative(session, arguments.string("file")));
+}
+
+/// The parameter table validated as model:tire's, refusing the keys that are not properties.
+const MacroSpec& written_parameters_spec() {
+  static const MacroSpec spec = [] {
+    MacroSpec copy = model_macro_spec("tire");
+    copy.name = "write_tire parameters";
+    return copy;
+  }();
+  return spec;
+}
+
+int write_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
+  arguments.push_value("parameters");
+  const MacroArguments parameters(L, -1, written_parameters_spec());
+  for (const char* key : kPlacementKeys)
+    if (parameters.has(key))
+      throw std::invalid_argument(std::string("'parameters' key '") + key +
+                                  "' places a tire in a model; it is not a tire property (leave it out)");
+  std::vector<std::string> comments;
+  if (arguments.has("comments")) comments = arguments.string_list("comments");
+  io::TeimOrbitWriter writer("tir", comments);
+  std::string section;
+  for (const TireFileKey& key : kTireFileKeys) {
+    if (key.section != section) {
+      section = key.section;
+      writer.section(section);
+      if (section == "MODEL") writer.string("PROPERTY_FILE_FORMAT", kFormat, "tirefe's ring tire (docs/tire.md)");
+    }
+    const ParameterSpec& parameter = tire_parameter(key.parameter);
+    const double value = parameter.type == VT::Integer ? static_cast<double>(parameters.integer(key.parameter))
+                                                       : parameters.number(key.parameter);
+    const std::string unit = io::si_unit(key.dimension);
+    const std::string meaning = key.file_scale != 1.0
+                                    ? "half of " + std::string(key.parameter) + " (" + parameter.doc + ")"
+                                    : std::string(key.parameter) + ": " + parameter.doc;
+    writer.number(key.key, key.file_scale * value, meaning + (unit.empty() ? "" : " [" + unit + "]"));
+  }
+  lua_pop(L, 1);
+  const std::string path = deck_output_path(session, arguments.string("file"));
+  if (session.processes.rank == 0) writer.save(path);  // every process runs the deck: one writes
+  lua_pushstring(L, path.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int push_tire_property_file(lua_State* L, const std::string& path) {
+  const io::TeimOrbitFile file = io::TeimOrbitFile::read(path);
+  io::TeimOrbitReader reader(file, "tir");
+  const auto format = reader.string("MODEL", "PROPERTY_FILE_FORMAT");
+  if (!format)
+    reader.fail(file.section("MODEL") ? file.section("MODEL")->line : 0,
+                std::string("missing [MODEL] PROPERTY_FILE_FORMAT = '") + kFormat + "'");
+  if (!io::same_name(*format, kFormat))
+    reader.fail(reader.line("MODEL", "PROPERTY_FILE_FORMAT"),
+                "[MODEL] PROPERTY_FILE_FORMAT = '" + *format + "': tirefe reads the data of its own ring tire ('" +
+                    kFormat + "'), not of another tire model");
+  std::vector<std::optional<double>> values;
+  for (const TireFileKey& key : kTireFileKeys) values.push_back(reader.number(key.section, key.key, key.dimension));
+  reader.finish();  // a misspelt key is reported as such, not as a missing one
+
+  lua_createtable(L, 0, static_cast<int>(values.size()));
+  for (size_t i = 0; i < values.size(); ++i) {
+    const TireFileKey& key = kTireFileKeys[i];
+    const ParameterSpec& parameter = tire_parameter(key.parameter);
+    if (!values[i]) {
+      if (!parameter.required) continue;  // model:tire's default
+      const io::TeimOrbitSection* section = file.section(key.section);
+      const std::string dimension = key.dimension.dimensionless() ? "" : ", a " + io::dimension_name(key.dimension);
+      reader.fail(section ? section->line : 0, "missing " + file_key(key) + " (" +
+                                                   (key.file_scale != 1.0 ? "half of " : "") + key.parameter + ": " +
+                                                   parameter.doc + dimension + ")");
+    }
+    const double value = *values[i] / key.file_scale;
+    const int line = reader.line(key.section, key.key);
+    if (const auto problem = range_problem(parameter, value))
+      reader.fail(line, file_key(key) + ": " + key.parameter + " " + *problem);
+    if (parameter.type == VT::Integer) {
+      if (value != std::floor(value) || value > 1e9)
+        reader.fail(line,
+                    file_key(key) + " must be a whole number below 1e9 (got " + io::round_trip_number(value) + ")");
+      lua_pushinteger(L, static_cast<lua_Integer>(value));
+    } else {
+      lua_pushnumber(L, value);
+    }
+    lua_setfield(L, -2, key.parameter);
+  }
+  return 1;
+}
+
+std::string tire_property_file_reference() {
+  std::string out = "| section | key | dimension | SI unit | model:tire key | meaning |\n|---|---|---|---|---|---|\n";
+  for (const TireFileKey& key : kTireFileKeys) {
+    const ParameterSpec& parameter = tire_parameter(key.parameter);
+    const std::string need = parameter.required ? "required" : "default " + parameter.default_value.value_or("none");
+    out += std::string("| `[") + key.section + "]` | `" + key.key + "` | " + io::dimension_name(key.dimension) +
+           " | " + io::si_unit(key.dimension) + " | `" + key.parameter + "`" +
+           (key.file_scale != 1.0 ? " / 2 (the file holds the radius)" : "") + " | " + parameter.doc + " (" + need +
+           ") |\n";
+  }
+  return out;
+}
+
+void add_tire_file_macros(MacroTable& table) {
+  table.module_macros.push_back(
+      {{"read_tire",
+        "Reads a tire property file (.tir, TeimOrbit format as ADAMS/Tire, MF-Tyre and FTire read: [UNITS], "
+        "[MODEL] PROPERTY_FILE_FORMAT = 'TIREFE', [DIMENSION], [TREAD], ...; docs/tire.md lists every key) and "
+        "returns its model:tire parameter table in SI, converted from the file's [UNITS]. Keys the file leaves "
+        "out take model:tire's defaults; an unknown section or key, a missing or unknown unit, a repeated key or "
+        "a value that is not a number stops the deck with the file, line and key.",
+        {{"file", VT::String, true, "", "tire property file, relative to the deck's folder"}},
+        "local tp = tirefe.read_tire{ file = \"tires/145SR12.tir\" }\ntp.pressure = 0.243e6\n"
+        "local tire = model:tire(tp)"},
+       read_tire_macro});
+  table.module_macros.push_back(
+      {{"write_tire",
+        "Writes a model:tire parameter table as a tire property file (docs/tire.md), in SI units with every "
+        "key; numbers are written so that read_tire gives back the same values bit for bit. Returns the path "
+        "written.",
+        {{"file", VT::String, true, "", "the .tir file to write (relative paths go in the output folder)"},
+         {"parameters", VT::Table, true, "", "model:tire parameters (without name, pressure_load_function, x, y)"},
+         {"comments", VT::StringList, false, "", "lines of the file's (COMMENTS) block"}},
+        "tirefe.write_tire{ file = \"145SR12.tir\", parameters = require(\"tires.145SR12\"),\n"
+        "                   comments = { \"145 SR-12, the paper's model\" } }"},
+       write_tire_macro});
+}
+
+}  // namespace tirefe::macros

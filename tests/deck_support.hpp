@@ -1,0 +1,48 @@
+// Runs a deck in this process with every macro installed, for tests of deck-level
+// features that need no separate process (file readers, geometry checks).
+#pragma once
+
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include "macros/deck_session.hpp"
+#include "macros/lua_sandbox.hpp"
+#include "macros/macro_table.hpp"
+
+namespace tirefe::testing {
+
+struct InProcessRun {
+  std::string error;  // the deck error ("" if the deck ran to its end)
+  int checks = 0;     // tirefe.check calls
+  int failed_checks = 0;
+};
+
+inline InProcessRun run_deck_in_process(const std::string& deck, const std::string& output_dir) {
+  macros::DeckSession session;
+  session.output_dir = output_dir;
+  session.deck_path = deck;
+  session.quiet = true;
+  macros::LuaSandbox sandbox(TIREFE_LUA_DIR);
+  macros::install_macros(sandbox, session);
+  InProcessRun run;
+  try {
+    sandbox.run_file(deck);
+  } catch (const macros::DeckError& error) {
+    run.error = error.what();
+  }
+  run.checks = static_cast<int>(session.checks.size());
+  run.failed_checks = session.failed_checks();
+  return run;
+}
+
+/// Runs a deck that must end without an error after 'checks' tirefe.check calls, all passed.
+inline void check_deck_passes(const std::string& deck, const std::string& output_dir, int checks) {
+  const InProcessRun run = run_deck_in_process(deck, output_dir);
+  INFO(run.error);
+  REQUIRE(run.error.empty());
+  CHECK(run.checks == checks);
+  CHECK(run.failed_checks == 0);
+}
+
+}  // namespace tirefe::testing

@@ -1,0 +1,180 @@
+// TeimOrbit property files (src/io/teim_orbit.hpp), the format of tire (.tir) and road
+// (.rdf) data: the parser, its syntax errors, the [UNITS] conversions, the schema reader's
+// errors and the numbers the writer writes.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "io/teim_orbit.hpp"
+#include "test_support.hpp"
+
+using namespace tirefe;
+using Catch::Matchers::Contains;
+using tirefe::testing::replaced;
+using tirefe::testing::same_bits;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+const std::string kSiHeader =
+    "[MDI_HEADER]\nFILE_TYPE = 'tir'\nFILE_VERSION = 1.0\nFILE_FORMAT = 'ASCII'\n"
+    "[UNITS]\nLENGTH = 'meter'\nFORCE = 'newton'\nANGLE = 'radians'\nMASS = 'kg'\nTIME = 'second'\n";
+
+}  // namespace
+
+TEST_CASE("TeimOrbit files: sections, keys, strings, comments and tables, names in any case", "[io][teim_orbit]") {
+  const std::string text =
+      "$ a comment line\n"
+      "! another one\n"
+      "[MDI_HEADER]\n"
+      "FILE_TYPE = 'rdf'\n"
+      "(COMMENTS)\n"
+      "{comment_string}\n"
+      "'a $ in a string is no comment'\n"
+      "[Parameters]\n"
+      "  Height  =  10.5    $ mm\n"
+      "name = \"with = and $\"\n"
+      "bare = ASCII\n"
+      "(XZ_DATA)\n"
+      "{ x  z_l  z_r }\n"
+      "0 1 2\n"
+      "3, 4.5, -6e-1   $ commas too\n";
+  const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "road.rdf");
+  REQUIRE(file.sections().size() == 2);
+  const io::TeimOrbitSection* parameters = file.section("PARAMETERS");
+  REQUIRE(parameters != nullptr);
+  CHECK(parameters->name == "Parameters");
+  CHECK(parameters->line == 8);
+  REQUIRE(parameters->values.size() == 3);
+  CHECK(parameters->values[0].key == "Height");
+  CHECK(parameters->values[0].text == "10.5");
+  CHECK_FALSE(parameters->values[0].quoted);
+  CHECK(parameters->values[1].text == "with = and $");
+  CHECK(parameters->values[1].quoted);
+  CHECK(parameters->values[2].text == "ASCII");
+  REQUIRE(parameters->tables.size() == 1);
+  const io::TeimOrbitTable& table = parameters->tables[0];
+  CHECK(table.columns == std::vector<std::string>{"x", "z_l", "z_r"});
+  REQUIRE(table.rows.size() == 2);
+  CHECK(table.rows[1] == std::vector<std::string>{"3", "4.5", "-6e-1"});
+  CHECK(table.row_lines == std::vector<int>{14, 15});
+  const io::TeimOrbitTable& comments = file.section("mdi_header")->tables.at(0);
+  CHECK(comments.rows.at(0) == std::vector<std::string>{"a $ in a string is no comment"});
+}
+
+TEST_CASE("TeimOrbit syntax errors name the file and line", "[io][teim_orbit]") {
+  const std::pair<std::string, std::string> cases[] = {
+      {"[A]\nK = 1\nk = 2\n", "f.tir:3: [A] k is given twice (first at line 2)"},
+      {"[A]\nK = 1\n[a]\n", "f.tir:3: section [a] appears twice (first at line 1)"},
+      {"K = 1\n", "f.tir:1: 'K = 1' outside a section"},
+      {"[A]\nK = 'abc\n", "f.tir:2: [A] K: unterminated string 'abc"},
+      {"[A]\nK = 1 2\n", "f.tir:2: [A] K = 1 2: one value expected"},
+      {"[A]\nK =\n", "f.tir:2: [A] K has no value"},
+      {"[A]\nwhat is this\n", "f.tir:2: expected [SECTION], (TABLE), KEY = value or a table row"},
+      {"[A\n", "f.tir:1: expected a section header [NAME]"},
+      {"[A]\n{ x }\n", "f.tir:2: column names { ... } belong on the line after a table's (NAME)"},
+      {"[A]\n(T)\n1 2\n(t)\n", "f.tir:4: [A] has two tables (t) (first at line 2)"},
+      {"(T)\n", "f.tir:1: table (T) outside a section"},
+  };
+  for (const auto& [text, message] : cases) {
+    INFO(text);
+    CHECK_THROWS_WITH(io::TeimOrbitFile::parse(text, "f.tir"), Contains(message));
+  }
+  CHECK_THROWS_WITH(io::TeimOrbitFile::read("/nonexistent/x.tir"), Contains("x.tir: cannot open the file"));
+}
+
+TEST_CASE("[UNITS] converts every dimension to SI: mm, inch, lbf, lbm, degrees, milliseconds, kPa",
+          "[io][teim_orbit]") {
+  SECTION("mm and newton: one rounding, so a value in mm reads as the same double as in m") {
+    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
+        replaced(kSiHeader, "'meter'", "'MM'") + "[P]\nR = 271.5\nS = 1\nP = 0.25\n", "mm.tir");
+    io::TeimOrbitReader reader(file, "tir");
+    CHECK(same_bits(*reader.number("P", "R", {1}), 0.2715));
+    CHECK(*reader.number("p", "s", {-2, 1}) == 1e6);  // N/mm^2 = 1e6 N/m^2
+    CHECK(*reader.number("P", "P", {0, 0, 0, 0, 0, 1}) == 0.25e6);  // pressure without PRESSURE: FORCE/LENGTH^2
+    reader.finish();
+  }
+  SECTION("inch, lbf, lbm, degrees, milliseconds and a PRESSURE unit") {
+    std::string header = kSiHeader;
+    for (const auto& [from, to] : {std::pair<std::string, std::string>{"'meter'", "'inch'"},
+                                   {"'newton'", "'lbf'"}, {"'radians'", "'degrees'"}, {"'kg'", "'pound_mass'"},
+                                   {"'second'", "'millisecond'"}})
+      header = replaced(header, from, to);
+    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
+        header + "PRESSURE = 'kPa'\n[P]\nA = 10\nB = 2\nC = 90\nD = 1\nE = 5\nF = 1\nG = 208\nH = 3\nK = 1\n",
+        "us.tir");
+    io::TeimOrbitReader reader(file, "tir");
+    CHECK(*reader.number("P", "A", {1}) == Approx(0.254).epsilon(1e-15));
+    CHECK(*reader.number("P", "B", {0, 1}) == Approx(8.896443230521).epsilon(1e-15));
+    CHECK(*reader.number("P", "C", {0, 0, 0, 0, 1}) == Approx(kPi / 2).epsilon(1e-15));
+    CHECK(*reader.number("P", "D", {0, 0, 1}) == Approx(0.45359237).epsilon(1e-15));
+    CHECK(*reader.number("P", "E", {0, 0, 0, 1}) == Approx(0.005).epsilon(1e-15));
+    CHECK(*reader.number("P", "F", {-2, 1}) == Approx(6894.757293168361).epsilon(1e-14));  // psi
+    CHECK(*reader.number("P", "G", {0, 0, 0, 0, 0, 1}) == 208000.0);                       // kPa, not psi
+    CHECK(*reader.number("P", "H", {2, 0, 1}) == Approx(3 * 0.45359237 * 0.0254 * 0.0254).epsilon(1e-14));
+    CHECK(*reader.number("P", "K", {-1, 1, 0, 0, -1}) ==
+          Approx(4.4482216152605 / 0.0254 / (kPi / 180)).epsilon(1e-14));  // lbf/(in deg)
+    CHECK_FALSE(reader.number("P", "absent", {1}));
+    reader.finish();
+  }
+  SECTION("the SI unit and the words of a dimension") {
+    CHECK(io::si_unit({-2, 1, 0, 1}) == "N s/m^2");
+    CHECK(io::si_unit({-1, 1, 0, 0, -1}) == "N/(m rad)");
+    CHECK(io::si_unit({2, 0, 1}) == "kg m^2");
+    CHECK(io::si_unit({-1, 0, 1}) == "kg/m");
+    CHECK(io::si_unit({}).empty());
+    CHECK(io::dimension_name({-2, 1, 0, 1}) == "force time/length^2");
+    CHECK(io::dimension_name({}) == "-");
+  }
+}
+
+TEST_CASE("missing, unknown or misspelt units and headers are errors naming the file, line and quantity",
+          "[io][teim_orbit]") {
+  const std::pair<std::string, std::string> cases[] = {
+      {replaced(kSiHeader, "'meter'", "'milimeter'"),
+       "u.tir:6: [UNITS] LENGTH = 'milimeter' is not a known length unit (did you mean 'millimeter'?"},
+      {replaced(kSiHeader, "'newton'", "'furlong'"), "u.tir:7: [UNITS] FORCE = 'furlong' is not a known force unit"},
+      {replaced(kSiHeader, "MASS = 'kg'\n", ""), "u.tir:5: [UNITS] has no MASS (e.g. MASS = 'kg')"},
+      {replaced(kSiHeader, "[UNITS]", "[UNIT]"), "u.tir: no [UNITS] section"},
+      {replaced(kSiHeader, "FILE_TYPE = 'tir'", "FILE_TYPE = 'rdf'"),
+       "u.tir:2: FILE_TYPE = 'rdf': this reader takes 'tir' files"},
+      {replaced(kSiHeader, "FILE_FORMAT = 'ASCII'", "FILE_FORMAT = 'BINARY'"),
+       "u.tir:4: [MDI_HEADER] needs FILE_FORMAT"},
+      {replaced(kSiHeader, "FILE_VERSION = 1.0\n", ""), "missing [MDI_HEADER] FILE_VERSION"},
+      {replaced(kSiHeader, "[MDI_HEADER]\n", "[MDI]\n"), "u.tir: no [MDI_HEADER] section"},
+      {kSiHeader + "PRESSURE = 'atm'\n", "u.tir:11: [UNITS] PRESSURE = 'atm' is not a known pressure unit"},
+  };
+  for (const auto& [text, message] : cases) {
+    INFO(text);
+    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "u.tir");
+    CHECK_THROWS_WITH(io::TeimOrbitReader(file, "tir"), Contains(message));
+  }
+  SECTION("a value that is not a number, and keys and sections nobody asked for") {
+    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
+        kSiHeader + "[TREAD]\nWIDTH = wide\nDEPTH = '1'\nWIDHT = 2\n[TRED]\nX = 1\n", "v.tir");
+    io::TeimOrbitReader reader(file, "tir");
+    CHECK_THROWS_WITH(reader.number("TREAD", "WIDTH", {1}), Contains("v.tir:12: [TREAD] WIDTH = wide is not a finite"));
+    CHECK_THROWS_WITH(reader.number("TREAD", "DEPTH", {1}), Contains("v.tir:13: [TREAD] DEPTH = '1' is a string"));
+    reader.number("TREAD", "LENGTH", {1});
+    CHECK_THROWS_WITH(reader.finish(), Contains("v.tir:14: [TREAD] unknown key 'WIDHT' (did you mean 'WIDTH'?; "
+                                                "known keys: DEPTH, LENGTH, WIDTH)"));
+    const io::TeimOrbitFile other =
+        io::TeimOrbitFile::parse(kSiHeader + "[TREAD]\nWIDTH = 1\n[TRED]\nX = 1\n", "w.tir");
+    io::TeimOrbitReader second(other, "tir");
+    second.number("TREAD", "WIDTH", {1});
+    CHECK_THROWS_WITH(second.finish(), Contains("w.tir:13: unknown section [TRED] (did you mean '[TREAD]'?"));
+  }
+}
+
+TEST_CASE("numbers are written in the shortest text that reads back bit for bit", "[io][teim_orbit]") {
+  CHECK(io::round_trip_number(0.543) == "0.543");
+  CHECK(io::round_trip_number(100) == "100");
+  CHECK(io::round_trip_number(0.1 + 0.2) == "0.30000000000000004");
+  CHECK(io::round_trip_number(-0.0) == "-0");
+  CHECK(io::round_trip_number(2.4e3) == "2400");
+  for (double value : {1.0 / 3.0, 5e-324, 1.7976931348623157e308, -2.2250738585072014e-308, 0.2715 * 2}) {
+    INFO(value);
+    CHECK(same_bits(std::strtod(io::round_trip_number(value).c_str(), nullptr), value));
+  }
+}
