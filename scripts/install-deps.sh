@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev liblua5.4-dev libhdf5-dev catch2
-  hdf5-tools python3-h5py python3-matplotlib python3-numpy
+  hdf5-tools python3-h5py python3-matplotlib python3-numpy python3-meshio
   libopenmpi-dev openmpi-bin
 )
 

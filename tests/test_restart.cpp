@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
@@ -82,6 +84,13 @@ TEST_CASE("a run restarted from a checkpoint continues bit for bit", "[reliabili
         ++compared;
       }
       CHECK(compared >= 20);
+      // The XDMF index names the frames the checkpoint brought back too, as the uninterrupted run's does.
+      auto text_of = [](const fs::path& path) {
+        std::ifstream in(path);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      };
+      CHECK(text_of(folder / "restart.xmf").find("/surfaces/road/frames/0<") != std::string::npos);
+      CHECK(text_of(folder / "restart.xmf") == text_of(whole / "restart.xmf"));
 
       // The final state, element and contact history included.
       const auto end = tirefe::io::read_checkpoint((folder / "end.ckpt.h5").string());

@@ -12,11 +12,12 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
-import traceback
 
 import numpy as np
 
+import script_tests
+
+TIREFE = None  # the tirefe binary: script_tests.run sets it from the command line
 HERE = os.path.dirname(os.path.abspath(__file__))
 POST = os.path.join(os.path.dirname(HERE), "post")
 SWEEP = os.path.join(POST, "sweep.py")
@@ -150,28 +151,5 @@ def test_plot_sweep_writes_a_png(folder):
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
 
 
-def main():
-    global TIREFE
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    TIREFE = os.path.abspath(sys.argv[1])
-    folder = tempfile.mkdtemp(prefix="tirefe_sweep_")
-    tests = [value for name, value in globals().items() if name.startswith("test_")]
-    failed = 0
-    for test in tests:  # in order: later tests reuse the first sweep's folder
-        try:
-            test(folder)
-            print(f"passed: {test.__name__}")
-        except Exception:  # report every failure, then go on
-            failed += 1
-            print(f"FAILED: {test.__name__}\n{traceback.format_exc()}")
-    print(f"{len(tests) - failed} passed, {failed} failed")
-    if failed:
-        print(f"(files kept in {folder})")
-    else:
-        shutil.rmtree(folder)
-    sys.exit(1 if failed else 0)
-
-
 if __name__ == "__main__":
-    main()
+    script_tests.run(globals(), "tirefe_sweep_")  # in order: later tests reuse the first sweep's folder

@@ -1,13 +1,25 @@
-// Tests of the XDMF index written beside result files with field frames.
+// Tests of the XDMF index written beside result files with field frames: its text
+// (io/xdmf.hpp), and what the result file puts in it and in the HDF5 file at each frame
+// (the per-frame views, the deformation field, surfaces). tests/test_xdmf_readers.py
+// reads the index back with meshio.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 
+#include "elements/point_mass.hpp"
+#include "elements/tread_beam.hpp"
+#include "io/result_file.hpp"
 #include "io/xdmf.hpp"
+#include "test_support.hpp"
 
-using tirefe::io::XdmfFields;
-using tirefe::io::xdmf_text;
+using tirefe::io::Hdf5File;
+using tirefe::io::XdmfGrid;
+using tirefe::io::XdmfIndex;
 
 namespace {
 
@@ -17,31 +29,201 @@ int count(const std::string& text, const std::string& pattern) {
                                         std::sregex_iterator()));
 }
 
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+XdmfGrid points_grid(const std::string& name) {
+  return {name, "Polyvertex", 2, 1, {"/mesh/node_sets/" + name, {2}, true}, {"/mesh/coordinates", {5, 2}},
+          {{"displacement", "Vector", "Node", {"/fields/frames/{frame}/displacement", {5, 3}}}}};
+}
+
 }  // namespace
 
-TEST_CASE("XDMF index: one spatial collection per frame, one grid per distinct block", "[io][xdmf]") {
-  XdmfFields fields;
-  fields.hdf5_file_name = "run.h5";
-  fields.nodes = 101;
-  // A tire: tread beams and pressure share a shape (drawn once), wedges are triangles,
-  // the rim is a point element, a 5-node block has no XDMF cell type and is left out.
-  fields.blocks = {{"tire_tread", 100, 2}, {"tire_sidewall", 100, 3}, {"tire_pressure", 100, 2},
-                   {"tire_rim", 1, 1}, {"odd", 3, 5}};
-  fields.frame_times = {0.0, 0.005, 0.01};
-  const std::string text = xdmf_text(fields);
+TEST_CASE("XDMF index: a temporal collection per grid, whole datasets per frame, the first grid last",
+          "[io][xdmf]") {
+  XdmfIndex index("run&co.h5");
+  XdmfGrid mesh{"mesh", "Mixed", 3, 0, {"/mesh/cells", {11}, true}, {"/mesh/coordinates", {5, 2}}, {}};
+  mesh.attributes = {{"displacement", "Vector", "Node", {"/fields/frames/{frame}/displacement", {5, 3}}},
+                     {"rotation", "Scalar", "Node", {"/fields/frames/{frame}/rotation", {5}}},
+                     {"block", "Scalar", "Cell", {"/mesh/cell_block", {3}, true}}};
+  index.add_grid(mesh);
+  index.add_grid(points_grid("contact"));
+  for (double time : {0.0, 0.005, 0.01}) index.add_frame(time);
+  index.add_grid(points_grid("late"));  // added after three frames: shown in them too
+  const std::string text = index.text();
 
-  CHECK(count(text, "CollectionType=\"Temporal\"") == 1);
-  CHECK(count(text, "<Time Value=") == 3);
-  CHECK(count(text, "<Time Value=\"0.0050000000000000001\" />") == 1);
-  CHECK(count(text, "TopologyType=\"Polyline\" NumberOfElements=\"100\" NodesPerElement=\"2\"") == 3);
-  CHECK(count(text, "TopologyType=\"Triangle\" NumberOfElements=\"100\"") == 3);
-  CHECK(count(text, "TopologyType=\"Polyvertex\" NumberOfElements=\"1\"") == 3);
-  CHECK(count(text, "tire_pressure") == 0);
-  CHECK(count(text, "odd") == 0);
-  // Geometry = coordinates + the frame's (u_x, u_y) slab; frame 2 starts at row 2.
-  CHECK(count(text, "run.h5:/mesh/coordinates") == 9);
-  CHECK(count(text, ">2 0 0  1 1 1  1 101 2<") == 3);
-  CHECK(count(text, "Dimensions=\"3 101 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">run.h5:/fields/displacement") ==
-        3 * 3 * 4);
-  CHECK(count(text, "<Attribute Name=\"theta_z\"") == 9);
+  CHECK(count(text, "<Xdmf Version=\"3.0\">") == 1);
+  CHECK(count(text, "GridType=\"Collection\" CollectionType=\"Temporal\"") == 3);
+  CHECK(count(text, "GridType=\"Uniform\"") == 9);
+  // The mesh, added first, is the last collection (the one meshio reads).
+  CHECK(text.find("<Grid Name=\"contact\" GridType=\"Collection\"") < text.find("<Grid Name=\"late\" GridType=\"Collection\""));
+  CHECK(text.find("<Grid Name=\"late\" GridType=\"Collection\"") < text.find("<Grid Name=\"mesh\" GridType=\"Collection\""));
+  // Times read back exactly, in their shortest form.
+  CHECK(count(text, "<Time Value=\"0.005\" />") == 3);
+  CHECK(count(text, "<Time Value=") == 9);
+  CHECK(count(text, "TopologyType=\"Mixed\" NumberOfElements=\"3\">") == 3);
+  CHECK(count(text, "TopologyType=\"Polyvertex\" NumberOfElements=\"2\" NodesPerElement=\"1\">") == 6);
+  // Every frame names its own whole dataset; the file name is escaped.
+  CHECK(count(text, "Dimensions=\"5 3\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/fields/frames/2/displacement<") == 3);
+  CHECK(count(text, "Dimensions=\"5\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/fields/frames/1/rotation<") == 1);
+  CHECK(count(text, "<Attribute Name=\"block\" AttributeType=\"Scalar\" Center=\"Cell\">") == 3);
+  CHECK(count(text, "DataType=\"Int\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/mesh/cells<") == 3);
+  CHECK(count(text, "\\{frame\\}") == 0);
+  CHECK(count(text, "HyperSlab|Function") == 0);  // what ParaView 5.11's Xdmf3 readers fail on
+  CHECK(index.size() <= text.size());  // the frames, which are nearly all of it
+  CHECK(index.size() > 0.9 * text.size());
+}
+
+TEST_CASE("XDMF index: written whole beside its name, then renamed, a failure is an IoError", "[io][xdmf]") {
+  tirefe::testing::TempDir folder;
+  XdmfIndex index("run.h5");
+  index.add_grid(points_grid("contact"));
+  index.add_frame(0.25);
+  const std::string path = folder.path("run.xmf");
+  std::ofstream(path) << "an older index";
+  index.write(path);
+  CHECK(read_text(path) == index.text());
+  CHECK(!std::filesystem::exists(path + ".partial"));
+  CHECK_THROWS_AS(index.write(folder.path("missing/run.xmf")), tirefe::io::IoError);
+}
+
+namespace {
+
+using namespace tirefe;
+
+/// A ring of beams around a spindle node, the rim a point on the spindle: node 0 is the spindle.
+struct Ring {
+  Model model;
+  std::vector<int> ring;
+  Ring() {
+    const int spindle = model.mesh().add_node(Eigen::Vector2d(0.1, 0.4));
+    for (int i = 0; i < 6; ++i) {
+      const double angle = 2.0 * 3.14159265358979 * i / 6;
+      ring.push_back(model.mesh().add_node(Eigen::Vector2d(0.1, 0.4) + 0.3 * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
+    }
+    model.mesh().add_node(Eigen::Vector2d(2.0, 0.0));  // a node of no tire
+    model.mesh().define_node_set("ring", ring);
+    BeamSection section;
+    section.axial_stiffness = section.shear_stiffness = 1e5;
+    section.bending_stiffness = 10;
+    section.mass_per_length = 1;
+    auto& beams = model.add_block<TreadBeam>("beams");
+    for (int i = 0; i < 6; ++i) {
+      const int a = ring[i], b = ring[(i + 1) % 6];
+      beams.add({a, b}, TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
+    }
+    auto& rim = model.add_block<NodalSpringMass>("rim");
+    SpringMassProperties properties;
+    properties.mass = 1.0;
+    rim.add({spindle}, NodalSpringMass(properties));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("result file: the deformation takes the rim's rigid motion out, in the fixed axes", "[io][xdmf]") {
+  // A rigid turn by 2 rad about the spindle and a travel of the spindle, plus a known
+  // deformation of one ring node: the deformation field must give back just that.
+  tirefe::testing::TempDir folder;
+  Ring ring;
+  Analysis analysis(ring.model);
+  const Eigen::Vector2d travel(0.05, -0.02), bulge(0.003, -0.001);
+  const double spin = 2.0, twist = 0.01;
+  {
+    io::ResultFile file(folder.path("ring.h5"), io::RunMetadata{"ring", "", "", {}});
+    file.add_rim(0, ring.ring);
+    State& state = analysis.mutable_state();
+    state.displacement = state.velocity = Eigen::VectorXd::Zero(kDofsPerNode * ring.model.mesh().node_count());
+    const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(spin).toRotationMatrix();
+    const Eigen::Vector2d spindle = ring.model.mesh().position(0);
+    for (int node = 0; node < ring.model.mesh().node_count(); ++node) {
+      const Eigen::Vector2d x = ring.model.mesh().position(node);
+      const bool on_tire = node <= 6;
+      const Eigen::Vector2d moved = on_tire ? Eigen::Vector2d(spindle + travel + rotation * (x - spindle)) : x;
+      state.displacement.segment<2>(dof_index(node, kUx)) = moved - x;
+      state.displacement[dof_index(node, kRz)] = on_tire ? spin : 0.0;
+    }
+    state.displacement.segment<2>(dof_index(3, kUx)) += bulge;
+    state.displacement[dof_index(3, kRz)] += twist;
+    state.displacement.segment<2>(dof_index(7, kUx)) = Eigen::Vector2d(0.5, 0.25);  // no tire's node
+    file.write_fields(analysis, 1);
+  }
+  const Hdf5File file = Hdf5File::open_read_only(folder.path("ring.h5"));
+  std::vector<hsize_t> shape;
+  const std::vector<double> e = file.read_doubles("/fields/deformation", &shape);
+  REQUIRE(shape == std::vector<hsize_t>{1, 8, 3});
+  for (int node = 0; node <= 6; ++node) {
+    INFO("node " << node);
+    const bool bulged = node == 3;
+    CHECK(e[3 * node] == Approx(bulged ? bulge.x() : 0.0).margin(1e-15));
+    CHECK(e[3 * node + 1] == Approx(bulged ? bulge.y() : 0.0).margin(1e-15));
+    CHECK(e[3 * node + 2] == Approx(bulged ? twist : 0.0).margin(1e-15));
+  }
+  CHECK(e[21] == 0.5);  // nodes of no tire keep their displacement
+  CHECK(e[22] == 0.25);
+  // The frame's views: (e_x, e_y, 0) and the rotation of every node.
+  const std::vector<double> view = file.read_doubles("/fields/frames/0/deformation", &shape);
+  REQUIRE(shape == std::vector<hsize_t>{8, 3});
+  CHECK(view[9] == e[9]);
+  CHECK(view[10] == e[10]);
+  CHECK(view[11] == 0.0);
+  const std::vector<double> rotation = file.read_doubles("/fields/frames/0/rotation", &shape);
+  REQUIRE(shape == std::vector<hsize_t>{8});
+  CHECK(rotation[3] == spin + twist);
+}
+
+TEST_CASE("result file: the index after every frame, a surface drawn in every frame, points as their own grids",
+          "[io][xdmf]") {
+  tirefe::testing::TempDir folder;
+  Ring ring;
+  Analysis analysis(ring.model);
+  analysis.mutable_state().displacement = analysis.mutable_state().velocity =
+      Eigen::VectorXd::Zero(kDofsPerNode * ring.model.mesh().node_count());
+  const std::string index_path = folder.path("ring.xmf");
+  // A square turning about the origin by 0.1 rad per second, drawn from the second frame on.
+  const std::vector<Eigen::Vector2d> square{{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  auto turned = [&](double time, const Eigen::Vector2d&, double) {
+    std::vector<Eigen::Vector2d> points;
+    for (const Eigen::Vector2d& corner : square) points.push_back(Eigen::Rotation2Dd(0.1 * time) * corner);
+    return points;
+  };
+  {
+    io::ResultFile file(folder.path("ring.h5"), io::RunMetadata{"ring", "", "", {}});
+    file.add_rim(0, ring.ring);
+    file.show_node_set("ring");
+    for (int frame = 0; frame < 3; ++frame) {
+      analysis.mutable_state().time = 0.5 * frame;
+      file.write_fields(analysis, frame);
+      if (frame == 0) file.add_surface("square", true, turned);
+      // On disk after each frame, while the run goes on.
+      const std::string text = read_text(index_path);
+      CHECK(count(text, "<Grid Name=\"mesh\" GridType=\"Uniform\">") == frame + 1);
+      CHECK(count(text, "<Grid Name=\"square\" GridType=\"Uniform\">") == frame + 1);
+      CHECK(count(text, "</Xdmf>") == 1);
+    }
+  }
+  const std::string text = read_text(index_path);
+  // Beams in the mixed topology; the rim (one node) and the shown node set as points.
+  CHECK(count(text, "TopologyType=\"Mixed\" NumberOfElements=\"6\"") == 3);
+  CHECK(count(text, "<Grid Name=\"rim\" GridType=\"Uniform\">") == 3);
+  CHECK(count(text, "<Grid Name=\"ring\" GridType=\"Uniform\">") == 3);
+  CHECK(count(text, "TopologyType=\"Polyline\" NumberOfElements=\"4\" NodesPerElement=\"2\"") == 3);
+  const Hdf5File file = Hdf5File::open_read_only(folder.path("ring.h5"));
+  CHECK(file.read_ints("/mesh/cells") ==
+        std::vector<long long>{2, 2, 1, 2, 2, 2, 2, 3, 2, 2, 3, 4, 2, 2, 4, 5, 2, 2, 5, 6, 2, 2, 6, 1});
+  CHECK(file.read_ints("/mesh/cell_block") == std::vector<long long>(6, 0));
+  CHECK(file.read_ints("/surfaces/square/segments") == std::vector<long long>{0, 1, 1, 2, 2, 3, 3, 0});
+  // The frame written before the surface existed shows it where it was then.
+  std::vector<hsize_t> shape;
+  const std::vector<double> outline = file.read_doubles("/surfaces/square/outline", &shape);
+  REQUIRE(shape == std::vector<hsize_t>{3, 4, 2});
+  for (int frame = 0; frame < 3; ++frame) {
+    const Eigen::Vector2d first = Eigen::Rotation2Dd(0.05 * frame) * square[0];
+    CHECK(outline[8 * frame] == Approx(first.x()).epsilon(1e-15));
+    CHECK(outline[8 * frame + 1] == Approx(first.y()).epsilon(1e-15));
+    CHECK(file.read_doubles("/surfaces/square/frames/" + std::to_string(frame)) ==
+          std::vector<double>(outline.begin() + 8 * frame, outline.begin() + 8 * frame + 8));
+  }
 }

@@ -42,15 +42,16 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactB
     io::ExtendibleDataset *time, *gap, *normal_force, *tangential_force, *state, *coordinate, *sliding_velocity;
     ContactNodeResults results;
   };
-  auto datasets =
-      std::make_shared<Datasets>(Datasets{&hdf5.create_extendible(group + "time", {}, "s"),
-                                          &hdf5.create_extendible(group + "gap", row, "m"),
-                                          &hdf5.create_extendible(group + "normal_force", row, "N"),
-                                          &hdf5.create_extendible(group + "tangential_force", row, "N"),
-                                          &hdf5.create_extendible(group + "state", row, "0 open, 1 stick, 2 slip"),
-                                          &hdf5.create_extendible(group + "coordinate", row, "m"),
-                                          &hdf5.create_extendible(group + "sliding_velocity", row, "m/s"),
-                                          {}});
+  // Per-node rows are fields: compressed (most nodes are open, most values zero).
+  auto field = [&](const char* name, const char* unit) -> io::ExtendibleDataset* {
+    return &hdf5.create_compressed_extendible(group + name, row, unit);
+  };
+  auto datasets = std::make_shared<Datasets>(Datasets{&hdf5.create_extendible(group + "time", {}, "s"),
+                                                      field("gap", "m"), field("normal_force", "N"),
+                                                      field("tangential_force", "N"),
+                                                      field("state", "0 open, 1 stick, 2 slip"),
+                                                      field("coordinate", "m"), field("sliding_velocity", "m/s"),
+                                                      {}});
   const ContactBlock* source = &block;
   analysis.add_step_observer([datasets, source, every](const Analysis& run, const StepRecord& record) {
     if (record.step % every != 0) return;
@@ -64,6 +65,16 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactB
     d.coordinate->append(d.results.coordinate.data());
     d.sliding_velocity->append(d.results.sliding_velocity.data());
   });
+}
+
+void add_surface_output(io::ResultFile& file, const std::string& name, std::shared_ptr<const RigidSurface> surface) {
+  // The chords are chosen once (the first outline's reach), so every frame has as many points.
+  const bool closed = surface->curve().closed();
+  file.add_surface(name, closed,
+                   [surface, tolerance = 0.0](double time, const Eigen::Vector2d& centre, double reach) mutable {
+                     if (tolerance == 0.0) tolerance = reach / 4000.0;
+                     return surface->outline(time, centre, reach, tolerance);
+                   });
 }
 
 }  // namespace tirefe

@@ -38,6 +38,24 @@ Eigen::Vector2d RigidSurface::velocity(double coordinate, double time) const {
   return motion_.velocity(point(coordinate, time), time);
 }
 
+std::vector<Eigen::Vector2d> RigidSurface::outline(double time, const Eigen::Vector2d& centre, double reach,
+                                                   double tolerance) const {
+  const SurfaceCurve::Outline shape = curve_.outline(tolerance);
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(shape.points.size() + 2);
+  for (const Eigen::Vector2d& material : shape.points) points.push_back(motion_.to_space(material, time));
+  if (curve_.closed()) return points;
+  // A ray from p along d, cut where it is 'reach' past the centre's foot on it (or at p).
+  const Eigen::Matrix2d rotation = motion_.rotation_at(time);
+  auto ray_end = [&](const Eigen::Vector2d& from, const Eigen::Vector2d& direction) -> Eigen::Vector2d {
+    const Eigen::Vector2d d = rotation * direction;
+    return from + std::max(0.0, d.dot(centre - from) + reach) * d;
+  };
+  points.insert(points.begin(), ray_end(points.front(), shape.leading));
+  points.push_back(ray_end(points.back(), shape.trailing));
+  return points;
+}
+
 // ---- FlatRoad ----------------------------------------------------------------------
 
 FlatRoad::FlatRoad(const Eigen::Vector2d& point, const Eigen::Vector2d& direction, RigidMotion motion)

@@ -49,6 +49,12 @@ class RigidSurface {
   /// Slip measure s_to - s_from (wrapped around a closed surface).
   double arc_difference(double to, double from) const { return curve_.arc_difference(to, from); }
 
+  /// The surface at time t as a polyline to draw (SurfaceCurve::outline in its place):
+  /// the same number of points at every time, an open surface's rays drawn until they are
+  /// 'reach' past 'centre' (as measured along them).
+  std::vector<Eigen::Vector2d> outline(double time, const Eigen::Vector2d& centre, double reach,
+                                       double tolerance) const;
+
   const std::string& kind() const { return kind_; }
   const SurfaceCurve& curve() const { return curve_; }
   const RigidMotion& motion() const { return motion_; }

@@ -415,6 +415,34 @@ Eigen::Vector2d SurfaceCurve::tangent(double s) const {
   return piece.tangent(s - piece.shift_);
 }
 
+SurfaceCurve::Outline SurfaceCurve::outline(double tolerance) const {
+  Outline outline;
+  std::vector<Eigen::Vector2d>& points = outline.points;
+  for (const Piece& piece : pieces_) {
+    const bool bounded_start = std::isfinite(piece.begin_), bounded_end = std::isfinite(piece.end_);
+    if (!bounded_start && !bounded_end) {
+      points.push_back(piece.origin_);
+      continue;
+    }
+    if (points.empty()) points.push_back(piece.point(bounded_start ? piece.begin_ : piece.end_));
+    if (!bounded_start || !bounded_end) continue;  // a ray adds only its finite end
+    int chords = 1;
+    if (piece.arc_) {
+      const double step = std::min(kPi / 4.0, 2.0 * std::acos(std::max(0.0, 1.0 - tolerance / piece.radius_)));
+      chords = std::max(1, static_cast<int>(std::ceil(piece.length() / piece.radius_ / step)));
+    }
+    for (int i = 1; i <= chords; ++i) points.push_back(piece.point(piece.begin_ + piece.length() * i / chords));
+  }
+  if (closed_) {
+    points.pop_back();  // where it started
+    return outline;
+  }
+  const Piece &first = pieces_.front(), &last = pieces_.back();
+  outline.leading = -first.direction_;
+  outline.trailing = last.direction_;
+  return outline;
+}
+
 double SurfaceCurve::arc_difference(double to, double from) const {
   const double difference = to - from;
   return closed_ ? std::remainder(difference, length_) : difference;

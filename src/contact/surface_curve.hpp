@@ -104,6 +104,17 @@ class SurfaceCurve {
   const std::vector<Piece>& pieces() const { return pieces_; }
   const std::vector<Corner>& corners() const { return corners_; }
 
+  /// The curve as a polyline to draw: the ends of every piece, arcs divided into chords
+  /// whose sagitta r (1 - cos(step / 2)) stays within 'tolerance' (at least 8 to a circle),
+  /// in the order of s. A closed curve goes round once (its last point joins the first);
+  /// an open one ends at its rays' finite ends (a straight line: at its anchor point), with
+  /// the rays' unit directions pointing away from the curve.
+  struct Outline {
+    std::vector<Eigen::Vector2d> points;
+    Eigen::Vector2d leading = Eigen::Vector2d::Zero(), trailing = Eigen::Vector2d::Zero();
+  };
+  Outline outline(double tolerance) const;
+
  private:
   struct Joint {  // between piece i and the next one
     bool corner = false, convex = false;

@@ -127,6 +127,7 @@ void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, Result
   }
   output->set_steps_recorded(checkpoint.steps_recorded);
   output->flush();
+  output->index_restored_frames();
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {

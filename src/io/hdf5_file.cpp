@@ -337,6 +337,17 @@ void Hdf5File::write_string_dataset(const std::string& dataset_path, const std::
 
 ExtendibleDataset& Hdf5File::create_extendible(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
                                                const std::string& unit) {
+  return create_chunked(dataset_path, row_shape, unit, false);
+}
+
+ExtendibleDataset& Hdf5File::create_compressed_extendible(const std::string& dataset_path,
+                                                          const std::vector<hsize_t>& row_shape,
+                                                          const std::string& unit) {
+  return create_chunked(dataset_path, row_shape, unit, true);
+}
+
+ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
+                                            const std::string& unit, bool compressed) {
   auto message = [&] { return describe("create extendible dataset", dataset_path, path_); };
   const hsize_t row_size = element_count(row_shape);
   if (row_size == 0) throw IoError(message() + ": row shape has a zero extent");
@@ -344,13 +355,20 @@ ExtendibleDataset& Hdf5File::create_extendible(const std::string& dataset_path, 
   dims.insert(dims.end(), row_shape.begin(), row_shape.end());
   max_dims.insert(max_dims.end(), row_shape.begin(), row_shape.end());
   chunk = dims;
-  // ~2 KiB chunks for scalar series, up to ~64 KiB for small vector rows, one row for big ones.
-  chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(256, 8192 / row_size));
+  // ~2 KiB chunks for scalar series, up to ~64 KiB for small vector rows, one row for big
+  // ones; compressed: ~4 KiB, or one row.
+  chunk[0] = compressed ? std::max<hsize_t>(1, 512 / row_size)
+                        : std::max<hsize_t>(1, std::min<hsize_t>(256, 8192 / row_size));
 
   const int rank = static_cast<int>(dims.size());
   Hdf5Handle space(check(H5Screate_simple(rank, dims.data(), max_dims.data()), message), H5Sclose);
   Hdf5Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
   check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), message);
+  if (compressed) {
+    // Shuffling groups the bytes of equal significance, which deflate then finds alike.
+    check(H5Pset_shuffle(dcpl.get()), message);
+    check(H5Pset_deflate(dcpl.get(), 6), message);
+  }
   Hdf5Handle dataset(check(H5Dcreate2(file_.get(), dataset_path.c_str(), H5T_IEEE_F64LE, space.get(), lcpl_.get(),
                                       dcpl.get(), H5P_DEFAULT),
                            message),
@@ -358,6 +376,43 @@ ExtendibleDataset& Hdf5File::create_extendible(const std::string& dataset_path, 
   ExtendibleDataset created(std::move(dataset), std::move(dims), path_, dataset_path);
   if (!unit.empty()) write_attribute(dataset_path, "unit", unit);
   return datasets_.emplace_back(std::move(created));
+}
+
+void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row,
+                              hsize_t first, hsize_t count, hsize_t width) {
+  auto message = [&] { return describe("write view", view_path, path_); };
+  const std::vector<hsize_t>& dims = source.dims_;
+  if (dims.size() != 3 || first + count > dims[2] || count == 0 || (width == 0 ? count != 1 : count > width))
+    throw IoError(message() + ": no such columns of '" + source.path() + "'");
+  const hsize_t entries = dims[1];
+  // The source as it will be once 'row' is written (appended rows may still wait in memory).
+  const std::vector<hsize_t> source_dims{std::max(source.rows(), row + 1), entries, dims[2]};
+  const std::vector<hsize_t> source_start{row, 0, first}, source_count{1, entries, count};
+  Hdf5Handle source_space = dataspace_of(source_dims);
+  check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, source_start.data(), nullptr, source_count.data(),
+                            nullptr),
+        message);
+  const std::vector<hsize_t> view_dims = width == 0 ? std::vector<hsize_t>{entries} : std::vector<hsize_t>{entries, width};
+  Hdf5Handle view_space = dataspace_of(view_dims);
+  if (width > 0) {
+    const std::vector<hsize_t> start{0, 0}, columns{entries, count};
+    check(H5Sselect_hyperslab(view_space.get(), H5S_SELECT_SET, start.data(), nullptr, columns.data(), nullptr),
+          message);
+  }
+  Hdf5Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
+  const double zero = 0.0;
+  check(H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &zero), message);
+#if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 5) || H5_VERSION_GE(1, 12, 0)
+  // Views carry no attributes: a minimal object header (a few hundred bytes per view less).
+  check(H5Pset_dset_no_attrs_hint(dcpl.get(), true), message);
+#endif
+  // "." is this file.
+  check(H5Pset_virtual(dcpl.get(), view_space.get(), ".", source.path().c_str(), source_space.get()), message);
+  check(H5Sselect_all(view_space.get()), message);
+  Hdf5Handle view(check(H5Dcreate2(file_.get(), view_path.c_str(), H5T_IEEE_F64LE, view_space.get(), lcpl_.get(),
+                                   dcpl.get(), H5P_DEFAULT),
+                        message),
+                  H5Dclose);
 }
 
 template <class T>

@@ -115,6 +115,18 @@ class Hdf5File {
   // object lives (also across moves of the Hdf5File). A non-empty unit becomes attribute "unit".
   ExtendibleDataset& create_extendible(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
                                        const std::string& unit = "");
+  // The same with its rows compressed (byte shuffle, then deflate) in chunks of whole rows,
+  // about 4 KiB or one row: for field rows, which are flushed one at a time (a flushed
+  // chunk is not rewritten).
+  ExtendibleDataset& create_compressed_extendible(const std::string& dataset_path,
+                                                  const std::vector<hsize_t>& row_shape,
+                                                  const std::string& unit = "");
+  // A virtual dataset at 'view_path' that shows row 'row' of 'source' (rows x n x c) without
+  // copying it: 'count' columns from 'first' of each of the n entries, padded with zeros
+  // to 'width' columns (n x width); width 0 with count 1 gives n values. Readers that want
+  // one whole dataset per frame (XDMF readers) read these.
+  void write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row, hsize_t first,
+                      hsize_t count, hsize_t width);
 
   // Whole dataset converted to double / long long, plus its shape (empty for scalars).
   std::vector<double> read_doubles(const std::string& dataset_path, std::vector<hsize_t>* shape = nullptr) const;
@@ -137,6 +149,8 @@ class Hdf5File {
   Hdf5File(std::string path, Hdf5Handle file);
   void write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type,
                      hid_t mem_type, const void* data);
+  ExtendibleDataset& create_chunked(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
+                                    const std::string& unit, bool compressed);
   void write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type,
                               hid_t mem_type, const void* data);
   template <class T>

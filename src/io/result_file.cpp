@@ -1,5 +1,6 @@
 #include "io/result_file.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -23,7 +24,8 @@ std::string utc_now() {
 
 ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage)
     : file_(storage == ResultStorage::File ? Hdf5File::create(path) : Hdf5File::create_in_memory(path)),
-      discarded_(storage == ResultStorage::Discarded) {
+      discarded_(storage == ResultStorage::Discarded),
+      index_(std::filesystem::path(path).filename().string()) {
   file_.write_attribute("/", "tirefe_version", std::string(kVersion));
   file_.write_attribute("/", "git_commit", std::string(kGitCommit));
   file_.write_attribute("/", "created", utc_now());
@@ -59,18 +61,30 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
 }
 
 ResultFile::~ResultFile() {
-  if (field_index_.frame_times.empty()) return;
+  if (frames_indexed_ == index_.frames()) return;
   try {
-    write_field_index();
+    write_index();
   } catch (const std::exception& error) {
     std::fprintf(stderr, "tirefe: warning: %s\n", error.what());
   }
 }
 
-void ResultFile::write_field_index() const {
+void ResultFile::write_index() {
+  if (index_.empty()) return;
   std::filesystem::path index(path());
   index.replace_extension(".xmf");
-  write_xdmf(index.string(), field_index_);
+  index_.write(index.string());
+  frames_indexed_ = index_.frames();
+  last_index_write_ = std::chrono::steady_clock::now();
+}
+
+void ResultFile::write_index_if_due() {
+  // Rewriting the whole index after every frame costs the square of the frame count in
+  // all: a long run's index (beyond 1 MB, some 200 frames of a tire on a drum) is
+  // rewritten once a second at most.
+  const auto now = std::chrono::steady_clock::now();
+  if (index_.size() > (1u << 20) && now - last_index_write_ < std::chrono::seconds(1)) return;
+  write_index();
 }
 
 void ResultFile::add_channel(const std::string& name, const std::string& unit, Channel channel) {
@@ -111,18 +125,193 @@ void ResultFile::write_mesh(const Model& model) {
       for (int node : block->element_nodes(e)) connectivity.push_back(node);
     const std::string path = "/mesh/blocks/" + block->name();
     file_.write_int_matrix(path, block->size(), per_element, connectivity.data());
-    field_index_.blocks.push_back({block->name(), block->size(), per_element});
   }
-  field_index_.hdf5_file_name = std::filesystem::path(file_.path()).filename().string();
-  field_index_.nodes = mesh.node_count();
   for (const auto& [name, nodes] : mesh.node_sets())
     file_.write_int_vector("/mesh/node_sets/" + name, std::vector<long long>(nodes.begin(), nodes.end()));
   const std::vector<hsize_t> node_field{static_cast<hsize_t>(mesh.node_count()), 3};
   field_time_ = &file_.create_extendible("/fields/time", {}, "s");
   field_step_ = &file_.create_extendible("/fields/step", {});
-  field_displacement_ = &file_.create_extendible("/fields/displacement", node_field, "m, m, rad");
-  field_velocity_ = &file_.create_extendible("/fields/velocity", node_field, "m/s, m/s, rad/s");
+  field_displacement_ = &file_.create_compressed_extendible("/fields/displacement", node_field, "m, m, rad");
+  field_velocity_ = &file_.create_compressed_extendible("/fields/velocity", node_field, "m/s, m/s, rad/s");
+  if (!rims_.empty()) {
+    field_deformation_ = &file_.create_compressed_extendible("/fields/deformation", node_field, "m, m, rad");
+    file_.write_attribute("/fields/deformation", "meaning",
+                          std::string("displacement less the rigid motion of the tire's rim, fixed axes"));
+  }
+  add_mesh_grids(model);
   mesh_written_ = true;
+}
+
+XdmfGrid ResultFile::node_grid(const std::string& name, const std::string& topology, long long cells,
+                               int nodes_per_cell, const XdmfData& connectivity) const {
+  const long long nodes = static_cast<long long>(field_displacement_->row_size() / 3);
+  XdmfGrid grid{name, topology, cells, nodes_per_cell, connectivity, {"/mesh/coordinates", {nodes, 2}}, {}};
+  auto field = [&](const char* field_name, const char* type) {
+    const bool vector = std::string(type) == "Vector";
+    grid.attributes.push_back({field_name, type, "Node",
+                               {std::string("/fields/frames/{frame}/") + field_name,
+                                vector ? std::vector<long long>{nodes, 3} : std::vector<long long>{nodes}}});
+  };
+  field("displacement", "Vector");
+  field("velocity", "Vector");
+  field("rotation", "Scalar");
+  if (field_deformation_) field("deformation", "Vector");
+  return grid;
+}
+
+void ResultFile::add_mesh_grids(const Model& model) {
+  // The blocks of lines, triangles and quadrilaterals in one mixed topology (each cell: its
+  // XDMF type code, for a polyline its node count, its nodes), a block repeating another's
+  // connectivity (the pressure on the tread) once; point-like blocks as grids of their own.
+  std::vector<long long> cells, cell_block;
+  std::vector<std::vector<int>> drawn;
+  std::string block_names;
+  std::vector<XdmfGrid> point_grids;
+  for (const auto& block : model.blocks()) {
+    const int per_element = block->nodes_per_element();
+    if (block->size() == 0) continue;
+    if (per_element == 1) {
+      point_grids.push_back(node_grid(block->name(), "Polyvertex", block->size(), 1,
+                                      {"/mesh/blocks/" + block->name(), {block->size(), 1}, true}));
+      continue;
+    }
+    const int code = per_element == 2 ? 0x2 : per_element == 3 ? 0x4 : per_element == 4 ? 0x5 : 0;
+    if (code == 0) continue;  // no XDMF cell of that many nodes
+    std::vector<int> connectivity;
+    for (int e = 0; e < block->size(); ++e)
+      for (int node : block->element_nodes(e)) connectivity.push_back(node);
+    if (std::find(drawn.begin(), drawn.end(), connectivity) != drawn.end()) continue;
+    for (int e = 0; e < block->size(); ++e) {
+      cells.push_back(code);
+      if (per_element == 2) cells.push_back(2);
+      for (int node : block->element_nodes(e)) cells.push_back(node);
+      cell_block.push_back(static_cast<long long>(drawn.size()));
+    }
+    block_names += (drawn.empty() ? "" : ", ") + block->name();
+    drawn.push_back(std::move(connectivity));
+  }
+  if (!cells.empty()) {
+    file_.write_int_vector("/mesh/cells", cells);
+    file_.write_attribute("/mesh/cells", "encoding",
+                          std::string("XDMF mixed topology: per cell its type code (2 polyline, 4 triangle, "
+                                      "5 quadrilateral), for a polyline its node count, its nodes"));
+    file_.write_int_vector("/mesh/cell_block", cell_block);
+    file_.write_attribute("/mesh/cell_block", "blocks", block_names);
+    const long long count = static_cast<long long>(cell_block.size());
+    XdmfGrid mesh = node_grid("mesh", "Mixed", count, 0,
+                              {"/mesh/cells", {static_cast<long long>(cells.size())}, true});
+    mesh.attributes.push_back({"block", "Scalar", "Cell", {"/mesh/cell_block", {count}, true}});
+    index_.add_grid(mesh);
+  }
+  for (const XdmfGrid& grid : point_grids) index_.add_grid(grid);
+  for (const std::string& name : shown_node_sets_) {
+    const auto& sets = model.mesh().node_sets();
+    const auto found = sets.find(name);
+    if (found == sets.end() || found->second.empty()) continue;
+    const long long size = static_cast<long long>(found->second.size());
+    index_.add_grid(node_grid(name, "Polyvertex", size, 1, {"/mesh/node_sets/" + name, {size}, true}));
+  }
+}
+
+void ResultFile::add_rim(int spindle, std::vector<int> nodes) {
+  if (discarded_ || mesh_written_) return;
+  rims_.push_back({spindle, std::move(nodes)});
+}
+
+void ResultFile::show_node_set(const std::string& name) {
+  if (discarded_ || mesh_written_) return;
+  shown_node_sets_.push_back(name);
+}
+
+void ResultFile::add_surface(const std::string& name, bool closed, Outline outline) {
+  if (discarded_) return;
+  for (const Surface& surface : surfaces_)
+    if (surface.name == name) throw IoError("surface '" + name + "' is drawn twice in '" + path() + "'");
+  const std::vector<Eigen::Vector2d> points = outline(0.0, view_centre_, view_reach_);
+  const long long count = static_cast<long long>(points.size());
+  if (count < 2) throw IoError("surface '" + name + "' has fewer than two points to draw");
+  const std::string group = "/surfaces/" + name;
+  Surface& surface = surfaces_.emplace_back(Surface{
+      name, std::move(outline),
+      &file_.create_compressed_extendible(group + "/outline", {static_cast<hsize_t>(count), 2}, "m")});
+  // Segments from each point to the next (and from the last back to the first).
+  std::vector<long long> segments;
+  for (long long i = 0; i + 1 < count + (closed ? 1 : 0); ++i) {
+    segments.push_back(i);
+    segments.push_back((i + 1) % count);
+  }
+  const long long segment_count = static_cast<long long>(segments.size() / 2);
+  file_.write_int_matrix(group + "/segments", segment_count, 2, segments.data());
+  XdmfGrid grid{name, "Polyline", segment_count, 2, {group + "/segments", {segment_count, 2}, true},
+                {group + "/frames/{frame}", {count, 2}}, {}};
+  // The frames written before the surface existed show it where its motion put it then.
+  const size_t earlier = index_.frames();
+  for (size_t frame = 0; frame < earlier; ++frame) {
+    append_outline(surface, index_.times()[frame]);
+    file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
+  }
+  index_.add_grid(grid);
+  if (earlier > 0) {
+    flush();
+    write_index();
+  }
+}
+
+void ResultFile::append_outline(Surface& surface, double time) {
+  const std::vector<Eigen::Vector2d> points = surface.outline(time, view_centre_, view_reach_);
+  if (points.size() * 2 != surface.rows->row_size())
+    throw IoError("surface '" + surface.name + "' changed its number of points");
+  row_.resize(points.size() * 2);
+  for (size_t i = 0; i < points.size(); ++i) {
+    row_[2 * i] = points[i].x();
+    row_[2 * i + 1] = points[i].y();
+  }
+  surface.rows->append(row_.data());
+}
+
+void ResultFile::append_deformation(const Model& model, const State& state) {
+  const Mesh& mesh = model.mesh();
+  const Eigen::VectorXd& u = state.displacement;
+  row_.assign(u.data(), u.data() + u.size());  // nodes of no tire: e = u
+  for (const Rim& rim : rims_) {
+    const Eigen::Vector2d spindle_reference = mesh.position(rim.spindle);
+    const Eigen::Vector2d spindle = spindle_reference + u.segment<2>(dof_index(rim.spindle, kUx));
+    const double spin = u[dof_index(rim.spindle, kRz)];
+    const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(spin).toRotationMatrix();
+    std::fill_n(row_.begin() + dof_index(rim.spindle, kUx), kDofsPerNode, 0.0);
+    for (int node : rim.nodes) {
+      const Eigen::Vector2d reference = mesh.position(node);
+      const Eigen::Vector2d position = reference + u.segment<2>(dof_index(node, kUx));
+      const Eigen::Vector2d e = position - spindle - rotation * (reference - spindle_reference);
+      const int first = dof_index(node, kUx);
+      row_[first] = e.x();
+      row_[first + 1] = e.y();
+      row_[first + 2] = u[dof_index(node, kRz)] - spin;
+    }
+  }
+  field_deformation_->append(row_.data());
+}
+
+void ResultFile::write_views(size_t frame) {
+  const std::string prefix = "/fields/frames/" + std::to_string(frame) + "/";
+  file_.write_row_view(prefix + "displacement", *field_displacement_, frame, 0, 2, 3);
+  file_.write_row_view(prefix + "velocity", *field_velocity_, frame, 0, 2, 3);
+  file_.write_row_view(prefix + "rotation", *field_displacement_, frame, 2, 1, 0);
+  if (field_deformation_) file_.write_row_view(prefix + "deformation", *field_deformation_, frame, 0, 2, 3);
+  for (const Surface& surface : surfaces_)
+    file_.write_row_view("/surfaces/" + surface.name + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2,
+                         2);
+}
+
+void ResultFile::index_restored_frames() {
+  if (discarded_ || !mesh_written_) return;
+  const std::vector<double> times = file_.read_doubles("/fields/time");
+  for (size_t frame = index_.frames(); frame < times.size(); ++frame) {
+    write_views(frame);
+    index_.add_frame(times[frame]);
+  }
+  flush();
+  write_index();
 }
 
 void ResultFile::write_modes(const std::string& label, const Analysis& analysis,
@@ -152,12 +341,31 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   const State& state = analysis.state();
   if (state.displacement.size() != static_cast<Eigen::Index>(field_displacement_->row_size()))
     throw IoError("the mesh changed after output started; fields cannot be written to '" + path() + "'");
+  const Model& model = analysis.model();
+  // Where the structure is: a road is drawn a structure's size beyond it (at least a metre).
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (int node = 0; node < model.mesh().node_count(); ++node) {
+    const Eigen::Vector2d position =
+        model.mesh().position(node) + state.displacement.segment<2>(dof_index(node, kUx));
+    low = low.cwiseMin(position);
+    high = high.cwiseMax(position);
+  }
+  if (model.mesh().node_count() > 0) {
+    view_centre_ = 0.5 * (low + high);
+    view_reach_ = std::max((high - low).norm(), 1.0);
+  }
+  const size_t frame = index_.frames();
   field_time_->append(state.time);
-  field_index_.frame_times.push_back(state.time);
   field_step_->append(static_cast<double>(step));
   field_displacement_->append(state.displacement.data());
   field_velocity_->append(state.velocity.data());
+  if (field_deformation_) append_deformation(model, state);
+  for (Surface& surface : surfaces_) append_outline(surface, state.time);
+  write_views(frame);
   flush();
+  // After the flush: the index names only what the file holds.
+  index_.add_frame(state.time);
+  write_index_if_due();
 }
 
 void ResultFile::start(const Analysis& analysis) {

@@ -5,18 +5,34 @@
 //   /mesh/coordinates             node reference positions, nodes x 2 [m]
 //   /mesh/blocks/<name>           element connectivity (0-based node indices), attribute "type"
 //   /mesh/node_sets/<name>        0-based node indices
+//   /mesh/cells, /mesh/cell_block the drawn blocks' cells in XDMF's mixed encoding, and each
+//                                 cell's block
 //   /history/<channel>            one row per accepted step: time, step_size, newton_iterations,
 //                                 cuts, residual, augmentations, energies, and the deck's channels
 //   /modes/<label>/frequency, rigid_body, shapes   modal analyses
 //   /fields/time, /fields/step    one row per field frame
 //   /fields/displacement          frames x nodes x 3 (u_x, u_y, theta_z)
 //   /fields/velocity              frames x nodes x 3 (dynamic runs)
-// <stem>.xmf beside the file indexes the fields for ParaView (io/xdmf.hpp).
+//   /fields/deformation           frames x nodes x 3, models with a tire (below)
+//   /surfaces/<name>/outline      frames x points x 2: a rigid surface where it is at the frame
+//   /fields/frames/<k>/..., /surfaces/<name>/frames/<k>   frame k of the above as whole
+//                                 datasets (virtual: no copies), for the XDMF index
+// Field rows are compressed. <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
 // Rows are flushed at field frames and at least every quarter second of wall time, and
 // when the file closes, so a run that fails leaves a file readable up to its last step
-// and a killed run one readable up to its last flush.
+// and a killed run one readable up to its last flush. The index is rewritten (whole, by a
+// rename) after a frame's flush: after every frame while it is small, at most once a
+// second beyond 1 MB, and when the file closes.
+//
+// Deformation: a tire's displacement with the rigid motion of its rim taken out. With X
+// the reference position of a node, x = X + u, s the spindle and R = R(theta_s),
+//     x_rigid = x_s + R (X - X_s)              where the rim's rigid motion puts the node,
+//     e = x - x_rigid,   e_theta = theta - theta_s,
+// in the fixed axes. A tire that rolls without deforming has e = 0, and x = x_rigid + e:
+// the deformation rolls with the rim. Nodes of no tire: e = u.
 #pragma once
 
+#include <Eigen/Dense>
 #include <chrono>
 #include <functional>
 #include <limits>
@@ -47,7 +63,7 @@ class ResultFile {
   using Channel = std::function<double(const Analysis&, const StepRecord&)>;
 
   ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage = ResultStorage::File);
-  /// Closes the file, and writes the XDMF index of its fields beside it (<stem>.xmf).
+  /// Closes the file, with the index of every frame beside it.
   ~ResultFile();
   ResultFile(const ResultFile&) = delete;
   ResultFile& operator=(const ResultFile&) = delete;
@@ -64,6 +80,20 @@ class ResultFile {
   /// seconds (0: never), whatever the step sizes.
   void set_field_time_interval(double interval) { field_time_interval_ = interval; }
   int field_interval() const { return field_interval_; }
+
+  /// A tire's rim: its spindle node and the nodes the tire carries (for /fields/deformation).
+  /// Rims and node sets given after the mesh was written are ignored.
+  void add_rim(int spindle, std::vector<int> nodes);
+  /// Shows a node set as points of their own in the XDMF index (a tread layer's contact nodes).
+  void show_node_set(const std::string& name);
+  /// A surface's points at 'time', the same number every time; an unbounded surface (a road)
+  /// drawn to 'reach' beyond 'centre'.
+  using Outline = std::function<std::vector<Eigen::Vector2d>(double time, const Eigen::Vector2d& centre, double reach)>;
+  /// Draws a rigid surface at every field frame: a polyline through the outline's points
+  /// (closed: back to the first). Frames written before it are drawn too, at their times.
+  void add_surface(const std::string& name, bool closed, Outline outline);
+  /// After a restart refilled the rows: the views and the index of the frames it brought back.
+  void index_restored_frames();
 
   /// Records one accepted step (writes the mesh first if it has not been written).
   void record(const Analysis& analysis, const StepRecord& record);
@@ -84,8 +114,24 @@ class ResultFile {
     ExtendibleDataset* dataset;
     Channel value;
   };
+  struct Rim {
+    int spindle;
+    std::vector<int> nodes;
+  };
+  struct Surface {
+    std::string name;
+    Outline outline;
+    ExtendibleDataset* rows;
+  };
   void write_mesh(const Model& model);
-  void write_field_index() const;
+  void add_mesh_grids(const Model& model);
+  XdmfGrid node_grid(const std::string& name, const std::string& topology, long long cells, int nodes_per_cell,
+                     const XdmfData& connectivity) const;
+  void append_deformation(const Model& model, const State& state);
+  void append_outline(Surface& surface, double time);
+  void write_views(size_t frame);
+  void write_index();
+  void write_index_if_due();
   void start_history();
   void flush_if_due();
 
@@ -104,7 +150,16 @@ class ResultFile {
   ExtendibleDataset* field_step_ = nullptr;
   ExtendibleDataset* field_displacement_ = nullptr;
   ExtendibleDataset* field_velocity_ = nullptr;
-  XdmfFields field_index_;  // what the XDMF file points at
+  ExtendibleDataset* field_deformation_ = nullptr;  // with a rim
+  std::vector<Rim> rims_;
+  std::vector<std::string> shown_node_sets_;
+  std::vector<Surface> surfaces_;
+  std::vector<double> row_;        // one frame's deformation
+  Eigen::Vector2d view_centre_ = Eigen::Vector2d::Zero();  // where the last frame's structure is
+  double view_reach_ = 1.0;
+  XdmfIndex index_;
+  size_t frames_indexed_ = 0;  // in the index file
+  std::chrono::steady_clock::time_point last_index_write_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace tirefe::io

@@ -1,7 +1,8 @@
 #include "io/xdmf.hpp"
 
+#include <charconv>
+#include <cstdio>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 #include "io/hdf5_file.hpp"
@@ -10,79 +11,117 @@ namespace tirefe::io {
 
 namespace {
 
-const char* topology_of(int nodes_per_element) {
-  switch (nodes_per_element) {
-    case 1: return "Polyvertex";
-    case 2: return "Polyline";
-    case 3: return "Triangle";
-    case 4: return "Quadrilateral";
-    default: return nullptr;
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
   }
+  return out;
 }
 
-/// One frame's slab of /fields/displacement: 'components' columns from 'first'.
-void write_slab(std::ostream& out, const XdmfFields& fields, size_t frame, int first, int components,
-                const std::string& indent) {
-  const size_t frames = fields.frame_times.size();
-  out << indent << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << fields.nodes << " " << components
-      << "\" Type=\"HyperSlab\">\n"
-      << indent << "  <DataItem Dimensions=\"3 3\" Format=\"XML\">" << frame << " 0 " << first << "  1 1 1  1 "
-      << fields.nodes << " " << components << "</DataItem>\n"
-      << indent << "  <DataItem Dimensions=\"" << frames << " " << fields.nodes
-      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << fields.hdf5_file_name
-      << ":/fields/displacement</DataItem>\n"
-      << indent << "</DataItem>\n";
+/// The shortest text that reads back as the same double.
+std::string exact(double value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+std::string with_frame(const std::string& path, size_t frame) {
+  const std::string token = "{frame}";
+  const size_t at = path.find(token);
+  if (at == std::string::npos) return path;
+  return path.substr(0, at) + std::to_string(frame) + path.substr(at + token.size());
+}
+
+void data_item(std::string& out, const std::string& file, const XdmfData& data, size_t frame, const char* indent) {
+  out += indent;
+  out += "<DataItem Dimensions=\"";
+  for (size_t i = 0; i < data.dimensions.size(); ++i) out += (i ? " " : "") + std::to_string(data.dimensions[i]);
+  out += data.integer ? "\" DataType=\"Int\"" : "\" DataType=\"Float\"";
+  out += " Precision=\"8\" Format=\"HDF\">" + file + ":" + escaped(with_frame(data.path, frame)) + "</DataItem>\n";
 }
 
 }  // namespace
 
-std::string xdmf_text(const XdmfFields& fields) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n  <Domain>\n"
-      << "    <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  const std::string& file = fields.hdf5_file_name;
-  for (size_t frame = 0; frame < fields.frame_times.size(); ++frame) {
-    out << "      <Grid Name=\"frame " << frame << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-        << "        <Time Value=\"" << fields.frame_times[frame] << "\" />\n";
-    std::set<std::pair<int, int>> drawn;  // blocks repeating another's shape (the pressure on the tread) are skipped
-    for (const XdmfBlock& block : fields.blocks) {
-      const char* topology = topology_of(block.nodes_per_element);
-      if (!topology || block.elements == 0) continue;
-      if (!drawn.insert({block.elements, block.nodes_per_element}).second) continue;
-      out << "        <Grid Name=\"" << block.name << "\" GridType=\"Uniform\">\n"
-          << "          <Topology TopologyType=\"" << topology << "\" NumberOfElements=\"" << block.elements << "\""
-          << (block.nodes_per_element <= 2 ? " NodesPerElement=\"" + std::to_string(block.nodes_per_element) + "\""
-                                           : std::string())
-          << ">\n"
-          << "            <DataItem Dimensions=\"" << block.elements << " " << block.nodes_per_element
-          << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << file << ":/mesh/blocks/" << block.name
-          << "</DataItem>\n          </Topology>\n"
-          << "          <Geometry GeometryType=\"XY\">\n"
-          << "            <DataItem ItemType=\"Function\" Function=\"$0 + $1\" Dimensions=\"" << fields.nodes
-          << " 2\">\n"
-          << "              <DataItem Dimensions=\"" << fields.nodes
-          << " 2\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/mesh/coordinates</DataItem>\n";
-      write_slab(out, fields, frame, 0, 2, "              ");
-      out << "            </DataItem>\n          </Geometry>\n";
-      const char* names[] = {"u_x", "u_y", "theta_z"};
-      for (int component = 0; component < 3; ++component) {
-        out << "          <Attribute Name=\"" << names[component] << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
-        write_slab(out, fields, frame, component, 1, "            ");
-        out << "          </Attribute>\n";
-      }
-      out << "        </Grid>\n";
-    }
-    out << "      </Grid>\n";
+XdmfIndex::XdmfIndex(std::string hdf5_file_name) : file_(escaped(hdf5_file_name)) {}
+
+void XdmfIndex::add_grid(const XdmfGrid& grid) {
+  Collection& collection = collections_.emplace_back(Collection{grid, {}});
+  for (size_t frame = 0; frame < times_.size(); ++frame) append_frame(collection, frame);
+}
+
+void XdmfIndex::add_frame(double time) {
+  times_.push_back(time);
+  for (Collection& collection : collections_) append_frame(collection, times_.size() - 1);
+}
+
+void XdmfIndex::append_frame(Collection& collection, size_t frame) const {
+  const XdmfGrid& grid = collection.grid;
+  std::string& out = collection.frames;
+  out += "      <Grid Name=\"" + escaped(grid.name) + "\" GridType=\"Uniform\">\n";
+  out += "        <Time Value=\"" + exact(times_[frame]) + "\" />\n";
+  out += "        <Topology TopologyType=\"" + grid.topology + "\" NumberOfElements=\"" + std::to_string(grid.cells) + "\"";
+  if (grid.nodes_per_cell > 0) out += " NodesPerElement=\"" + std::to_string(grid.nodes_per_cell) + "\"";
+  out += ">\n";
+  data_item(out, file_, grid.connectivity, frame, "          ");
+  out += "        </Topology>\n        <Geometry GeometryType=\"XY\">\n";
+  data_item(out, file_, grid.geometry, frame, "          ");
+  out += "        </Geometry>\n";
+  for (const XdmfAttribute& attribute : grid.attributes) {
+    out += "        <Attribute Name=\"" + escaped(attribute.name) + "\" AttributeType=\"" + attribute.type +
+           "\" Center=\"" + attribute.centre + "\">\n";
+    data_item(out, file_, attribute.data, frame, "          ");
+    out += "        </Attribute>\n";
   }
-  out << "    </Grid>\n  </Domain>\n</Xdmf>\n";
+  out += "      </Grid>\n";
+}
+
+template <class Out>
+void XdmfIndex::write_to(Out& out) const {
+  out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  // The first grid last: the one meshio reads.
+  for (size_t i = 1; i <= collections_.size(); ++i) {
+    const Collection& collection = collections_[i % collections_.size()];
+    out << "    <Grid Name=\"" << escaped(collection.grid.name)
+        << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
+        << collection.frames << "    </Grid>\n";
+  }
+  out << "  </Domain>\n</Xdmf>\n";
+}
+
+size_t XdmfIndex::size() const {
+  size_t bytes = 0;
+  for (const Collection& collection : collections_) bytes += collection.frames.size();
+  return bytes;
+}
+
+std::string XdmfIndex::text() const {
+  std::ostringstream out;
+  write_to(out);
   return out.str();
 }
 
-void write_xdmf(const std::string& path, const XdmfFields& fields) {
-  std::ofstream out(path, std::ios::trunc);
-  out << xdmf_text(fields);
-  if (!out) throw IoError("cannot write the XDMF index '" + path + "'");
+void XdmfIndex::write(const std::string& path) const {
+  const std::string partial = path + ".partial";
+  {
+    std::ofstream out(partial, std::ios::trunc);
+    write_to(out);
+    out.close();
+    if (!out) {
+      std::remove(partial.c_str());
+      throw IoError("cannot write the XDMF index '" + partial + "'");
+    }
+  }
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    std::remove(partial.c_str());
+    throw IoError("cannot rename the XDMF index '" + partial + "' to '" + path + "'");
+  }
 }
 
 }  // namespace tirefe::io

@@ -198,7 +198,9 @@ int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   const std::string name = arguments.string("name");
   auto& surfaces = registry_of(deck).surfaces;
   if (surfaces.count(name)) throw ModelError("surface '" + name + "' is already defined");
-  surfaces[name] = build_surface(deck, arguments);
+  const std::shared_ptr<const RigidSurface> surface = build_surface(deck, arguments);
+  surfaces[name] = surface;
+  deck.describe_output([name, surface](io::ResultFile& file) { add_surface_output(file, name, surface); });
   return 0;
 }
 

@@ -111,6 +111,15 @@ void DeckModel::open_output(const std::string& file, int field_interval, double 
     output_ = std::make_unique<io::ResultFile>(file, metadata, io::ResultStorage::Discarded);
   output_->set_field_interval(field_interval);
   output_->set_field_time_interval(field_time_interval);
+  for (const auto& describe : output_descriptions_) describe(*output_);
+  output_descriptions_.clear();
+}
+
+void DeckModel::describe_output(std::function<void(io::ResultFile&)> describe) {
+  if (output_)
+    describe(*output_);
+  else
+    output_descriptions_.push_back(std::move(describe));
 }
 
 io::ResultFile& DeckModel::output_or_default() {

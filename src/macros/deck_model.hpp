@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -48,6 +49,9 @@ class DeckModel {
   io::ResultFile* output() { return output_.get(); }
   /// The result file, opened under a default name if the deck named none.
   io::ResultFile& output_or_default();
+  /// Hands 'describe' the result file once it is open (at once if it is): what the file
+  /// shows besides the mesh, such as a tire's rim or a surface to draw.
+  void describe_output(std::function<void(io::ResultFile&)> describe);
 
   /// Advances the analysis; the first step opens the default output if none is open.
   /// Restarting, it skips the time before the checkpoint and loads the checkpoint when it gets there.
@@ -74,6 +78,7 @@ class DeckModel {
   std::map<std::string, BeamSection> sections_;
   std::map<std::string, int> load_functions_;
   std::unique_ptr<io::ResultFile> output_;
+  std::vector<std::function<void(io::ResultFile&)>> output_descriptions_;  // until it opens
   bool calls_lua_ = false;
   int index_;  // counted from 1 in the order the deck creates its models
   std::shared_ptr<const io::Checkpoint> restart_;

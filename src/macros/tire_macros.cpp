@@ -50,6 +50,16 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   // Spindle equations last, as the spindle-force condensation and the RingSolver's border want them.
   deck.model().condense_node(tire.spindle);
   deck.analysis().prefer_ring_solver(tire.tread_nodes, {tire.spindle});
+  // The result file takes the rim's rigid motion out of the tire's nodes (/fields/deformation)
+  // and shows a tread layer's contact nodes.
+  std::vector<int> carried = tire.tread_nodes;
+  if (parameters.tread_layer.enabled())
+    carried.insert(carried.end(), tire.contact_nodes.begin(), tire.contact_nodes.end());
+  const std::string contact_set = parameters.tread_layer.enabled() ? name + "_contact" : "";
+  deck.describe_output([spindle = tire.spindle, carried, contact_set](io::ResultFile& file) {
+    file.add_rim(spindle, carried);
+    if (!contact_set.empty()) file.show_node_set(contact_set);
+  });
   lua_createtable(L, 0, 6);
   lua_pushinteger(L, tire.spindle + 1);
   lua_setfield(L, -2, "spindle");
