@@ -89,6 +89,14 @@ do
     passages[#passages + 1] = { on = time_at_angle(lead), off = time_at_angle(trail) }
     lead, trail = lead + 2 * math.pi, trail + 2 * math.pi
   end
+  -- The summary reads a passage at full speed with its ringing: refuse a protocol that has none.
+  local full_speed_lead = lead - 2 * math.pi * #passages
+  while time_at_angle(full_speed_lead) < dynamic_start + p.spin_up_time do full_speed_lead = full_speed_lead + 2 * math.pi end
+  local needed = time_at_angle(full_speed_lead + 2 * cleat_half_angle) + p.ring_time
+  if needed > p.end_time + 1e-9 then
+    error(string.format("parameter end_time = %g s ends before the first cleat passage at full speed has rung out: "
+                        .. "give end_time >= %.3f s", p.end_time, needed), 0)
+  end
 end
 
 -- Fine steps from shortly before a passage until ring_time after it; elsewhere steps in
@@ -269,8 +277,6 @@ if last then
                         math.pi * p.drum_diameter / speed))
     model:result{ name = "impact_period", value = summary.impact_period, unit = "s" }
   end
-else
-  print("no complete cleat passage at full speed before end_time: no impact summary")
 end
 
 -- Steady rolling just before the last passage: effective rolling radius = drum surface

@@ -67,6 +67,7 @@ class Spec:
         default_tirefe = os.path.join(REPOSITORY, "build", "tirefe")
         self.tirefe = os.path.join(folder, raw["tirefe"]) if "tirefe" in raw else default_tirefe
         self.output = os.path.join(folder, raw.get("output", stem))
+        self.output_overridden = False
         self.jobs = int(raw.get("jobs", os.cpu_count() or 1))
         self.timeout = raw.get("timeout")
         self.metrics = raw.get("metrics", {})
@@ -102,18 +103,26 @@ class Spec:
 
 # ---- metrics: reductions of history channels ------------------------------------------
 
-def dominant_frequency(time, values):
-    """Frequency of the largest peak of the spectrum (resampled uniformly, Hann window,
-    zero-padded, the peak located between bins by a parabola through its log magnitudes)."""
+def dominant_frequency(time, values, band=None):
+    """Frequency of the largest peak of the spectrum within 'band' [Hz] (default: above 0):
+    resampled uniformly, straight line removed, Hann window, zero-padded, the peak located
+    between bins by a parabola through its log magnitudes."""
     if values.size < 4:
         raise MetricError("too few samples for a spectrum")
     step = np.median(np.diff(time))
     uniform = np.arange(time[0], time[-1] + 0.5 * step, step)
     samples = np.interp(uniform, time, values)
-    samples = (samples - samples.mean()) * np.hanning(samples.size)
+    samples = samples - np.polyval(np.polyfit(uniform - uniform[0], samples, 1), uniform - uniform[0])
+    samples = samples * np.hanning(samples.size)
     size = 8 * 2 ** int(np.ceil(np.log2(samples.size)))  # zero padding refines the peak
     spectrum = np.log(np.abs(np.fft.rfft(samples, size)) + 1e-300)
-    peak = 1 + int(np.argmax(spectrum[1:-1]))
+    frequencies = np.fft.rfftfreq(size, step)
+    low, high = band if band else (0.0, frequencies[-1])
+    inside = np.nonzero((frequencies >= low) & (frequencies <= high))[0]
+    inside = inside[(inside > 0) & (inside < frequencies.size - 1)]
+    if inside.size == 0:
+        raise MetricError(f"no frequency of the spectrum in the band {low}-{high} Hz")
+    peak = int(inside[np.argmax(spectrum[inside])])
     below, at, above = spectrum[peak - 1:peak + 2]  # a parabola through the peak's log magnitudes
     offset = 0.5 * (below - above) / (below - 2 * at + above) if below - 2 * at + above < 0 else 0.0
     return float((peak + offset) / (size * step))
@@ -160,6 +169,8 @@ def metric_value(metric, folder):
         time, values = time[inside], values[inside]
     if values.size == 0:
         raise MetricError("no samples in the time window")
+    if metric["reduce"] == "dominant_frequency":
+        return dominant_frequency(time, values, metric.get("band"))
     return REDUCTIONS[metric["reduce"]](time, values)
 
 
@@ -257,8 +268,13 @@ def command_one(spec, arguments):
     return 0 if record["status"] == "ok" else 1
 
 
+def script_command(spec, command):
+    """This script's command line for a subcommand on the spec, with any --output override."""
+    return [sys.executable, SCRIPT, command, spec.path, *(["--output", spec.output] if spec.output_overridden else [])]
+
+
 def one_command(spec, identifier):
-    return shlex.join([sys.executable, SCRIPT, "one", spec.path, identifier])
+    return shlex.join(script_command(spec, "one") + [identifier])
 
 
 def command_joblist(spec, arguments):
@@ -268,7 +284,7 @@ def command_joblist(spec, arguments):
     with open(path, "w") as f:
         f.writelines(one_command(spec, identifier) + "\n" for identifier in pending)
     print(f"wrote {path} ({len(pending)} runs); e.g. xargs -d '\\n' -P {spec.jobs} -I{{}} sh -c {{}} < {path}, "
-          f"then: {shlex.join([sys.executable, SCRIPT, 'collect', spec.path])}")
+          f"then: {shlex.join(script_command(spec, 'collect'))}")
     return 0
 
 
@@ -284,9 +300,9 @@ def command_slurm(spec, arguments):
     options += [f"--{key}={value}" for key, value in spec.slurm.items()]
     lines = ["#!/bin/bash", *(f"#SBATCH {option}" for option in options),
              f"# One sweep run per array task. When the array has finished: "
-             f"{shlex.join([sys.executable, SCRIPT, 'collect', spec.path])}",
+             f"{shlex.join(script_command(spec, 'collect'))}",
              "RUNS=(" + " ".join(shlex.quote(identifier) for identifier in pending) + ")",
-             f"exec {shlex.join([sys.executable, SCRIPT, 'one', spec.path])} \"${{RUNS[$SLURM_ARRAY_TASK_ID]}}\""]
+             f"exec {shlex.join(script_command(spec, 'one'))} \"${{RUNS[$SLURM_ARRAY_TASK_ID]}}\""]
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
     print(f"wrote {path} ({len(pending)} array tasks); submit with: sbatch {path}")
@@ -305,6 +321,7 @@ def main():
                           ("collect", command_collect), ("one", command_one)):
         sub = commands.add_parser(name)
         sub.add_argument("spec", help="sweep specification (JSON)")
+        sub.add_argument("--output", help="the sweep's folder instead of the spec's 'output'")
         sub.set_defaults(handler=handler)
         if name == "run":
             sub.add_argument("--jobs", type=int, help="runs at a time (default: the spec's, else the CPU count)")
@@ -312,7 +329,10 @@ def main():
         if name == "one":
             sub.add_argument("run_id")
     arguments = parser.parse_args()
-    sys.exit(arguments.handler(Spec(arguments.spec), arguments))
+    spec = Spec(arguments.spec)
+    if arguments.output:
+        spec.output, spec.output_overridden = os.path.abspath(arguments.output), True
+    sys.exit(arguments.handler(spec, arguments))
 
 
 if __name__ == "__main__":

@@ -134,6 +134,8 @@ def test_metric_reductions_on_known_series(folder):
     time = np.sort(np.random.default_rng(7).uniform(0.0, 3.0, 400))  # uneven steps, as after step cuts
     signal = np.cos(2 * np.pi * 4.1 * time) + 0.3 * np.sin(2 * np.pi * 11.0 * time)
     assert abs(sweep.dominant_frequency(time, signal) - 4.1) < 0.01
+    # The band excludes 4.1 Hz; the weaker line is read less exactly off the interpolated samples.
+    assert abs(sweep.dominant_frequency(time, signal, [8.0, 20.0]) - 11.0) < 0.02
     ramp = np.linspace(0.0, 2.0, 21)
     assert abs(sweep.REDUCTIONS["mean"](ramp, 3 * ramp) - 3.0) < 1e-12
     assert sweep.REDUCTIONS["peak_to_peak"](ramp, np.sin(np.pi * ramp)) == 2 * np.sin(np.pi * 0.5)
@@ -149,6 +151,29 @@ def test_plot_sweep_writes_a_png(folder):
     assert result.returncode == 0, result.stderr
     with open(output, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_the_documented_cleat_sweep_runs_as_written(folder):
+    """docs/sweeps.md's spec is inputs/sweeps/cleat_speeds.json, and every run of it is ok with every metric."""
+    root = os.path.dirname(HERE)
+    spec = os.path.join(root, "inputs", "sweeps", "cleat_speeds.json")
+    with open(os.path.join(root, "docs", "sweeps.md")) as f:
+        documented = f.read().split("```json\n", 1)[1].split("```", 1)[0]
+    with open(spec) as f:
+        assert f.read() == documented
+    output = os.path.join(folder, "cleat_speeds")
+    result = sweep_command("run", spec, "--output", output)
+    assert result.returncode == 0, result.stdout + result.stderr
+    with open(os.path.join(output, "manifest.csv"), newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 6 and all(row["status"] == "ok" for row in rows), rows
+    for row in rows:
+        assert float(row["final_time"]) == 3.2
+        assert 75 < float(row["fz_leaving_Hz"]) < 95, row  # the vertical mode, not the passage rate
+        assert 40 < float(row["fz_dominant_Hz"]) < 200, row
+        assert float(row["fz_max"]) > 5000 and float(row["fx_peak_to_peak"]) > 1000, row
+    row = next(r for r in rows if r["speed_kmh"] == "51.3" and r["pressure_kpa"] == "208")
+    assert abs(float(row["fx_leaving_Hz"]) - 35.4) < 1.0, row  # docs/drum_cleat.md, short protocol
 
 
 if __name__ == "__main__":
