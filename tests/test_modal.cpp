@@ -6,13 +6,17 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
 
 #include "core/assembler.hpp"
 #include "elements/beam_mesh.hpp"
 #include "elements/point_mass.hpp"
+#include "io/hdf5_file.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
 #include "solvers/modal.hpp"
+#include "test_support.hpp"
 #include "tire/tire_builder.hpp"
 
 using namespace tirefe;
@@ -468,4 +472,56 @@ TEST_CASE("inflated tire on a held hub (unsymmetric tangent): the n = 1 pair has
   CHECK(force_a.norm() > 0.0);
   CHECK(std::abs(force_a.dot(force_b)) <= 1e-6 * force_a.norm() * force_b.norm());
   CHECK(force_b.norm() == Approx(force_a.norm()).epsilon(1e-6));
+}
+
+TEST_CASE("model:modal{ damped = true }: the deck's lists and /modes/<label>", "[modal][damped][macros]") {
+  // A clamped cantilever with curvature damping c_kappa = beta EI: its bending modes, whose
+  // energy is almost all bending (EA L^2 / EI = 1e6), have zeta = beta omega / 2.
+  testing::TempDir folder;
+  const std::string deck = folder.write("cantilever.lua", R"(
+local beta, EI = 1e-3, 10.0
+local model = tirefe.model{ title = "damped cantilever" }
+local nodes = {}
+for i = 0, 20 do nodes[#nodes + 1] = model:node{ x = 0.05 * i, y = 0 } end
+model:section{ name = "beam", EA = 1e7, GA = 1e7, EI = EI, rhoA = 2.0, rhoI = 2e-6, curvature_damping = beta * EI }
+model:beam{ section = "beam", nodes = nodes }
+model:fix{ node = nodes[1] }
+model:output{ file = "cantilever.h5" }
+local undamped = model:modal{ modes = 3, label = "plain" }
+local f, axle, zeta = model:modal{ modes = 3, damped = true, label = "damped", reaction_node = nodes[1] }
+tirefe.check{ name = "three modes", value = #f + #axle + #zeta, expected = 9, tolerance = 0 }
+for i = 1, 2 do
+  local omega = 2 * math.pi * undamped[i]
+  tirefe.check{ name = "zeta = beta omega / 2", value = zeta[i], expected = beta * omega / 2, relative = 1e-3 }
+  tirefe.check{ name = "damped frequency", value = f[i], expected = undamped[i] * math.sqrt(1 - zeta[i] ^ 2),
+                relative = 1e-3 }
+  tirefe.check{ name = "the clamp takes a shear force", value = axle[i][2] > 0 and 1 or 0, expected = 1, tolerance = 0 }
+end
+local _, none, zeta_spun = model:modal{ modes = 3, damped = true, spin_rate = 2.0, label = "turning" }
+tirefe.check{ name = "no reaction_node: nil", value = none == nil and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  const std::string command = std::string(TIREFE_BINARY) + " " + deck + " --quiet --output-dir " + folder.path() +
+                              " > " + folder.path("log.txt") + " 2>&1";
+  const int status = std::system(command.c_str());
+  INFO("log: " << std::ifstream(folder.path("log.txt")).rdbuf());
+  REQUIRE(status == 0);
+  const io::Hdf5File file = io::Hdf5File::open_read_only(folder.path("cantilever.h5"));
+  std::vector<hsize_t> real_shape, imaginary_shape;
+  const std::vector<double> zeta = file.read_doubles("/modes/damped/damping_ratio");
+  const std::vector<double> frequency = file.read_doubles("/modes/damped/frequency");
+  const std::vector<double> natural = file.read_doubles("/modes/damped/natural_frequency");
+  file.read_doubles("/modes/damped/shapes", &real_shape);
+  file.read_doubles("/modes/damped/shapes_imag", &imaginary_shape);
+  REQUIRE(zeta.size() == 3);
+  CHECK(real_shape == imaginary_shape);
+  CHECK(real_shape == std::vector<hsize_t>{3, 21 * 3});
+  for (int i = 0; i < 3; ++i) {
+    CHECK(zeta[i] > 0.0);
+    CHECK(frequency[i] == Approx(natural[i] * std::sqrt(1.0 - zeta[i] * zeta[i])).epsilon(1e-12));
+  }
+  CHECK(file.read_double_attribute("/modes/turning", "spin_rate") == 2.0);
+  CHECK(file.read_double_attribute("/modes/damped", "spin_rate") == 0.0);
+  // The undamped group keeps its layout and has no damped datasets.
+  CHECK(file.exists("/modes/plain/shapes"));
+  CHECK_FALSE(file.exists("/modes/plain/damping_ratio"));
 }
