@@ -302,12 +302,12 @@ TEST_CASE("mass on an isotropic spring in a turning frame: omega_0 - Omega and o
 
 namespace {
 
-/// A free ring of beams (radius 1, EI = 1, rho A = 1, EA R^2 / EI = 1e5) pre-stressed by
+/// A free ring of 72 beams (radius 1, EI = 1, rho A = 1, EA R^2 / EI = 1e5) pre-stressed by
 /// its centrifugal load at a spin Omega: radial nodal loads Omega^2 (M r)_i, the
 /// consistent mass of the linear beams, solved statically with two tangential supports
 /// that are released afterwards. The hoop tension is rho A Omega^2 R^2.
 struct SpinningRing {
-  static constexpr int kElements = 96;
+  static constexpr int kElements = 72;
   Model model;
   std::vector<int> nodes;
   State state;
@@ -346,7 +346,7 @@ TEST_CASE("spinning ring in the turning frame: its bending pairs split by Bryan'
   // two translations turn at Omega.
   const double omega2 = 6.0 / std::sqrt(5.0);  // n = 2 of an inextensible ring, rad/s
   double split_at_rest = 1.0;
-  for (double spin : {0.0, 1e-3 * omega2, 1e-2 * omega2}) {
+  for (double spin : {0.0, 1e-2 * omega2}) {
     SpinningRing ring(spin);
     DampedModalSettings settings;
     settings.spin_rate = spin;
@@ -373,8 +373,8 @@ TEST_CASE("spinning ring in the turning frame: its bending pairs split by Bryan'
         if (n == 2) split_at_rest = upper - lower;
         continue;
       }
-      // The linear beams' shapes move the factor by about (n h)^2 / 25, h = 2 pi / 96:
-      // 6.5e-4 at n = 2 and 2.3e-3 at n = 3 (a quarter of that with 192 beams).
+      // The linear beams' shapes move the factor by about (n h)^2 / 25, h = 2 pi / 72
+      // (with 96 beams 6.5e-4 at n = 2 and 2.3e-3 at n = 3, a quarter of that with 192).
       const double h = 2.0 * kPi / SpinningRing::kElements;
       CHECK((upper - lower) / (2.0 * spin) == Approx(bryan).epsilon(n * n * h * h / 10.0));
     }
