@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
+#include <string>
 
 #include "core/assembler.hpp"
 #include "elements/beam_mesh.hpp"
@@ -79,6 +81,20 @@ double mac(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   const double cross = a.dot(b);
   return cross * cross / (a.squaredNorm() * b.squaredNorm());
 }
+
+/// A 145 SR-12 inflated on a held hub (spindle fixed in all three DOFs).
+struct HeldHubTire {
+  Model model;
+  Tire tire;
+  std::unique_ptr<Analysis> analysis;
+  explicit HeldHubTire(const std::string& module) {
+    tire = build_tire(model, macros::load_tire_parameters(module), LoadFunction::linear());
+    for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
+    analysis = std::make_unique<Analysis>(model);
+    analysis->set_time_step(0.25);
+    analysis->advance(1.0);
+  }
+};
 
 /// M over the free equations at a state, and a shape restricted to them.
 Eigen::MatrixXd free_mass(Model& model, const State& state) {
@@ -218,14 +234,10 @@ TEST_CASE("shift-invert Krylov gives the dense solver's modes: damped chain, dam
     for (int i = 0; i < 2; ++i) CHECK(std::abs(a.roots[i] - b.roots[i]) <= 1e-12 * std::abs(b.roots[i]));
   }
   SECTION("the paper's tire inflated on a held hub, sidewall dampers: a degenerate pair found twice") {
-    Model model;
-    const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
-    for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
-    Analysis analysis(model);
-    analysis.set_time_step(0.25);
-    analysis.advance(1.0);
-    const DampedModalResult a = damped_modal_analysis(analysis, 8, krylov);
-    const DampedModalResult b = damped_modal_analysis(analysis, 8, dense);
+    HeldHubTire inflated("tires.145SR12");
+    const Tire& tire = inflated.tire;
+    const DampedModalResult a = damped_modal_analysis(*inflated.analysis, 8, krylov);
+    const DampedModalResult b = damped_modal_analysis(*inflated.analysis, 8, dense);
     CHECK(a.shift_invert);
     REQUIRE(a.roots.size() == 8);
     REQUIRE(b.roots.size() == 8);
@@ -438,12 +450,10 @@ TEST_CASE("free-free beam with GA / EA = 1e8: exactly three rigid-body modes, an
 
 TEST_CASE("inflated tire on a held hub (unsymmetric tangent): the n = 1 pair has two shapes and two axle forces",
           "[modal][tire]") {
-  Model model;
-  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
-  for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
-  Analysis analysis(model);
-  analysis.set_time_step(0.25);
-  analysis.advance(1.0);
+  HeldHubTire inflated("tires.145SR12");
+  Model& model = inflated.model;
+  const Tire& tire = inflated.tire;
+  Analysis& analysis = *inflated.analysis;
   const ModalResult modes = modal_analysis(analysis, 8);
   REQUIRE_FALSE(modes.symmetric);  // follower pressure and the sidewall shear
 

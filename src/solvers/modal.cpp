@@ -24,14 +24,22 @@ struct HistoryRevert {
   ~HistoryRevert() { model.revert_history(); }
 };
 
-/// Assembles the free-equation tangent for one set of tangent factors, densely.
-Eigen::MatrixXd dense_tangent(Assembler& assembler, const State& state, const IntegratorFactors& factors) {
+/// One assembly pass at a state with the given factors: the residual of every DOF (the
+/// tangent, if asked for, stays in the assembler).
+Eigen::VectorXd assembled_forces(Assembler& assembler, const State& state, const IntegratorFactors& factors,
+                                 bool with_tangent) {
   EvaluationContext context;
   context.time = state.time;
   context.factors = factors;
-  context.want_tangent = true;
+  context.want_tangent = with_tangent;
   Eigen::VectorXd residual;
   assembler.assemble(context, state, residual);
+  return residual;
+}
+
+/// Assembles the free-equation tangent for one set of tangent factors, densely.
+Eigen::MatrixXd dense_tangent(Assembler& assembler, const State& state, const IntegratorFactors& factors) {
+  assembled_forces(assembler, state, factors, true);
   // The assembler keeps one sparse matrix: copy it out before the next pass.
   return Eigen::MatrixXd(assembler.tangent());
 }
@@ -137,13 +145,7 @@ class ForceProbe {
     return field;
   }
   Eigen::VectorXd forces(const State& state, const IntegratorFactors& weights) {
-    EvaluationContext context;
-    context.time = state.time;
-    context.factors = weights;
-    context.want_tangent = false;
-    Eigen::VectorXd residual;
-    assembler_.assemble(context, state, residual);
-    return residual;
+    return assembled_forces(assembler_, state, weights, false);
   }
 
   Model& model_;
