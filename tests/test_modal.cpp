@@ -49,6 +49,19 @@ struct AxialLink : KernelShape<2> {
   ElementEnergy energy(const LocalState<kDofs>&, const History&) const { return {}; }
 };
 
+/// Grounded springs with a one-way coupling (an unsymmetric K), unit mass on every component.
+struct OneWaySpring : KernelShape<1> {
+  Matrix stiffness;
+
+  void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
+                Vector& residual, Matrix* tangent) const {
+    const IntegratorFactors& f = context.factors;
+    residual = f.force_stiffness * stiffness * local.displacement + f.force_mass * local.acceleration;
+    if (tangent) *tangent = f.tangent_stiffness * stiffness + f.tangent_mass * Matrix::Identity();
+  }
+  ElementEnergy energy(const LocalState<kDofs>&, const History&) const { return {}; }
+};
+
 /// Masses on the u_x of nodes 1..n, linked by springs and dashpots to each other and node 0
 /// (held): ground -k1,c1- m1 -k2,c2- m2 ..., each mass also on a dashpot to ground. Only u_x moves.
 struct Chain {
@@ -264,6 +277,19 @@ TEST_CASE("shift-invert Krylov gives the dense solver's modes: damped chain, dam
     }
     // The belt's n = 1 translation and the n >= 2 bending come in degenerate pairs.
     CHECK(pairs >= 2);
+  }
+  SECTION("a K whose symmetric part is indefinite (friction, follower loads)") {
+    // K = k [1 3 0; 0 2 0; 0 0 3]: eigenvalues k, 2k, 3k, symmetric part indefinite.
+    Model model;
+    model.mesh().add_node({0.0, 0.0});
+    OneWaySpring spring;
+    spring.stiffness << 1.0, 3.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 3.0;
+    spring.stiffness *= 400.0;
+    model.add_block<OneWaySpring>("spring").add({0}, spring);
+    const DampedModalResult modes = damped_modal_analysis(model, State{}, 3, krylov);
+    CHECK(modes.shift_invert);
+    REQUIRE(modes.roots.size() == 3);
+    for (int i = 0; i < 3; ++i) CHECK(modes.frequencies_hz[i] == Approx(20.0 * std::sqrt(i + 1.0) / (2 * kPi)).epsilon(1e-12));
   }
   SECTION("rigid-body modes (a singular K) go to the dense solver") {
     Model model;

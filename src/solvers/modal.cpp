@@ -289,9 +289,17 @@ std::vector<Root> shift_invert_roots(const Eigen::MatrixXd& stiffness, const Eig
   const Eigen::MatrixXd& mass = linear.mass;
   const Eigen::Index n = stiffness.rows(), size_limit = std::min<Eigen::Index>(2 * n, 20 * wanted + 100);
   const Eigen::PartialPivLU<Eigen::MatrixXd> factor(stiffness);
-  const Eigen::LLT<Eigen::MatrixXd> energy(0.5 * (stiffness + stiffness.transpose()));
+  // Any positive definite R^T R serves as the inner product; the symmetric part of K, made
+  // definite by the least multiple of M needed, keeps S nearly normal.
+  const Eigen::MatrixXd symmetric = 0.5 * (stiffness + stiffness.transpose());
+  const double shift_scale = std::abs(symmetric.trace() / mass.trace());
+  Eigen::LLT<Eigen::MatrixXd> energy;
+  for (const double shift : {0.0, 1e-6, 1e-4, 1e-2, 1.0}) {
+    energy.compute(symmetric + shift * shift_scale * mass);
+    if (energy.info() == Eigen::Success) break;
+  }
   if (energy.info() != Eigen::Success) return {};
-  const auto stiffness_root = energy.matrixU();          // K_s = R^T R
+  const auto stiffness_root = energy.matrixU();          // K_s + s M = R^T R
   const auto mass_root = linear.mass_factor.matrixU();   // M = L L^T, L^T
   // In energy coordinates q = [R phi; L^T v], S q = T [-K^-1 (M v + C phi); phi], T = diag(R, L^T).
   const auto apply = [&](const Eigen::VectorXd& q) {

@@ -38,13 +38,14 @@
 // instead: with z = [phi; lambda phi],
 //   S [u; v] = [-K^-1 (M v + C u); u],   S z = z / lambda,
 // maps them onto the largest eigenvalues of S. In energy coordinates q = [R u; L^T v],
-// R^T R = (K + K^T) / 2, S is nearly normal (the raw form gives spurious Ritz values); a
+// R^T R = (K + K^T) / 2 (plus the least multiple of M that makes it definite: a sticking
+// patch can make the symmetric part indefinite), S is nearly normal (the raw form gives
+// spurious Ritz values); a
 // block Krylov space (block size 4: up to 4 copies of a multiple root) and Rayleigh-Ritz
 // give the roots, accepted when the wanted ones and two beyond have a backward error
 //   |P(lambda) phi| / ((|K| + |lambda| |C| + |lambda|^2 |M|) |phi|) <= 1e-10
-// (they reach 1e-15; the dense roots agree to 1e-9). A singular or indefinite K (rigid-body
-// modes, a state past a stability limit) or no convergence within 20 mode_count + 100
-// vectors leaves the problem to the dense solver.
+// (they reach 1e-15; the dense roots agree to 1e-9). A singular K (rigid-body modes) or no
+// convergence within 20 mode_count + 100 vectors leaves the problem to the dense solver.
 // The support reaction of a mode is (K + lambda C + lambda^2 M)_pf phi at the prescribed
 // DOFs: the complex amplitude of the force it puts on a held axle.
 //
