@@ -1,6 +1,7 @@
 -- Modes of the loaded 145 SR-12 on a fixed axle, the paper's model beside the tread-rubber
 -- layer model (docs/calibration.md): the first step of the calibration, which shows what
--- each parameter moves.
+-- each parameter moves, and the damped modes at rest and rolling, which show which modes
+-- can ring after an impact.
 --
 -- Each tire is inflated to 0.208 MPa on a held hub, pressed onto the 1.7 m drum of the
 -- cleat rig to 3800 N by the spindle's vertical position (friction 0.3, drum at rest),
@@ -13,12 +14,75 @@
 --             after it).
 -- In dynamics the Uzawa loop makes sticking exact; a linearisation sees the penalties
 -- instead, so this deck gives stiff ones (the contact stiffness then changes the
--- frequencies by under 0.1 %: docs/calibration.md). This deck checks itself.
+-- frequencies by under 0.1 %: docs/calibration.md).
+-- Then the damped modes (model:modal{ damped = true }): at rest, and after the drum has
+-- spun the tire up to the test's 51.3 km/h, in the frame turning with the tire at the
+-- spin of that speed on the tire's rolling radius (docs/dynamics.md: Coriolis and
+-- centrifugal terms, the contact patch frozen in that frame). This deck checks itself.
 --
---   tirefe inputs/loaded_modes_145SR12.lua [load=3800] [mu=0.3] [modes=12]
+--   tirefe inputs/loaded_modes_145SR12.lua [load=3800] [mu=0.3] [modes=12] [speed_kmh=51.3] [phases=5]
 
-local p = tirefe.parameters{ load = 3800.0, mu = 0.3, modes = 12, elements = 100 }
+local p = tirefe.parameters{
+  load = 3800.0, mu = 0.3, modes = 12, elements = 100,
+  speed_kmh = 51.3,          -- drum surface speed of the rolling linearisation
+  rolling_radius = 0.2716,   -- [m] both tires on this drum at 3800 N (docs/calibration.md)
+  spin_up_time = 0.15,       -- [s] smooth drum ramp from rest to speed ...
+  rolling_time = 0.05,       -- [s] ... then held before the linearisations
+  dt = 1e-3,                 -- [s] time step of the rolling run
+  phases = 5,                -- rolling linearisations spread over one node's passage through the patch
+}
 local drum_radius = 0.85
+local speed = p.speed_kmh / 3.6
+local spin = speed / p.rolling_radius  -- the tire's spin at that speed [rad/s]
+local drum_start = 3.0                 -- the drum starts turning after the static analyses
+
+-- The drum's angle (clockwise): its surface speed rises as (1 - cos) from drum_start over
+-- spin_up_time, so the tire spins up without a jerk that would leave it ringing.
+local function drum_angle(t)
+  local omega, ramp, running = speed / drum_radius, p.spin_up_time, math.max(t - drum_start, 0)
+  if running <= ramp then return -0.5 * omega * (running - ramp / math.pi * math.sin(math.pi * running / ramp)) end
+  return -omega * (running - 0.5 * ramp)
+end
+
+-- Among modes with a frequency: the lowest whose axle force is mostly F_x (fore-aft) and
+-- the one with the largest F_y (vertical).
+local function fore_aft_and_vertical(f, axle)
+  local fore_aft, vertical, largest_fy = nil, nil, 0.0
+  for i = 1, #f do
+    local fx, fy = math.abs(axle[i][1]), math.abs(axle[i][2])
+    if not fore_aft and f[i] > 0 and fx > fy then fore_aft = i end
+    if f[i] > 0 and fy > largest_fy then vertical, largest_fy = i, fy end
+  end
+  return fore_aft, vertical
+end
+
+-- The fore-aft and vertical damped modes (frequency, damping ratio, axle force amplitudes)
+-- and the smallest damping ratio of all.
+local function damped_modes(f, axle, zeta)
+  local fore_aft, vertical = fore_aft_and_vertical(f, axle)
+  local function mode(i) return { f = f[i], zeta = zeta[i], fx = axle[i][1], fy = axle[i][2] } end
+  local modes = { fore_aft = mode(fore_aft), vertical = mode(vertical), least_zeta = math.huge }
+  for i = 1, #f do modes.least_zeta = math.min(modes.least_zeta, zeta[i]) end
+  return modes
+end
+
+-- The range of each value over the rolling linearisations.
+local function ranges(samples)
+  local result = { least_zeta = math.huge }
+  for _, name in ipairs{ "fore_aft", "vertical" } do
+    local range = {}
+    for _, key in ipairs{ "f", "zeta", "fx", "fy" } do
+      local low, high = math.huge, -math.huge
+      for _, sample in ipairs(samples) do
+        low, high = math.min(low, sample[name][key]), math.max(high, sample[name][key])
+      end
+      range[key] = { low, high }
+    end
+    result[name] = range
+  end
+  for _, sample in ipairs(samples) do result.least_zeta = math.min(result.least_zeta, sample.least_zeta) end
+  return result
+end
 
 local function copy(set)
   local result = {}
@@ -39,7 +103,10 @@ local function loaded_modes(title, module)
   local tire = model:tire(tp)
   model:fix{ node = tire.spindle }
   model:solve{ to = 1.0, dt = 0.25 }  -- inflated before the contact scales its penalties
-  model:surface{ name = "drum", type = "drum", diameter = 2 * drum_radius }
+  -- The drum turns clockwise (its top and the contact patch move in +x) from drum_start on.
+  model:load_function{ name = "drum_turn", fn = drum_angle }
+  model:surface{ name = "drum", type = "drum", diameter = 2 * drum_radius, load_function = "drum_turn",
+                 amplitude = 1.0 }
   local contact = model:contact{ surface = "drum", set = tire.contact_set, friction = p.mu,
                                  penalty_factor = 100, tangential_factor = 1000 }
   -- Press by the spindle position; two secant corrections bring the load to p.load.
@@ -58,14 +125,29 @@ local function loaded_modes(title, module)
   local slipping = model:contact_value{ name = "contact_drum", quantity = "nodes_slipping" }
   model:release{ node = tire.spindle, dofs = {"rz"} }
   local f, axle = model:modal{ modes = p.modes, label = title, reaction_node = tire.spindle }
-  local fore_aft, vertical, largest_fy = nil, nil, 0.0
-  for i = 1, #f do
-    local fx, fy = math.abs(axle[i][1]), math.abs(axle[i][2])
-    if not fore_aft and f[i] > 0 and fx > fy then fore_aft = i end
-    if fy > largest_fy then vertical, largest_fy = i, fy end
+  local fore_aft, vertical = fore_aft_and_vertical(f, axle)
+  local at_rest = damped_modes(model:modal{ modes = p.modes, damped = true, label = title .. "_damped",
+                                            reaction_node = tire.spindle })
+
+  -- Rolling: the drum spins the tire up on its dead axle; linearised in the turning frame.
+  -- The patch holds 4 or 5 nodes as they enter and leave it, and a linearisation freezes
+  -- the patch of its instant: so it is repeated over one node's passage.
+  model:solve{ to = drum_start, dt = drum_start - model:time() }
+  model:integrator{ type = "hht", alpha = -0.1 }
+  model:newton{ tolerance = 1e-5 }
+  model:solve{ to = drum_start + p.spin_up_time + p.rolling_time, dt = p.dt }
+  local spin_rate = model:value{ node = tire.spindle, dof = "rz", quantity = "velocity" }
+  local passage = math.pi * tp.outer_diameter / p.elements / speed
+  local samples = {}
+  for k = 1, p.phases do
+    if k > 1 then model:solve{ to = model:time() + passage / p.phases, dt = passage / p.phases } end
+    samples[k] = damped_modes(model:modal{ modes = p.modes, damped = true, spin_rate = spin,
+                                           label = title .. "_rolling_" .. k, reaction_node = tire.spindle })
   end
+  local rolling = ranges(samples)
+  rolling.spin_rate = spin_rate
   return { fore_aft = f[fore_aft], vertical = f[vertical], load = load, deflection = deflection, patch = patch,
-           slipping = slipping }
+           slipping = slipping, at_rest = at_rest, rolling = rolling }
 end
 
 local paper = loaded_modes("paper", "tires.145SR12")
@@ -79,6 +161,28 @@ print(string.format("  nodes slipping        %10d    %10d", paper.slipping, laye
 print(string.format("  fore-aft mode [Hz]    %10.2f    %10.2f      35 (44)", paper.fore_aft, layer.fore_aft))
 print(string.format("  vertical mode [Hz]    %10.2f    %10.2f      88 on the cleat, 85 after it (89 / 84)\n",
                     paper.vertical, layer.vertical))
+
+print("  damped modes: frequency, damping ratio, axle |Fx| / |Fy| of the mass-normalised shape")
+print(string.format("  rolling at %.1f km/h: frame turning at %.2f rad/s (rolling radius %.4f m), the range over %d "
+                    .. "linearisations in one node's passage", p.speed_kmh, spin, p.rolling_radius, p.phases))
+local function span(range, format)
+  if string.format(format, range[1]) == string.format(format, range[2]) then return string.format(format, range[1]) end
+  return string.format(format, range[1]) .. "-" .. string.format(format, range[2])
+end
+for _, tire in ipairs{ { "paper's model", paper }, { "tread layer", layer } } do
+  for _, name in ipairs{ "fore_aft", "vertical" } do
+    local rest, rolling = tire[2].at_rest[name], tire[2].rolling[name]
+    print(string.format("  %-13s %-8s at rest %6.2f Hz  zeta %.4f  |Fx| %5.0f |Fy| %5.0f kN", tire[1],
+                        name == "fore_aft" and "fore-aft" or "vertical", rest.f, rest.zeta, rest.fx / 1e3, rest.fy / 1e3))
+    print(string.format("  %-22s rolling %s Hz  zeta %s  |Fx| %s |Fy| %s kN", "", span(rolling.f, "%.2f"),
+                        span(rolling.zeta, "%.4f"), span({ rolling.fx[1] / 1e3, rolling.fx[2] / 1e3 }, "%.0f"),
+                        span({ rolling.fy[1] / 1e3, rolling.fy[2] / 1e3 }, "%.0f")))
+  end
+end
+print(string.format("  rolling frequencies are those of the turning frame; seen from the fixed frame a turning-frame"
+                    .. " axle force at f rings at f -+ %.2f Hz", spin / (2 * math.pi)))
+print(string.format("  spin rate at the first rolling linearisation: %.3f (paper's model), %.3f rad/s (tread layer)\n",
+                    paper.rolling.spin_rate, layer.rolling.spin_rate))
 
 tirefe.check{ name = "paper's model: spindle load", value = paper.load, expected = p.load, relative = 0.005 }
 tirefe.check{ name = "tread layer: spindle load", value = layer.load, expected = p.load, relative = 0.005 }
@@ -95,3 +199,21 @@ tirefe.check{ name = "tread layer: fore-aft mode vs measured 35 Hz", value = lay
               relative = 0.05 }
 tirefe.check{ name = "tread layer: vertical mode within 3 % of the paper's model", value = layer.vertical / paper.vertical,
               expected = 1.0, tolerance = 0.03 }
+-- Damped modes. The damping is light: at rest the damped modes sit at the undamped ones
+-- (natural frequency f / sqrt(1 - zeta^2) within 0.5 %).
+for _, tire in ipairs{ { "paper's model", paper }, { "tread layer", layer } } do
+  for _, name in ipairs{ "fore_aft", "vertical" } do
+    local mode = tire[2].at_rest[name]
+    tirefe.check{ name = tire[1] .. ": damped " .. (name == "fore_aft" and "fore-aft" or name) .. " mode at rest vs undamped",
+                  value = mode.f / math.sqrt(1 - mode.zeta ^ 2), expected = tire[2][name], relative = 0.005 }
+  end
+  -- Every mode decays, at rest and rolling, and the least damped ones are lightly damped
+  -- (0.020-0.022 for both tires, docs/calibration.md): they can ring after an impact.
+  tirefe.check{ name = tire[1] .. ": least damping ratio at rest", value = tire[2].at_rest.least_zeta,
+                expected = 0.021, tolerance = 0.003 }
+  tirefe.check{ name = tire[1] .. ": least damping ratio rolling", value = tire[2].rolling.least_zeta,
+                expected = 0.021, tolerance = 0.003 }
+  -- The drum has spun the tire up to the spin the modes are computed at.
+  tirefe.check{ name = tire[1] .. ": spin rate of the run", value = tire[2].rolling.spin_rate, expected = spin,
+                relative = 0.01 }
+end

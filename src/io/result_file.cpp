@@ -314,25 +314,44 @@ void ResultFile::index_restored_frames() {
   write_index();
 }
 
-void ResultFile::write_modes(const std::string& label, const Analysis& analysis,
-                             const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
-                             const Eigen::MatrixXd& shapes) {
+void ResultFile::write_modes(const std::string& label, const Analysis& analysis, const ModalResult& modes) {
   if (discarded_) return;
+  write_mode_group(label, analysis, modes.frequencies_hz, modes.rigid_body, modes.shapes);
+  flush();
+}
+
+void ResultFile::write_modes(const std::string& label, const Analysis& analysis, const DampedModalResult& modes) {
+  if (discarded_) return;
+  const std::string group =
+      write_mode_group(label, analysis, modes.frequencies_hz, modes.rigid_body, modes.shapes.real());
+  file_.write_attribute(group, "spin_rate", modes.spin_rate);
+  file_.write_vector(group + "/damping_ratio", modes.damping_ratios);
+  file_.write_vector(group + "/natural_frequency", modes.natural_frequencies_hz);
+  write_shape_table(group + "/shapes_imag", analysis, modes.shapes.imag());
+  flush();
+}
+
+std::string ResultFile::write_mode_group(const std::string& label, const Analysis& analysis,
+                                         const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
+                                         const Eigen::MatrixXd& shapes) {
   if (!mesh_written_) write_mesh(analysis.model());
   const std::string group = "/modes/" + label;
   file_.write_attribute(group, "time", analysis.state().time);
   file_.write_vector(group + "/frequency", frequencies_hz);
   file_.write_int_vector(group + "/rigid_body", std::vector<long long>(rigid_body.begin(), rigid_body.end()));
-  // Shapes as modes x nodes x 3, like the displacement fields.
+  write_shape_table(group + "/shapes", analysis, shapes);
+  return group;
+}
+
+void ResultFile::write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes) {
   const int nodes = analysis.model().mesh().node_count();
   std::vector<double> values(static_cast<size_t>(shapes.cols()) * nodes * kDofsPerNode);
   for (Eigen::Index mode = 0; mode < shapes.cols(); ++mode)
     for (int dof = 0; dof < nodes * kDofsPerNode; ++dof) values[mode * nodes * kDofsPerNode + dof] = shapes(dof, mode);
   Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> table(
       values.data(), shapes.cols(), nodes * kDofsPerNode);
-  file_.write_matrix(group + "/shapes", table);
-  file_.write_attribute(group + "/shapes", "layout", std::string("modes x (3 nodes): u_x, u_y, theta_z per node"));
-  flush();
+  file_.write_matrix(path, table);
+  file_.write_attribute(path, "layout", std::string("modes x (3 nodes): u_x, u_y, theta_z per node"));
 }
 
 void ResultFile::write_fields(const Analysis& analysis, int step) {

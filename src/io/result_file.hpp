@@ -9,7 +9,8 @@
 //                                 cell's block
 //   /history/<channel>            one row per accepted step: time, step_size, newton_iterations,
 //                                 cuts, residual, augmentations, energies, and the deck's channels
-//   /modes/<label>/frequency, rigid_body, shapes   modal analyses
+//   /modes/<label>/frequency, rigid_body, shapes   modal analyses; a damped one adds
+//                 damping_ratio, natural_frequency, shapes_imag (shapes holds the real part)
 //   /fields/time, /fields/step    one row per field frame
 //   /fields/displacement          frames x nodes x 3 (u_x, u_y, theta_z)
 //   /fields/velocity              frames x nodes x 3 (dynamic runs)
@@ -44,6 +45,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
 #include "solvers/analysis.hpp"
+#include "solvers/modal.hpp"
 
 namespace tirefe::io {
 
@@ -98,8 +100,8 @@ class ResultFile {
   /// Records one accepted step (writes the mesh first if it has not been written).
   void record(const Analysis& analysis, const StepRecord& record);
   /// Writes the result of a modal analysis under /modes/<label>.
-  void write_modes(const std::string& label, const Analysis& analysis, const std::vector<double>& frequencies_hz,
-                   const std::vector<bool>& rigid_body, const Eigen::MatrixXd& shapes);
+  void write_modes(const std::string& label, const Analysis& analysis, const ModalResult& modes);
+  void write_modes(const std::string& label, const Analysis& analysis, const DampedModalResult& modes);
   /// Writes a field frame now, whatever the interval.
   void write_fields(const Analysis& analysis, int step);
   int steps_recorded() const { return steps_recorded_; }
@@ -132,6 +134,12 @@ class ResultFile {
   void write_views(size_t frame);
   void write_index();
   void write_index_if_due();
+  /// The common part of write_modes: time, frequencies, flags and the shapes' real part.
+  std::string write_mode_group(const std::string& label, const Analysis& analysis,
+                               const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
+                               const Eigen::MatrixXd& shapes);
+  /// Shapes as modes x (3 nodes), like the displacement fields.
+  void write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes);
   void start_history();
   void flush_if_due();
 

@@ -1,4 +1,5 @@
 // Dynamics macros: initial conditions and modal analysis (FEAP's EIGE).
+#include <complex>
 #include <cstdio>
 
 #include "macros/deck_model.hpp"
@@ -24,37 +25,84 @@ int initial_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   return 0;
 }
 
-int modal_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
-  const int count = static_cast<int>(arguments.integer("modes"));
-  deck.require_state("model:modal");
+/// Pushes a Lua list of numbers.
+void push_numbers(lua_State* L, const std::vector<double>& values) {
+  lua_createtable(L, static_cast<int>(values.size()), 0);
+  for (size_t i = 0; i < values.size(); ++i) {
+    lua_pushnumber(L, values[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+/// Pushes per mode {fx, fy, mz} of 'node' from a dof_count x modes table.
+template <class Reactions, class Value>
+void push_reactions(lua_State* L, int node, const Reactions& reactions, Value value) {
+  lua_createtable(L, static_cast<int>(reactions.cols()), 0);
+  for (Eigen::Index i = 0; i < reactions.cols(); ++i) {
+    lua_createtable(L, kDofsPerNode, 0);
+    for (int c = 0; c < kDofsPerNode; ++c) {
+      lua_pushnumber(L, value(reactions(dof_index(node, c), i)));
+      lua_rawseti(L, -2, c + 1);
+    }
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+}
+
+int undamped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments, const std::string& label,
+                   int count) {
   const ModalResult result = modal_analysis(deck.analysis(), count);
-  const std::string label = arguments.string_or("label", "t" + std::to_string(deck.analysis().state().time));
-  deck.output_or_default().write_modes(label, deck.analysis(), result.frequencies_hz, result.rigid_body,
-                                       result.shapes);
+  deck.output_or_default().write_modes(label, deck.analysis(), result);
   if (!deck.session().quiet) {
     std::printf("  modal analysis at t = %g (%s):\n", deck.analysis().state().time, label.c_str());
     for (size_t i = 0; i < result.frequencies_hz.size(); ++i)
       std::printf("    mode %3zu  %12.4f Hz%s\n", i + 1, result.frequencies_hz[i],
                   result.rigid_body[i] ? "  (rigid-body mode)" : "");
   }
-  lua_createtable(L, static_cast<int>(result.frequencies_hz.size()), 0);
-  for (size_t i = 0; i < result.frequencies_hz.size(); ++i) {
-    lua_pushnumber(L, result.frequencies_hz[i]);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
+  push_numbers(L, result.frequencies_hz);
   if (!arguments.has("reaction_node")) return 1;
-  // Per mode {fx, fy, mz}: the support reaction K_pf phi of the mass-normalised shape.
-  const int node = deck_node(deck, arguments.integer("reaction_node"));
-  lua_createtable(L, static_cast<int>(result.frequencies_hz.size()), 0);
-  for (Eigen::Index i = 0; i < result.reactions.cols(); ++i) {
-    lua_createtable(L, kDofsPerNode, 0);
-    for (int c = 0; c < kDofsPerNode; ++c) {
-      lua_pushnumber(L, result.reactions(dof_index(node, c), i));
-      lua_rawseti(L, -2, c + 1);
-    }
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
+  // Per mode {fx, fy, mz}: the support reaction K phi of the mass-normalised shape.
+  push_reactions(L, deck_node(deck, arguments.integer("reaction_node")), result.reactions,
+                 [](double force) { return force; });
   return 2;
+}
+
+int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments, const std::string& label,
+                 int count) {
+  DampedModalSettings settings;
+  settings.damping = arguments.boolean("damped");
+  settings.spin_rate = arguments.number_or("spin_rate", 0.0);
+  const DampedModalResult result = damped_modal_analysis(deck.analysis(), count, settings);
+  deck.output_or_default().write_modes(label, deck.analysis(), result);
+  const int node = arguments.has("reaction_node") ? deck_node(deck, arguments.integer("reaction_node")) : -1;
+  if (!deck.session().quiet) {
+    std::printf("  %s modal analysis at t = %g (%s)", settings.damping ? "damped" : "undamped",
+                deck.analysis().state().time, label.c_str());
+    if (settings.spin_rate != 0.0) std::printf(", frame turning at %g rad/s", settings.spin_rate);
+    std::printf(":\n    mode    frequency    zeta        natural%s\n",
+                node >= 0 ? "      axle |Fx|      |Fy| [N]" : "");
+    for (size_t i = 0; i < result.frequencies_hz.size(); ++i) {
+      std::printf("    %4zu %10.4f Hz %8.5f %10.4f Hz", i + 1, result.frequencies_hz[i], result.damping_ratios[i],
+                  result.natural_frequencies_hz[i]);
+      if (node >= 0)
+        std::printf("  %10.4g %10.4g", std::abs(result.reactions(dof_index(node, kUx), i)),
+                    std::abs(result.reactions(dof_index(node, kUy), i)));
+      std::printf("%s\n", result.rigid_body[i] ? "  (rigid-body mode)" : "");
+    }
+  }
+  push_numbers(L, result.frequencies_hz);
+  // Per mode {|fx|, |fy|, |mz|}: the amplitude of the complex support reaction.
+  if (node >= 0) push_reactions(L, node, result.reactions, [](std::complex<double> force) { return std::abs(force); });
+  else lua_pushnil(L);
+  push_numbers(L, result.damping_ratios);
+  return 3;
+}
+
+int modal_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const int count = static_cast<int>(arguments.integer("modes"));
+  deck.require_state("model:modal");
+  const std::string label = arguments.string_or("label", "t" + std::to_string(deck.analysis().state().time));
+  if (arguments.boolean("damped") || arguments.has("spin_rate")) return damped_modes(L, deck, arguments, label, count);
+  return undamped_modes(L, deck, arguments, label, count);
 }
 
 }  // namespace
@@ -77,12 +125,24 @@ void add_dynamics_macros(MacroTable& table) {
         "to /modes/<label> of the output, and returned as a list of frequencies in Hz (0 for rigid-body modes). "
         "With reaction_node, a second list gives per mode {fx, fy, mz}: the support reaction K phi that the "
         "mass-normalised shape puts on that node's prescribed DOFs (0 on free ones), e.g. the spindle force of a "
-        "tire mode on a fixed axle.",
+        "tire mode on a fixed axle. With damped = true (or a spin_rate) the damped modes instead: the quadratic "
+        "eigenproblem with the damping matrix, modes in ascending |lambda|, one per complex pair and one per real "
+        "(overdamped) root; it returns the damped frequencies Im(lambda)/2pi (0 for real roots), the reactions "
+        "as amplitudes {|fx|, |fy|, |mz|} of the complex (K + lambda C + lambda^2 M) phi (nil without "
+        "reaction_node) and a third list, the damping ratios -Re(lambda)/|lambda|; /modes/<label> then also holds "
+        "damping_ratio, natural_frequency and shapes_imag. A spin_rate linearises in the frame turning with the "
+        "tire (state from a run rolling at that spin): Coriolis and centrifugal terms, frequencies in that frame "
+        "(docs/dynamics.md).",
         {{"modes", VT::Integer, true, "", "number of modes", std::nullopt, Range::Positive},
          {"label", VT::String, false, "", "name of the /modes group (default: the time)"},
          {"reaction_node", VT::Integer, false, "", "node whose support reaction per mode is returned",
-          std::nullopt, Range::Positive}},
-        "local f, r = model:modal{ modes = 10, label = \"loaded\", reaction_node = tire.spindle }"},
+          std::nullopt, Range::Positive},
+         {"damped", VT::Boolean, false, "", "include the damping matrix (the quadratic eigenproblem)",
+          std::string("false")},
+         {"spin_rate", VT::Number, false, "rad/s",
+          "spin about z of the frame the modes are computed in (counter-clockwise positive); without damped = true "
+          "the damping is left out"}},
+        "local f, r, zeta = model:modal{ modes = 10, damped = true, spin_rate = 52.5, reaction_node = tire.spindle }"},
        modal_macro});
 }
 
