@@ -18,6 +18,7 @@
 #include "macros/deck_session.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
+#include "tirefe/source_paths.hpp"
 
 namespace tirefe::fuzz {
 

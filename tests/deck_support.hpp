@@ -9,6 +9,7 @@
 #include "macros/deck_session.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
+#include "tirefe/test_paths.hpp"
 
 namespace tirefe::testing {
 

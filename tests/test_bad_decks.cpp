@@ -20,6 +20,7 @@
 #include <string>
 
 #include "io/hdf5_file.hpp"
+#include "tirefe/test_paths.hpp"
 
 namespace fs = std::filesystem;
 

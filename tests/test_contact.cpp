@@ -17,6 +17,7 @@
 #include "io/hdf5_file.hpp"
 #include "solvers/analysis.hpp"
 #include "test_support.hpp"
+#include "tirefe/test_paths.hpp"
 
 using namespace tirefe;
 using Catch::Matchers::Contains;

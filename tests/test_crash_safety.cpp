@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "io/hdf5_file.hpp"
+#include "tirefe/test_paths.hpp"
 
 namespace fs = std::filesystem;
 

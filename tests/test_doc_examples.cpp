@@ -11,6 +11,7 @@
 
 #include "deck_support.hpp"
 #include "test_support.hpp"
+#include "tirefe/test_paths.hpp"
 
 namespace fs = std::filesystem;
 

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "macros/macro_table.hpp"
+#include "tirefe/test_paths.hpp"
 
 TEST_CASE("docs/macros.md is the current macro reference (regenerate: tirefe --macros > docs/macros.md)",
           "[docs]") {

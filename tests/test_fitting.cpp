@@ -20,6 +20,7 @@
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "test_support.hpp"
+#include "tirefe/test_paths.hpp"
 
 using namespace tirefe::fitting;
 using Catch::Matchers::Contains;

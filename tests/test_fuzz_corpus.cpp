@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "fuzz/fuzz_entries.hpp"
+#include "tirefe/test_paths.hpp"
 
 namespace fs = std::filesystem;
 

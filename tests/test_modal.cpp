@@ -20,6 +20,7 @@
 #include "solvers/modal.hpp"
 #include "test_support.hpp"
 #include "tire/tire_builder.hpp"
+#include "tirefe/test_paths.hpp"
 
 using namespace tirefe;
 

@@ -16,6 +16,7 @@
 
 #include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
+#include "tirefe/test_paths.hpp"
 
 namespace fs = std::filesystem;
 using tirefe::io::Hdf5File;

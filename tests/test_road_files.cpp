@@ -9,6 +9,7 @@
 #include "deck_support.hpp"
 #include "io/teim_orbit.hpp"
 #include "test_support.hpp"
+#include "tirefe/test_paths.hpp"
 
 using namespace tirefe;
 using Catch::Matchers::Contains;

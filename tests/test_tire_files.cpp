@@ -10,6 +10,7 @@
 #include "deck_support.hpp"
 #include "test_support.hpp"
 #include "tire/tire_builder.hpp"
+#include "tirefe/test_paths.hpp"
 
 using namespace tirefe;
 using Catch::Matchers::Contains;

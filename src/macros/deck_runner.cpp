@@ -12,6 +12,7 @@
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/version.hpp"
+#include "tirefe/source_paths.hpp"
 
 namespace tirefe::macros {
 

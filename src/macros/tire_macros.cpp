@@ -4,6 +4,7 @@
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
+#include "tirefe/source_paths.hpp"
 
 namespace tirefe::macros {
 
