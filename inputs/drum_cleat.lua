@@ -11,9 +11,11 @@
 --
 --   tirefe inputs/drum_cleat.lua [speed_kmh=51.3] [cleat_height=0.025] [integrator=newmark] ...
 --
--- Signs: x to the right, y up; the tire sits on top of the drum; the drum turns clockwise,
--- so its top and the cleat move in +x under the tire. Fz below is the vertical spindle force
--- (y), positive pressing the tire onto the drum; Fx the longitudinal one, positive along +x.
+-- Axes: x to the right, y up; the tire sits on top of the drum; the drum turns clockwise,
+-- so its top and the cleat move in +x under the tire, and the tire travels over the drum's
+-- surface toward -x: its heading is -x. Spindle forces and the spin rate are in ISO 8855
+-- wheel axes (docs/output.md, "Axes and signs"): Fz > 0 the load, Fx < 0 where the cleat
+-- retards the wheel, spin rate > 0 rolling forward.
 
 local p = tirefe.parameters{
   tire = "tires.145SR12_tread_layer", -- parameter set in lua/tires/ (tires.145SR12: the paper's model)
@@ -123,6 +125,7 @@ tire_parameters.pressure = p.pressure_kpa * 1e3
 tire_parameters.pressure_load_function = "inflation"
 tire_parameters.y = R + tire_parameters.outer_diameter / 2
 model:load_function{ name = "inflation", points = { { 0, 0 }, { 1, 1 }, { 1e9, 1 } } }
+tire_parameters.heading = "-x"  -- travelling over the drum's top, which moves to +x
 local tire = model:tire(tire_parameters)
 
 -- Spindle: held during inflation and pressing. Its height follows the press path, a list
@@ -145,9 +148,9 @@ model:fix{ node = tire.spindle, dofs = { "ux", "rz" } }
 model:prescribe{ node = tire.spindle, dof = "uy", value = -1.0, load_function = "press" }
 
 model:output{ file = p.output, fields_interval = p.fields_interval }
-model:history{ name = "spindle_fx", node = tire.spindle, dof = "ux", quantity = "reaction", scale = -1 }
-model:history{ name = "spindle_fz", node = tire.spindle, dof = "uy", quantity = "reaction", scale = -1 }
-model:history{ name = "spin_rate", node = tire.spindle, dof = "rz", quantity = "velocity" }
+model:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
+model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }
+model:history{ name = "spin_rate", node = tire.spindle, quantity = "spin_rate" }
 model:history{ name = "spindle_height", node = tire.spindle, dof = "uy" }
 
 -- 0-1 s: inflation. The drum is defined after it: automatic contact penalties are scaled
@@ -163,9 +166,8 @@ model:contact{ surface = "drum", set = tire.contact_set, friction = p.friction, 
 
 -- 1-2 s: press. Five steps toward a first guess of the deflection, then secant steps on the
 -- measured force-deflection curve until the spindle carries the load to 0.1 %.
--- Spindle forces are the forces the tire puts on the axle: Fz > 0 presses it down onto the drum.
-local function spindle_fx() return -model:value{ node = tire.spindle, dof = "ux", quantity = "reaction" } end
-local function spindle_fz() return -model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" } end
+local function spindle_fx() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fx" } end
+local function spindle_fz() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" } end
 local function press_to(depth, dt)
   press_path[#press_path + 1] = { model:time() + dt, depth }
   model:step{ dt = dt }
@@ -216,7 +218,7 @@ while model:time() < p.end_time - 1e-9 do
   record.time[#record.time + 1] = t
   record.fx[#record.fx + 1] = spindle_fx()
   record.fz[#record.fz + 1] = spindle_fz()
-  record.spin[#record.spin + 1] = model:value{ node = tire.spindle, dof = "rz", quantity = "velocity" }
+  record.spin[#record.spin + 1] = model:value{ node = tire.spindle, quantity = "spin_rate" }
 end
 local wall = os.clock() - wall_start
 model:result{ name = "dynamic_steps", value = totals.steps }

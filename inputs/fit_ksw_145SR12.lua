@@ -44,7 +44,7 @@ local function flat_road_forces(k_sw, k_sw_sign, pressure, deflections)
   local forces = {}
   for i, deflection in ipairs(deflections) do
     model:solve{ to = 1 + deflection / deepest, dt = p.step_mm * 1e-3 / deepest }
-    forces[i] = -model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
+    forces[i] = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
   end
   return forces
 end

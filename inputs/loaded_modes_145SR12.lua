@@ -100,10 +100,10 @@ local function loaded_modes(title, module)
   tp.pressure_load_function = "inflate"
   model:load_function{ name = "inflate", points = {{0, 0}, {1, 1}, {100, 1}} }
   model:load_function{ name = "press", points = {{0, 0}, {1, 0}, {2, 1}, {100, 1}} }
+  tp.heading = "-x"  -- the drum turns clockwise (its top and the contact patch move in +x) from drum_start on
   local tire = model:tire(tp)
   model:fix{ node = tire.spindle }
   model:solve{ to = 1.0, dt = 0.25 }  -- inflated before the contact scales its penalties
-  -- The drum turns clockwise (its top and the contact patch move in +x) from drum_start on.
   model:load_function{ name = "drum_turn", fn = drum_angle }
   model:surface{ name = "drum", type = "drum", diameter = 2 * drum_radius, load_function = "drum_turn",
                  amplitude = 1.0 }
@@ -114,13 +114,13 @@ local function loaded_modes(title, module)
   model:prescribe{ node = tire.spindle, dof = "uy", value = -deflection, load_function = "press" }
   model:solve{ to = t, dt = 0.1 }
   for _ = 1, 2 do
-    local load = -model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
+    local load = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
     deflection = deflection * p.load / load
     t = t + 0.1
     model:prescribe{ node = tire.spindle, dof = "uy", value = -deflection, load_function = "press" }
     model:solve{ to = t, dt = 0.1 }
   end
-  local load = -model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
+  local load = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
   local patch = model:contact_value{ name = "contact_drum", quantity = "patch_length" }
   local slipping = model:contact_value{ name = "contact_drum", quantity = "nodes_slipping" }
   model:release{ node = tire.spindle, dofs = {"rz"} }

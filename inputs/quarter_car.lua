@@ -24,7 +24,7 @@ local function tire_model(title, road)
   return model, tire
 end
 
--- Presses the held spindle quasi-statically to 'deflection' in 1 s; returns the spindle force y.
+-- Presses the held spindle quasi-statically to 'deflection' in 1 s; returns the tire load Fz.
 local pressed = 0
 local function press(model, tire, deflection, name)
   local t = model:time()
@@ -32,7 +32,7 @@ local function press(model, tire, deflection, name)
   model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = name }
   model:solve{ to = t + 1, dt = 0.25 }
   pressed = -deflection
-  return model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
+  return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
 end
 
 local function corner(model, tire, preload, damping)
@@ -54,7 +54,7 @@ local settle = tirefe.vehicle{ body = { mass = p.body },
 local n = #settle.time
 tirefe.check{ name = "static jounce = (weight - preload) / k_s [m]", value = settle.corners[1].jounce[n],
               expected = 0.2 * p.body * g / p.k_s, relative = 1e-3 }
-tirefe.check{ name = "static tire load = total weight [N]", value = -settle.corners[1].fy[n],
+tirefe.check{ name = "static tire load = total weight [N]", value = settle.corners[1].fz[n],
               expected = (p.body + p.carrier) * g, relative = 1e-3 }
 
 -- 2. Rolling over the pothole, lightly damped.
@@ -68,12 +68,12 @@ end)
 pressed = 0
 local f1 = press(rolling, tire, 0.010, "press1")
 local f2 = press(rolling, tire, 0.020, "press2")
-local k_t = (f1 - f2) / 0.010             -- quasi-static vertical tire stiffness [N/m]
+local k_t = (f2 - f1) / 0.010             -- quasi-static vertical tire stiffness [N/m]
 local weight = (p.body + p.carrier) * g
-press(rolling, tire, 0.010 + (weight + f1) / k_t, "press3")   -- near the static deflection
+press(rolling, tire, 0.010 + (weight - f1) / k_t, "press3")   -- near the static deflection
 rolling:integrator{ type = "hht", alpha = -0.05 }
-rolling:history{ name = "spindle_fx", node = tire.spindle, dof = "ux", quantity = "reaction" }
-rolling:history{ name = "spindle_fy", node = tire.spindle, dof = "uy", quantity = "reaction" }
+rolling:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
+rolling:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }
 local run = tirefe.vehicle{ body = { mass = p.body }, corners = { corner(rolling, tire, p.body * g, 300) },
                             duration = 1.0, dt = p.dt }
 print(string.format("quarter car: %d steps, %.2f corrector iterations/step, %.2f tire Newton iterations/solve, "

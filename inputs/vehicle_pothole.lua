@@ -74,11 +74,12 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
   local weight = load + carrier * g
   model:load_function{ name = "press", points = {{1, 0}, {1.5, -0.010}, {1.75, -0.020}, {2, -0.020}} }
   model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = "press" }
+  local function tire_load() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" } end
   model:solve{ to = 1.5, dt = 0.25 }
-  local f1 = model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
+  local f1 = tire_load()
   model:solve{ to = 1.75, dt = 0.25 }
-  local f2 = model:value{ node = tire.spindle, dof = "uy", quantity = "reaction" }
-  local deflection = 0.010 + (weight + f1) / ((f1 - f2) / 0.010)
+  local f2 = tire_load()
+  local deflection = 0.010 + (weight - f1) / ((f2 - f1) / 0.010)
   model:load_function{ name = "hold", points = {{1.75, -0.020}, {2, -deflection}} }
   model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = "hold" }
   model:solve{ to = 2.0, dt = 0.25 }
@@ -87,8 +88,8 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
   -- step at speed: starting Newton from a_{n+1} = 0 rather than a_n saves a third of the
   -- iterations and nearly all the step cuts (docs/vehicle.md).
   model:newton{ tolerance = p.newton_tolerance }
-  model:history{ name = "spindle_fx", node = tire.spindle, dof = "ux", quantity = "reaction" }
-  model:history{ name = "spindle_fz", node = tire.spindle, dof = "uy", quantity = "reaction" }
+  model:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
+  model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }
   corners[#corners + 1] = {
     name = c.name, model = model, spindle = tire.spindle, x = c.x, y = c.y, mass = carrier,
     spring = { {-0.10, load - 0.10 * k_s}, {0, load}, {0.04, load + 0.04 * k_s}, {0.08, load + 0.08 * 1.6 * k_s} },
@@ -107,7 +108,7 @@ print(string.format("vehicle: %d steps, %.2f corrector iterations/step, %.2f tir
                     .. "%d cuts, %d backtracks, wall %.1f s for %.1f s simulated", run.steps,
                     run.corrector_iterations / run.steps, run.tire_newton_iterations / run.tire_solves, run.cuts,
                     run.backtracks, run.wall_time, p.settle + p.ramp + p.cruise))
--- Loads before the chuckhole and peaks at it, from every step (fx, fy: the force on the tire).
+-- Loads before the chuckhole and peaks at it, from every step (fx, fz: ISO 8855 wheel axes, heading +x).
 local function sample_before(series, time)
   local value = series[1]
   for i = 1, #run.time do
@@ -118,14 +119,14 @@ end
 local static, peak, peak_time, total = {}, {}, {}, 0
 for index, name in ipairs({ "LF", "RF", "LR", "RR" }) do
   local corner = run.corners[index]
-  static[index] = -sample_before(corner.fy, front_crossing - 0.02)
+  static[index] = sample_before(corner.fz, front_crossing - 0.02)
   total = total + static[index]
   peak[index], peak_time[index] = 0, 0
   local low_x, high_x = 0, 0
-  for i = 1, #corner.fy do
+  for i = 1, #corner.fz do
     if run.time[i] >= front_crossing - 0.02 then  -- after the settling
-      if -corner.fy[i] > peak[index] then peak[index], peak_time[index] = -corner.fy[i], run.time[i] end
-      low_x, high_x = math.min(low_x, -corner.fx[i]), math.max(high_x, -corner.fx[i])
+      if corner.fz[i] > peak[index] then peak[index], peak_time[index] = corner.fz[i], run.time[i] end
+      low_x, high_x = math.min(low_x, corner.fx[i]), math.max(high_x, corner.fx[i])
     end
   end
   print(string.format("%s spindle: Fz before the chuckhole %.0f N, then peak %.0f N at t = %.4f s; Fx %.0f to %.0f N", name,

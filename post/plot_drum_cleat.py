@@ -34,6 +34,7 @@ class Run:
         with h5py.File(path, "r") as result:
             self.parameters = dict(result["parameters"].attrs) if "parameters" in result else {}
             self.results = dict(result["results"].attrs) if "results" in result else {}
+            self.heading = result.attrs.get("heading", "")  # x of the spindle forces' wheel axes
             history = result["history"]
             self.time = history["time"][:]
             self.fx = history["spindle_fx"][:]
@@ -105,7 +106,8 @@ def plot_forces(run, stem):
             axis.axvspan(on, off, color="0.85", linewidth=0)
     for axis in axes:
         axis.grid(True, alpha=0.3)
-    figure.suptitle("spindle forces on the dead axle (grey: cleat under the tire)")
+    figure.suptitle(f"spindle forces on the dead axle, ISO 8855 wheel axes, heading {run.heading} "
+                    "(grey: cleat under the tire)")
     figure.tight_layout()
     path = stem + "_forces.png"
     figure.savefig(path, dpi=120)

@@ -39,11 +39,13 @@ def main(arguments):
             time = history["time"][:]
             window = (time >= start) & (time <= end)
             label = os.path.splitext(os.path.basename(path))[0].split("_")[-1]
+            heading = result.attrs.get("heading", "+x")
             for row, channel in enumerate(("spindle_fx", "spindle_fz")):
-                force = -history[channel][:][window]  # the force the tire applies to the car
+                force = history[channel][:][window]  # ISO 8855 wheel axes: the tire's force on the wheel
                 axes[row, 0].plot(time[window], force, label=label)
                 frequency, amplitude = spectrum(time[window], force)
                 axes[row, 1].semilogy(frequency, amplitude, label=label)
+    figure.suptitle(f"spindle forces, ISO 8855 wheel axes (heading {heading})")
     for row, name in enumerate(("Fx (longitudinal)", "Fz (vertical)")):
         axes[row, 0].set_ylabel(name + " [N]")
         axes[row, 1].set_ylabel("amplitude [N]")

@@ -143,6 +143,18 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
   CHECK(angle.back() < -10.0);  // clockwise, several turns
   CHECK(hdf5.read_double_attribute("/parameters", "spin_up_time") == 0.5);
   CHECK(fs::exists(output / "drum_short.xmf"));
+  // Spindle forces in wheel axes, the tire heading -x over the drum's top: pressed, Fz is the
+  // load (to the deck's 0.1 % press tolerance); the cleat's strike retards the wheel, Fx < 0.
+  CHECK(hdf5.read_string_attribute("/", "heading") == "-x");
+  const std::vector<double> fx = hdf5.read_doubles("/history/spindle_fx");
+  double pressed = 0.0, strike = 0.0;
+  const double on = hdf5.read_double_attribute("/results", "cleat_on_s");
+  for (size_t i = 0; i < time.size(); ++i) {
+    if (time[i] <= 2.0 + 1e-9) pressed = fz[i];  // the pressing ends at 2 s
+    if (std::abs(time[i] - on) <= 0.01) strike = std::min(strike, fx[i]);
+  }
+  CHECK(pressed == Approx(3800.0).epsilon(1e-3));
+  CHECK(strike < -2000.0);
 
   const std::string plot = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_drum_cleat.py").string() +
                            " " + file.string() + " > /dev/null";
@@ -166,6 +178,9 @@ TEST_CASE("vehicle pothole deck, short version: loads, strikes, four result file
     CHECK(time.back() == Approx(3.0).epsilon(1e-9));
     for (const char* channel : {"spindle_fx", "spindle_fz", "vehicle_heave", "vehicle_pitch", "vehicle_roll", "jounce"})
       CHECK(hdf5.read_doubles(std::string("/history/") + channel).size() == time.size());
+    // Driving in +x: the wheel loads are up, a few kN each after the crossing.
+    CHECK(hdf5.read_string_attribute("/", "heading") == "+x");
+    CHECK(hdf5.read_doubles("/history/spindle_fz").back() == Approx(3500.0).margin(2000.0));
   }
   const std::string plot = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_vehicle.py").string() +
                            " 2.6 3.0 " + (output / "vehicle_pothole_LF.h5").string() + " " +

@@ -66,7 +66,8 @@ int run_examples(const std::string& doc) {
 
 }  // namespace
 
-TEST_CASE("the examples of docs/tire.md and docs/contact.md run and pass their checks", "[docs]") {
+TEST_CASE("the examples of docs/tire.md, docs/contact.md and docs/output.md run and pass their checks", "[docs]") {
   CHECK(run_examples("docs/tire.md") == 3);
   CHECK(run_examples("docs/contact.md") == 2);
+  CHECK(run_examples("docs/output.md") == 1);
 }

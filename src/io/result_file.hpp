@@ -1,5 +1,7 @@
 // ResultFile: one run's HDF5 output. Layout (docs/output.md):
-//   /                 attributes: tirefe_version, git_commit, created, deck_path, units, title
+//   /                 attributes: tirefe_version, git_commit, created, deck_path, units, title,
+//                     axes (the spindle forces' axes and signs, tire/wheel_axes.hpp) and,
+//                     with a tire, its heading ("+x" or "-x")
 //   /deck             the deck's full text
 //   /parameters       attributes: the deck's parameters after command-line overrides
 //   /mesh/coordinates             node reference positions, nodes x 2 [m]

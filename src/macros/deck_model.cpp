@@ -56,6 +56,21 @@ void DeckModel::schedule_checkpoints(const std::string& file, int steps, double 
   last_checkpoint_ = std::chrono::steady_clock::now();
 }
 
+void DeckModel::set_wheel_heading(int spindle, Heading heading) {
+  for (const auto& [node, other] : wheel_headings_)
+    if (other != heading)
+      throw ModelError(std::string("this model's tires head ") + heading_name(other) + ": give every tire heading = \"" +
+                       heading_name(other) + "\" (one result file states one heading)");
+  wheel_headings_[spindle] = heading;
+}
+
+Heading DeckModel::wheel_heading(int node) const {
+  const auto found = wheel_headings_.find(node);
+  if (found == wheel_headings_.end())
+    throw ModelError("node " + std::to_string(node + 1) + " is no tire's spindle: give node = tire.spindle");
+  return found->second;
+}
+
 void DeckModel::require_state(const std::string& what) const {
   if (restart_ && skipped_steps_)
     throw ModelError(what + " needs the state at t = " + std::to_string(analysis_.state().time) +

@@ -14,6 +14,7 @@
 #include "io/result_file.hpp"
 #include "macros/deck_session.hpp"
 #include "solvers/analysis.hpp"
+#include "tire/wheel_axes.hpp"
 
 namespace tirefe::macros {
 
@@ -66,6 +67,12 @@ class DeckModel {
   /// True while a restart skips the time before its checkpoint.
   bool restarting() const { return restart_ != nullptr; }
 
+  /// A tire's heading (model:tire{ heading }), by its spindle node: the wheel axes of its
+  /// spindle forces. One result file states one heading, so a model's tires share it.
+  void set_wheel_heading(int spindle, Heading heading);
+  /// The heading of the tire whose spindle is 'node'; ModelError if it is no tire's spindle.
+  Heading wheel_heading(int node) const;
+
  private:
   void print_step(const StepRecord& record) const;
   std::string output_path(const std::string& file) const;
@@ -77,6 +84,7 @@ class DeckModel {
   Analysis analysis_;
   std::map<std::string, BeamSection> sections_;
   std::map<std::string, int> load_functions_;
+  std::map<int, Heading> wheel_headings_;  // by spindle node
   std::unique_ptr<io::ResultFile> output_;
   std::vector<std::function<void(io::ResultFile&)>> output_descriptions_;  // until it opens
   bool calls_lua_ = false;

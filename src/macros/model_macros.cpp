@@ -4,6 +4,7 @@
 // Deck node numbers start at 1 (FEAP and Lua convention); the kernel counts from 0.
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 
 #include "macros/deck_model.hpp"
@@ -262,32 +263,80 @@ double summed_quantity(const Analysis& analysis, NodalQuantity reader, const std
   return total;
 }
 
-const std::vector<std::string> kQuantities{"displacement", "velocity", "acceleration", "reaction", "external_force",
-                                           "position"};
+const std::vector<std::string> kNodalQuantities{"displacement", "velocity", "acceleration", "reaction",
+                                                "external_force", "position"};
+const std::vector<std::string> kQuantities{"displacement", "velocity",       "acceleration", "reaction",
+                                           "external_force", "position",     "spindle_force", "spin_rate"};
+const std::vector<std::string> kWheelComponents{"fx", "fz", "my"};
 
-int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
+// ---- a tire's wheel quantities: ISO 8855 wheel axes (tire/wheel_axes.hpp) -----------
+
+bool is_wheel_quantity(const std::string& quantity) { return quantity == "spindle_force" || quantity == "spin_rate"; }
+
+using Reading = std::function<double(const Analysis&)>;
+
+/// A tire's spindle force component (fx, fz, my) or spin rate in its wheel axes.
+Reading wheel_reading(DeckModel& deck, const MacroArguments& arguments, const std::string& quantity) {
+  if (arguments.has("dof"))
+    throw ModelError("quantity \"" + quantity + "\" is in the tire's wheel axes: leave out 'dof'" +
+                     (quantity == "spindle_force" ? " and give component = \"fx\", \"fz\" or \"my\"" : ""));
+  if (!arguments.has("node")) throw ModelError("quantity \"" + quantity + "\" needs node = tire.spindle");
+  const int spindle = deck_node(deck, arguments.integer("node"));
+  const Heading heading = deck.wheel_heading(spindle);
+  if (quantity == "spin_rate") {
+    if (arguments.has("component")) throw ModelError("quantity \"spin_rate\" has no component: leave it out");
+    return [spindle, heading](const Analysis& a) {
+      return wheel_spin_rate(a.state().velocity[dof_index(spindle, kRz)], heading);
+    };
+  }
+  if (!arguments.has("component"))
+    throw ModelError("quantity \"spindle_force\" needs component = \"fx\", \"fz\" or \"my\"");
+  const std::string component = arguments.string("component");
+  const int row = component == "fx" ? 0 : component == "fz" ? 1 : 2;
+  return [spindle, heading, row](const Analysis& a) {
+    return wheel_load_from_reaction(a.reactions().segment<3>(dof_index(spindle, 0)), heading)[row];
+  };
+}
+
+const char* wheel_unit(const std::string& quantity, const MacroArguments& arguments) {
+  if (quantity == "spin_rate") return "rad/s";
+  return arguments.string("component") == "my" ? "N m" : "N";
+}
+
+/// The nodal quantity of a history or value (summed over a set), or a tire's wheel quantity.
+Reading reading_of(DeckModel& deck, const MacroArguments& arguments, const std::string& quantity) {
+  if (is_wheel_quantity(quantity)) return wheel_reading(deck, arguments, quantity);
+  if (arguments.has("component"))
+    throw ModelError("'component' belongs to quantity = \"spindle_force\": give 'dof' for \"" + quantity + "\"");
+  if (!arguments.has("dof")) throw ModelError("quantity \"" + quantity + "\" needs dof = \"ux\", \"uy\" or \"rz\"");
   const std::vector<int> nodes = target_nodes(deck, arguments);
   const int component = component_of(arguments.string("dof"));
-  const std::string quantity = arguments.string("quantity");
   const NodalQuantity reader = quantity_reader(quantity);
+  return [nodes, component, reader](const Analysis& a) { return summed_quantity(a, reader, nodes, component); };
+}
+
+int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
+  const std::string quantity = arguments.string("quantity");
+  const Reading reading = reading_of(deck, arguments, quantity);
+  const std::string unit = is_wheel_quantity(quantity)
+                               ? wheel_unit(quantity, arguments)
+                               : quantity_unit(quantity, component_of(arguments.string("dof")));
   const double scale = arguments.number("scale");
-  deck.output_or_default().add_channel(
-      arguments.string("name"), quantity_unit(quantity, component),
-      [nodes, component, reader, scale](const Analysis& analysis, const StepRecord&) {
-        return scale * summed_quantity(analysis, reader, nodes, component);
-      });
+  deck.output_or_default().add_channel(arguments.string("name"), unit,
+                                       [reading, scale](const Analysis& analysis, const StepRecord&) {
+                                         return scale * reading(analysis);
+                                       });
   return 0;
 }
 
 int value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
-  const std::vector<int> nodes = target_nodes(deck, arguments);
+  const Reading reading = reading_of(deck, arguments, arguments.string("quantity"));
   deck.require_state("model:value");
   deck.model().finalize();
   const Analysis& analysis = deck.analysis();
   if (analysis.state().displacement.size() != deck.model().mesh().dof_count())
     throw ModelError("no step has been solved yet");
-  lua_pushnumber(L, summed_quantity(analysis, quantity_reader(arguments.string("quantity")), nodes,
-                                    component_of(arguments.string("dof"))));
+  lua_pushnumber(L, reading(analysis));
   return 1;
 }
 
@@ -341,8 +390,18 @@ int check_macro(lua_State*, DeckSession& session, const MacroArguments& argument
 const ParameterSpec kDofsKey{"dofs", VT::StringList, false, "", "DOFs to constrain", std::string("{\"ux\", \"uy\", \"rz\"}"),
                              Range::Any, kDofNames};
 const ParameterSpec kDofKey{"dof", VT::String, true, "", "DOF component", std::nullopt, Range::Any, kDofNames};
-const ParameterSpec kQuantityKey{"quantity", VT::String, false, "", "nodal quantity", std::string("displacement"),
-                                 Range::Any, kQuantities};
+const ParameterSpec kNodalQuantityKey{"quantity", VT::String, false, "", "nodal quantity", std::string("displacement"),
+                                      Range::Any, kNodalQuantities};
+// history and value: a nodal quantity by DOF, or a tire's spindle force or spin rate in its wheel axes.
+const ParameterSpec kQuantityDofKey{"dof", VT::String, false, "", "DOF component (nodal quantities)", std::nullopt,
+                                    Range::Any, kDofNames};
+const ParameterSpec kQuantityKey{"quantity", VT::String, false, "",
+                                 "nodal quantity, or at node = tire.spindle the tire's spindle_force (give component) "
+                                 "or spin_rate in ISO 8855 wheel axes (docs/output.md)",
+                                 std::string("displacement"), Range::Any, kQuantities};
+const ParameterSpec kComponentKey{"component", VT::String, false, "",
+                                  "spindle_force: fx, fz [N] or my [N m], the force the tire exerts on the wheel",
+                                  std::nullopt, Range::Any, kWheelComponents};
 
 }  // namespace
 
@@ -502,14 +561,18 @@ void add_model_macros(MacroTable& table) {
          Range::NonNegative}},
        "model:output{ file = \"cantilever.h5\", fields_every = 1 }"},
       output_macro);
-  add({"history", "Adds a history channel: a nodal quantity (summed over a set) written at every step.",
-       {{"name", VT::String, true, "", "channel name (/history/<name>)"}, kNodeKey, kSetKey, kDofKey, kQuantityKey,
+  add({"history",
+       "Adds a history channel written at every step: a nodal quantity (summed over a set), or a tire's spindle "
+       "force or spin rate in ISO 8855 wheel axes.",
+       {{"name", VT::String, true, "", "channel name (/history/<name>)"}, kNodeKey, kSetKey, kQuantityDofKey,
+        kQuantityKey, kComponentKey,
         {"scale", VT::Number, false, "", "factor on the value (-1: the force on a support instead of its reaction)",
          std::string("1")}},
-       "model:history{ name = \"root_force_y\", set = \"root\", dof = \"uy\", quantity = \"reaction\" }"},
+       "model:history{ name = \"spindle_fz\", node = tire.spindle, quantity = \"spindle_force\", component = \"fz\" }"},
       history_macro);
-  add({"value", "Returns a nodal quantity at the current time (summed over a set).",
-       {kNodeKey, kSetKey, kDofKey, kQuantityKey}, "local v = model:value{ node = tip, dof = \"uy\" }"},
+  add({"value", "Returns a nodal quantity at the current time (summed over a set), or a tire's spindle force or spin rate.",
+       {kNodeKey, kSetKey, kQuantityDofKey, kQuantityKey, kComponentKey},
+       "local v = model:value{ node = tip, dof = \"uy\" }"},
       value_macro);
   add({"result",
        "Records a scalar result of the run (a peak force, a frequency) as an attribute of /results in the "
@@ -520,7 +583,7 @@ void add_model_macros(MacroTable& table) {
        "model:result{ name = \"fz_on_top_Hz\", value = 88.0, unit = \"Hz\" }"},
       result_macro);
   add({"time", "Returns the current time.", {}, "local t = model:time()"}, time_macro);
-  add({"print", "Prints a nodal quantity for a node or a set (FEAP's DISP).", {kNodeKey, kSetKey, kQuantityKey},
+  add({"print", "Prints a nodal quantity for a node or a set (FEAP's DISP).", {kNodeKey, kSetKey, kNodalQuantityKey},
        "model:print{ set = \"tip\" }"},
       print_macro);
 }

@@ -57,7 +57,11 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   if (parameters.tread_layer.enabled())
     carried.insert(carried.end(), tire.contact_nodes.begin(), tire.contact_nodes.end());
   const std::string contact_set = parameters.tread_layer.enabled() ? name + "_contact" : "";
-  deck.describe_output([spindle = tire.spindle, carried, contact_set](io::ResultFile& file) {
+  Heading heading = Heading::PlusX;
+  parse_heading(arguments.string("heading"), heading);  // the spec allows +x and -x only
+  deck.set_wheel_heading(tire.spindle, heading);
+  deck.describe_output([spindle = tire.spindle, carried, contact_set, heading](io::ResultFile& file) {
+    file.file().write_attribute("/", "heading", std::string(heading_name(heading)));
     file.add_rim(spindle, carried);
     if (!contact_set.empty()) file.show_node_set(contact_set);
   });
@@ -163,7 +167,11 @@ void add_tire_macros(MacroTable& table) {
          positive("rim_mass", "kg", "rim and hub mass"),
          positive("rim_rotary_inertia", "kg m^2", "rim and hub rotary inertia"),
          {"x", VT::Number, false, "m", "spindle x", std::string("0")},
-         {"y", VT::Number, false, "m", "spindle y", std::string("0")}},
+         {"y", VT::Number, false, "m", "spindle y", std::string("0")},
+         {"heading", VT::String, false, "",
+          "direction of travel over the road, the x axis of the spindle forces' ISO 8855 wheel axes (docs/output.md): "
+          "+x on a road moving to -x, -x on a drum whose top moves to +x",
+          std::string("+x"), Range::Any, {"+x", "-x"}}},
         "local tire = model:tire(require(\"tires.145SR12\"))"},
        tire_macro});
 }

@@ -163,6 +163,7 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
             body_arguments.number("roll_inertia")};
 
   std::vector<Corner> corners;
+  std::vector<Heading> headings;  // of each corner's tire: the wheel axes of its returned forces
   std::vector<DeckModel*> decks;
   std::vector<TireSpindle*> spindles;
   arguments.push_value("corners");
@@ -183,6 +184,7 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
     corner.mass = corner_arguments.number("mass");
     corner.suspension = suspension_of(corner_arguments);
     const int node = deck_node(deck, corner_arguments.integer("spindle"));
+    headings.push_back(deck.wheel_heading(node));
     auto& spindle = spindles_of(deck).spindles[node];
     if (!spindle) spindle = std::make_unique<TireSpindle>(deck.analysis(), node, SpinMode::Free);
     if (spindle->spin() != SpinMode::Free) throw ModelError("corner '" + corner.name + "': the spindle spin must be free");
@@ -237,7 +239,7 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   }
   const int every = static_cast<int>(arguments.integer("history_every"));
   std::vector<double> time, heave, pitch, roll;
-  std::vector<std::vector<double>> jounce(corners.size()), wheel_z(corners.size()), fx(corners.size()), fy(corners.size());
+  std::vector<std::vector<double>> jounce(corners.size()), wheel_z(corners.size()), fx(corners.size()), fz(corners.size());
   vehicle.add_step_observer([&](const Vehicle& v) {
     if (v.statistics().steps % every != 0) return;
     time.push_back(v.time());
@@ -248,8 +250,10 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
       const int c = static_cast<int>(i);
       jounce[i].push_back(v.jounce(c));
       wheel_z[i].push_back(v.state().displacement[v.wheel_vertical_dof(c)]);
-      fx[i].push_back(v.spindle_force(c).x());
-      fy[i].push_back(v.spindle_force(c).y());
+      // The committed spindle force is the carrier's force on the tire: the spindle's reaction.
+      const Eigen::Vector3d load = wheel_load_from_reaction(v.spindle_force(c), headings[i]);
+      fx[i].push_back(load.x());
+      fz[i].push_back(load.y());
     }
   });
   const auto start = std::chrono::steady_clock::now();
@@ -283,7 +287,7 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   for (size_t i = 0; i < corners.size(); ++i) {
     lua_createtable(L, 0, 4);
     const std::pair<const char*, const std::vector<double>*> corner_series[] = {
-        {"jounce", &jounce[i]}, {"wheel_z", &wheel_z[i]}, {"fx", &fx[i]}, {"fy", &fy[i]}};
+        {"jounce", &jounce[i]}, {"wheel_z", &wheel_z[i]}, {"fx", &fx[i]}, {"fz", &fz[i]}};
     for (const auto& [name, values] : corner_series) {
       push_list(L, *values);
       lua_setfield(L, -2, name);
@@ -360,7 +364,8 @@ void add_vehicle_macros(MacroTable& table) {
         "force and Jacobian, the tires in concurrent threads. Every corner's result file gets the channels "
         "vehicle_heave (and _pitch, _roll), jounce, wheel_z, wheel_x. Returns {steps, corrector_iterations, "
         "tire_solves, tire_newton_iterations, cuts, backtracks, wall_time, time, heave, pitch, roll, "
-        "corners = {{jounce, wheel_z, fx, fy}, ...}} (fx, fy: the spindle force on the tire).",
+        "corners = {{jounce, wheel_z, fx, fz}, ...}} (fx, fz: the force the tire exerts on the wheel in its ISO 8855 "
+        "wheel axes, docs/output.md).",
         {{"body", VT::Table, true, "", "{mass [kg], pitch_inertia [kg m^2], roll_inertia [kg m^2]}"},
          {"corners", VT::Table, true, "",
           "list of {name, model, spindle, x, y, mass, spring | spring_rate + preload, damper | damping, "

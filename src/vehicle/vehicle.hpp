@@ -106,8 +106,9 @@ class Vehicle {
   double time() const { return committed_.time; }
   /// Jounce of a corner's suspension at the committed state [m].
   double jounce(int corner) const;
-  /// Spindle force of tire i at the committed state (the force on the tire, physical), as
-  /// its Commit reply gave it.
+  /// Spindle force of tire i at the committed state (the force on the tire, physical, in
+  /// the model's plane), as its Commit reply gave it; wheel_load_from_reaction() turns it
+  /// into the wheel axes users see (tire/wheel_axes.hpp).
   Eigen::Vector3d spindle_force(int corner) const { return tires_.committed_force(corner); }
   const VehicleStatistics& statistics() const { return statistics_; }
   VehicleSettings& settings() { return settings_; }
