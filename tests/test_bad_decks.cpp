@@ -149,6 +149,12 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
   REQUIRE(std::system(plot.c_str()) == 0);
   for (const char* suffix : {"_forces.png", "_impact.png", "_spectrum.png", "_snapshots.png"})
     CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
+  // The general plot of any result file, on the same run.
+  const std::string general = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_results.py").string() +
+                              " " + file.string() + " > /dev/null 2>&1";
+  REQUIRE(std::system(general.c_str()) == 0);
+  for (const char* suffix : {"_history.png", "_shapes.png"})
+    CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
 }
 
 TEST_CASE("vehicle pothole deck, short version: loads, strikes, four result files and the plots", "[decks][vehicle]") {
