@@ -259,6 +259,10 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   if (arguments.has("data_file") && arguments.has("x"))
     throw std::invalid_argument("'x' goes with 'data'; with 'data_file' the file's first other column is the abscissa");
 
+  const long long curve_points = arguments.integer("curve_points");
+  if (curve_points > 10000)
+    throw std::invalid_argument("'curve_points' = " + std::to_string(curve_points) + " is more than a plot needs "
+                                "(at most 10000)");
   fitting::FitAxes axes;
   std::optional<fitting::CurveData> curve;  // the data file
   size_t x_column = 0;
@@ -298,10 +302,6 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   problem.model = lua_model(L, function, columns, problem.parameters);
   const fitting::FitResult result = fitting::fit(problem, fit_options(arguments, session));
 
-  const long long curve_points = arguments.integer("curve_points");
-  if (curve_points > 10000)
-    throw std::invalid_argument("'curve_points' = " + std::to_string(curve_points) + " is more than a plot needs "
-                                "(at most 10000)");
   if (arguments.has("output") && curve && axes.x.size() > 1 && curve_points >= 2 && result.values.allFinite()) {
     // The fitted model between the data points, for the plot: one more evaluation with
     // the data file's columns on a fine grid. A model that cannot take them (it fails, or
@@ -315,8 +315,8 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
         axes.curve_x = to_eigen(grid[x_column].values);
         axes.curve_prediction = on_grid;
       }
-    } catch (const fitting::EvaluationError&) {
-    } catch (const std::invalid_argument&) {
+    } catch (const fitting::EvaluationError&) {  // the model failed on the grid: no curve
+    } catch (const std::invalid_argument&) {      // it returned something else than numbers: no curve
     }
   }
   if (arguments.has("output")) {
