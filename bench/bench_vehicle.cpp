@@ -1,4 +1,4 @@
-// Cost of the vehicle on FE tires (MODEL.md sections 6-7): a quarter car crossing a
+// Cost of the vehicle on FE tires (docs/model.md sections 6-7): a quarter car crossing a
 // 760 mm long pothole, with the direct spindle Jacobian H_ss and with forward finite
 // differences of the spindle force (the paper's comparison): steps, corrector
 // iterations per step, tire solves, tire Newton iterations per solve, wall time. Then a

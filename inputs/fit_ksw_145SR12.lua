@@ -1,9 +1,9 @@
 -- Fits the effective sidewall bending stiffness k_sw of the 145 SR-12 to its vertical
 -- force-deflection curve on a flat road at 208 kPa (145SR12_vertical_208kPa.csv, built
 -- from Rhyne's stiffness relation), then predicts the vertical stiffness at 150 and
--- 250 kPa with the fitted value (MODEL.md section 2: k_sw is independent of pressure).
+-- 250 kPa with the fitted value (docs/model.md section 2: k_sw is independent of pressure).
 -- Measured tires and the Magic Formula pressure law put K(150)/K(208) at 0.77-0.83 and
--- K(250)/K(208) at 1.12-1.17 (TIRE-DATA.md). Both signs of the k_sw term are fitted
+-- K(250)/K(208) at 1.12-1.17 (docs/tire_data.md). Both signs of the k_sw term are fitted
 -- (k_sw_sign = +1: eq. 9 as printed; -1: the physical bending direction). docs/fitting.md
 -- discusses the result. This deck checks itself.
 --
@@ -68,7 +68,7 @@ for _, sign in ipairs{ 1, -1 } do
     data_file = "145SR12_vertical_208kPa.csv", data_column = "force",
     model = function(q, curve) return flat_road_forces(q.k_sw, sign, 0.208e6, curve.deflection) end,
     tolerance = 1e-3, relative_step = 1e-3,
-    output = "fit_ksw_145SR12_" .. label .. ".h5",
+    output = "fit_ksw_145SR12_" .. label .. ".h5", curve_points = 21,
   }
   local k_sw = fit.values.k_sw
   local start = os.clock()

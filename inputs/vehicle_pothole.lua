@@ -1,4 +1,4 @@
--- The paper's vehicle experiment (MODEL.md section 7, its section 3.2): a mid-size car
+-- The paper's vehicle experiment (docs/model.md section 7, its section 3.2): a mid-size car
 -- on four FE 145 SR-12 tires at 0.243 MPa. Protocol, 9 s: 1 s quasi-static inflation
 -- (here followed by another quasi-static second pressing each tire to its static corner
 -- load, so the dynamic part runs from t = 2 s to 10 s); 1 s dynamic settling; the ground under

@@ -47,16 +47,46 @@ function M.read(args)
   return readings
 end
 
--- Prints the readings as a table and records them in the model's /results:
--- <window>_Hz, <window>_uncertainty_Hz, <window>_spectrum_Hz, <window>_pencil_Hz,
--- <window>_damping_ratio, <window>_from_s, <window>_to_s.
-function M.report(model, readings, measured)
-  print("  ringing                          spectrum   pencil  (damping)   reading        measured")
+-- The frequencies measured on the drum (the paper's section 3.1, docs/model.md section 7)
+-- and the test they were measured in: they say nothing about other speeds, loads or cleats.
+M.measured_frequencies = { fz_on_top = 88, fz_leaving = 85, fx_from_hit = 35, fx_leaving = 35 }
+M.test_conditions = { speed_kmh = 51.3, load = 3800, pressure_kpa = 208, cleat_height = 0.025, cleat_length = 0.66,
+                      drum_diameter = 1.7 }
+M.test_note = "measured values are for 51.3 km/h, 3800 N, 208 kPa, 25 mm x 660 mm cleat on the 1.7 m drum"
+
+-- The measured frequencies if every one of the run's 'conditions' (keys of M.test_conditions)
+-- is the test's to 0.1 %, else nil.
+function M.measured(conditions)
+  for key, value in pairs(M.test_conditions) do
+    local given = conditions[key]
+    if type(given) ~= "number" or math.abs(given - value) > 1e-3 * value then return nil end
+  end
+  return M.measured_frequencies
+end
+
+-- The summary table's lines: with a "measured" column when 'measured' is given, else
+-- without it and with a note saying which test the measurements are for.
+function M.table_lines(readings, measured)
+  local lines = { "  ringing                          spectrum   pencil  (damping)   reading"
+                  .. (measured and "        measured" or "") }
   for _, window in ipairs(M.windows) do
     local r = readings[window.name]
-    print(string.format("  %-32s %6.1f Hz %6.1f Hz  (%5.3f)   %5.1f +- %4.1f Hz   %s", r.what, r.spectrum_frequency,
-                        r.pencil_frequency, r.damping_ratio, r.frequency, r.uncertainty,
-                        measured and measured[window.name] and string.format("%g Hz", measured[window.name]) or "-"))
+    local line = string.format("  %-32s %6.1f Hz %6.1f Hz  (%5.3f)   %5.1f +- %4.1f Hz", r.what, r.spectrum_frequency,
+                               r.pencil_frequency, r.damping_ratio, r.frequency, r.uncertainty)
+    if measured then line = line .. string.format("   %g Hz", measured[window.name]) end
+    lines[#lines + 1] = line
+  end
+  if not measured then lines[#lines + 1] = "  (" .. M.test_note .. ")" end
+  return lines
+end
+
+-- Prints the readings as a table and records them in the model's /results:
+-- <window>_Hz, <window>_uncertainty_Hz, <window>_spectrum_Hz, <window>_pencil_Hz,
+-- <window>_damping_ratio, <window>_from_s, <window>_to_s. 'measured': M.measured(...).
+function M.report(model, readings, measured)
+  for _, line in ipairs(M.table_lines(readings, measured)) do print(line) end
+  for _, window in ipairs(M.windows) do
+    local r = readings[window.name]
     local results = { Hz = r.frequency, uncertainty_Hz = r.uncertainty, spectrum_Hz = r.spectrum_frequency,
                       pencil_Hz = r.pencil_frequency, damping_ratio = r.damping_ratio, from_s = r.from, to_s = r.to }
     for suffix, value in pairs(results) do

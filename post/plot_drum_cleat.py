@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Plots of a drum-cleat run (inputs/drum_cleat.lua), written next to its HDF5 file:
 
-  <stem>_forces.png     spindle Fx and Fz over the whole run, and the spin rate
+  <stem>_forces.png     spindle Fx and Fz over the whole run, the spin rate and the drum speed
   <stem>_impact.png     Fx, Fz and the spin rate around the last cleat passage at full speed,
                         with the four windows the ringing is read in
   <stem>_spectrum.png   the Hann-windowed spectrum of each of those windows, with the deck's
                         readings (spectrum peak, matrix pencil) and the measured frequencies
+                        (only for a run under the test's conditions: 51.3 km/h, 3800 N,
+                        208 kPa, the 25 x 660 mm cleat on the 1.7 m drum)
   <stem>_snapshots.png  the deformed tire on the cleat at a few instants
 
     /usr/bin/python3 post/plot_drum_cleat.py results/drum_cleat.h5
@@ -51,6 +53,16 @@ class Run:
     def parameter(self, name, default):
         value = self.parameters.get(name, default)
         return value.decode() if isinstance(value, bytes) else value
+
+    def drum_speed_kmh(self):
+        """The drum's surface speed [km/h], from its angle history (NaN before the drum exists)."""
+        return np.abs(np.gradient(self.drum_angle, self.time)) * self.drum_radius * 3.6
+
+    def measured_applies(self):
+        """Whether the measured frequencies hold for this run: the test's speed, load, pressure,
+        cleat and drum (lua/cleat_ringing.lua's test conditions), each to 0.1 %."""
+        return all(abs(float(self.parameter(name, value)) - value) <= 1e-3 * value
+                   for name, value in TEST_CONDITIONS.items())
 
     @property
     def drum_radius(self):
@@ -99,8 +111,11 @@ def plot_forces(run, stem):
     axes[1].plot(run.time, run.fx, linewidth=0.7, color="tab:red")
     axes[1].set_ylabel("Fx [N]")
     axes[2].plot(run.time, run.spin, linewidth=0.7, color="tab:green")
-    axes[2].set_ylabel("spin rate [rad/s]")
+    axes[2].set_ylabel("tire spin rate [rad/s]", color="tab:green")
     axes[2].set_xlabel("time [s]")
+    speed_axis = axes[2].twinx()
+    speed_axis.plot(run.time, run.drum_speed_kmh(), linewidth=0.9, linestyle="--", color="0.35")
+    speed_axis.set_ylabel("drum surface speed [km/h] (dashed)")
     for on, off in run.passages():
         for axis in axes:
             axis.axvspan(on, off, color="0.85", linewidth=0)
@@ -114,6 +129,10 @@ def plot_forces(run, stem):
     plt.close(figure)
     return path
 
+
+# The drum-cleat test that measured the frequencies below (lua/cleat_ringing.lua).
+TEST_CONDITIONS = {"speed_kmh": 51.3, "load": 3800.0, "pressure_kpa": 208.0, "cleat_height": 0.025,
+                   "cleat_length": 0.66, "drum_diameter": 1.7}
 
 # The ringing windows the deck reads (lua/cleat_ringing.lua), in its /results.
 WINDOWS = (("fz_on_top", "fz", "Fz on top of the cleat", 88, (40, 200)),
@@ -139,7 +158,7 @@ def plot_impact(run, stem, passage):
     milliseconds = (run.time[window] - on) * 1e3
     figure, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True)
     series = ((run.fz, "Fz [N]", "tab:blue", "fz"), (run.fx, "Fx [N]", "tab:red", "fx"),
-              (run.spin, "spin rate [rad/s]", "tab:green", None))
+              (run.spin, "tire spin rate [rad/s]", "tab:green", None))
     for axis, (values, label, colour, force) in zip(axes, series):
         axis.plot(milliseconds, values[window], color=colour, linewidth=1.0)
         axis.axvspan(0.0, (off - on) * 1e3, color="0.9", linewidth=0, label="cleat under the patch centre")
@@ -150,7 +169,7 @@ def plot_impact(run, stem, passage):
         axis.set_ylabel(label)
         axis.grid(True, alpha=0.3)
         axis.legend(fontsize=7, loc="upper right")
-    axes[2].set_xlabel("time after the cleat's leading edge reaches the patch centre [ms]")
+    axes[2].set_xlabel("time after the cleat's leading edge reaches the contact patch centre [ms]")
     speed = float(run.parameter("speed_kmh", 51.3))
     figure.suptitle(f"cleat impact at {speed:g} km/h (t = 0 at {on:.4f} s)")
     figure.tight_layout()
@@ -202,7 +221,8 @@ def plot_spectrum(run, stem):
         axis.axvline(deck_pencil, color="tab:orange", linestyle="--", linewidth=1.2,
                      label=f"matrix pencil {deck_pencil:.1f} Hz "
                            f"(damping {float(run.results[name + '_damping_ratio']):.3f})")
-        axis.axvline(measured, color="0.5", linestyle=":", linewidth=1.2, label=f"measured {measured} Hz")
+        if run.measured_applies():
+            axis.axvline(measured, color="0.5", linestyle=":", linewidth=1.2, label=f"measured {measured} Hz")
         axis.axvspan(0, band[0], color="0.93", linewidth=0)
         axis.set_xlim(0, 200)
         axis.set_title(f"{title}: {(start - run.results.get('cleat_on_s', start)) * 1e3:.0f} to "
@@ -212,8 +232,10 @@ def plot_spectrum(run, stem):
         axis.grid(True, alpha=0.3)
         axis.legend(fontsize=7)
     speed = float(run.parameter("speed_kmh", 51.3))
+    note = "" if run.measured_applies() else "\nno measured frequencies: they are for 51.3 km/h, 3800 N, 208 kPa, " \
+                                             "25 x 660 mm cleat on the 1.7 m drum"
     figure.suptitle(f"spectra of the ringing windows, {speed:g} km/h (Hann, zero-padded; grey: outside the band read; "
-                    "times from the leading edge at the patch centre)", fontsize=9)
+                    f"times from the leading edge at the patch centre){note}", fontsize=9)
     figure.tight_layout()
     path = stem + "_spectrum.png"
     figure.savefig(path, dpi=120)
@@ -245,6 +267,10 @@ def plot_snapshots(run, stem, passage):
         position = run.coordinates + run.frames[frame][:, :2]
         angle = float(np.interp(time, run.time, np.nan_to_num(run.drum_angle)))
         x, y = drum_outline(run, angle)
+        # Millimetres from the spindle's place at this frame.
+        origin = position[run.spindle].copy()
+        position = (position - origin) * 1e3
+        x, y = (x - origin[0]) * 1e3, (y - origin[1]) * 1e3
         axis.fill(x, y, color="0.85")
         axis.plot(x, y, color="0.3", linewidth=0.8)
         if run.tread is not None:
@@ -253,11 +279,12 @@ def plot_snapshots(run, stem, passage):
         spindle = position[run.spindle]
         for node in (run.tread[:, 0] if run.tread is not None else []):
             axis.plot([spindle[0], position[node, 0]], [spindle[1], position[node, 1]], color="0.7", linewidth=0.3)
-        axis.set_xlim(spindle[0] - 0.32, spindle[0] + 0.32)
-        axis.set_ylim(spindle[1] - 0.36, spindle[1] + 0.3)
+        axis.set_xlim(spindle[0] - 320, spindle[0] + 320)
+        axis.set_ylim(spindle[1] - 360, spindle[1] + 300)
         axis.set_aspect("equal")
-        axis.set_title(f"t = {time:.4f} s", fontsize=9)
-        axis.axis("off")
+        axis.set_title(f"{(time - on) * 1e3:+.0f} ms from the leading edge (t = {time:.4f} s)", fontsize=9)
+        axis.set_xlabel("x from the spindle [mm]")
+        axis.set_ylabel("y from the spindle [mm]")
     figure.suptitle("deformed tire on the cleat (true scale)")
     figure.tight_layout()
     path = stem + "_snapshots.png"

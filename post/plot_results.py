@@ -26,8 +26,9 @@ def plot_history(result, stem):
     figure, axes = plt.subplots(len(channels), 1, figsize=(7, 2.2 * len(channels)), sharex=True, squeeze=False)
     for axis, name in zip(axes[:, 0], channels):
         unit = history[name].attrs.get("unit", "")
+        unit = unit.decode() if isinstance(unit, bytes) else unit
         axis.plot(time, history[name][:], marker=".")
-        axis.set_ylabel(f"{name}\n[{unit}]" if unit else name)
+        axis.set_ylabel(f"{name}\n[{unit or '-'}]")  # no unit: a count or a pure number
         axis.grid(True, alpha=0.3)
     axes[-1, 0].set_xlabel("time [s]")
     figure.suptitle(result.attrs.get("title", ""))

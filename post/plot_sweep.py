@@ -4,10 +4,14 @@
 next to the manifest unless -o names the PNG.
 
     /usr/bin/python3 post/plot_sweep.py results/sweep/manifest.csv --x load_parameter --y peak_deflection \\
-        [--group elements] [-o plot.png]
+        [--group elements] [--x-unit UNIT] [--y-unit UNIT] [-o plot.png]
+
+Axis units: as given, else as the runs recorded them (manifest.json: the unit of each
+metric's result or channel), else read off a parameter's name (speed_kmh: km/h).
 """
 import argparse
 import csv
+import json
 import os
 import sys
 
@@ -15,6 +19,33 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+
+# Units read off a parameter's name, e.g. speed_kmh or pressure_kpa (deck parameters carry
+# no unit in the result files).
+NAME_SUFFIX_UNITS = {"kmh": "km/h", "kpa": "kPa", "mpa": "MPa", "hz": "Hz", "s": "s", "ms": "ms", "n": "N",
+                     "m": "m", "mm": "mm", "deg": "deg", "kg": "kg"}
+
+
+def recorded_units(manifest):
+    """Units of the metrics as the runs recorded them (manifest.json beside manifest.csv)."""
+    path = os.path.join(os.path.dirname(manifest), "manifest.json")
+    units = {"wall_time_s": "s"}
+    if os.path.exists(path):
+        with open(path) as f:
+            for record in json.load(f):
+                for name, unit in record.get("units", {}).items():
+                    units.setdefault(name, unit)
+    return units
+
+
+def axis_label(column, units, given):
+    """'column [unit]': the unit given on the command line, recorded by the runs, or read off the
+    column's name; "unit not recorded" if none of them says."""
+    unit = given or units.get(column)
+    if not unit and "_" in column:
+        unit = NAME_SUFFIX_UNITS.get(column.rsplit("_", 1)[-1].lower())
+    return f"{column} [{unit or 'unit not recorded'}]"
 
 
 def number(text):
@@ -30,6 +61,8 @@ def main():
     parser.add_argument("--x", required=True, help="column on the horizontal axis (a parameter)")
     parser.add_argument("--y", required=True, help="column on the vertical axis (a metric)")
     parser.add_argument("--group", help="one line per value of this column")
+    parser.add_argument("--x-unit", help="unit of the x column (default: as the runs recorded it, or from its name)")
+    parser.add_argument("--y-unit", help="unit of the y column (default: as the runs recorded it, or from its name)")
     parser.add_argument("-o", "--output", help="PNG to write")
     arguments = parser.parse_args()
 
@@ -54,8 +87,9 @@ def main():
         points = sorted(lines[group])
         label = f"{arguments.group} = {group}" if arguments.group else None
         axis.plot([p[0] for p in points], [p[1] for p in points], "o-", label=label)
-    axis.set_xlabel(arguments.x)
-    axis.set_ylabel(arguments.y)
+    units = recorded_units(arguments.manifest)
+    axis.set_xlabel(axis_label(arguments.x, units, arguments.x_unit))
+    axis.set_ylabel(axis_label(arguments.y, units, arguments.y_unit))
     axis.grid(True, alpha=0.3)
     if arguments.group:
         axis.legend(fontsize=8)

@@ -143,7 +143,20 @@ REDUCTIONS = {
 }
 
 
+def metric_unit(metric, result):
+    """The unit of a metric's value: the deck's unit of a result, Hz for a frequency, else the
+    channel's unit; None if the file records none."""
+    if "result" in metric:
+        unit = result["results"].attrs.get(metric["result"] + "_unit") if "results" in result else None
+    elif metric["reduce"] == "dominant_frequency":
+        unit = "Hz"
+    else:
+        unit = result["history"][metric["channel"]].attrs.get("unit")
+    return unit.decode() if isinstance(unit, bytes) else unit
+
+
 def metric_value(metric, folder):
+    """(value, unit) of a metric of the run in 'folder'."""
     if "result" not in metric and metric.get("reduce") not in REDUCTIONS:
         raise MetricError(f"'reduce' must be one of {', '.join(REDUCTIONS)}, or name a 'result'")
     if "file" in metric:
@@ -158,11 +171,12 @@ def metric_value(metric, folder):
             values = result["results"].attrs if "results" in result else {}
             if metric["result"] not in values:
                 raise MetricError(f"no result '{metric['result']}' in {os.path.basename(path)}")
-            return float(values[metric["result"]])
+            return float(values[metric["result"]]), metric_unit(metric, result)
         channel = metric["channel"]
         if channel not in result["history"]:
             raise MetricError(f"no history channel '{channel}' in {os.path.basename(path)}")
         time, values = result["history/time"][:], result["history"][channel][:]
+        unit = metric_unit(metric, result)
     if "window" in metric:
         start, end = metric["window"]
         inside = (time >= start) & (time <= end)
@@ -170,8 +184,8 @@ def metric_value(metric, folder):
     if values.size == 0:
         raise MetricError("no samples in the time window")
     if metric["reduce"] == "dominant_frequency":
-        return dominant_frequency(time, values, metric.get("band"))
-    return REDUCTIONS[metric["reduce"]](time, values)
+        return dominant_frequency(time, values, metric.get("band")), unit
+    return REDUCTIONS[metric["reduce"]](time, values), unit
 
 
 # ---- running --------------------------------------------------------------------------
@@ -203,13 +217,15 @@ def execute(spec, identifier):
             log.write(f"sweep: cannot run {command[0]}: {error}\n")
     record = {"run_id": identifier, "parameters": spec.runs[identifier], "status": EXIT_STATUS.get(code, "failed"),
               "exit_code": code, "started_unix": round(started, 3), "wall_time_s": round(time.monotonic() - start, 3),
-              "message": "", "metrics": {}}
+              "message": "", "metrics": {}, "units": {}}
     if record["status"] != "ok":
         record["message"] = last_line(log_path)
     if record["status"] != "failed":
         for name, metric in spec.metrics.items():
             try:
-                record["metrics"][name] = metric_value(metric, folder)
+                record["metrics"][name], unit = metric_value(metric, folder)
+                if unit:
+                    record["units"][name] = unit
             except (MetricError, OSError, KeyError, ValueError) as error:
                 record["metrics"][name] = None
                 record["message"] = (record["message"] + "; " if record["message"] else "") + f"metric {name}: {error}"

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -31,8 +32,22 @@ struct RunResult {
   std::string errors;  // standard error
 };
 
+/// The output folder of the runs: one per test process, as suites of several checkouts
+/// may run on one machine at the same time; removed when the process ends.
+const fs::path& run_folder() {
+  struct Folder {
+    fs::path path = fs::temp_directory_path() / ("tirefe_bad_decks_" + std::to_string(::getpid()));
+    ~Folder() {
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  return folder.path;
+}
+
 RunResult run_tirefe(const std::string& arguments) {
-  const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
+  const fs::path output = run_folder();
   const std::string command = std::string(TIREFE_BINARY) + " " + arguments + " --quiet --output-dir " +
                               output.string() + " 2>&1 >/dev/null";
   FILE* pipe = popen(command.c_str(), "r");
@@ -99,7 +114,7 @@ TEST_CASE("every bad deck gets a clear one-line error with file and line", "[dec
     else
       CHECK(result.errors.find(deck) != std::string::npos);
     if (!expectation.kept_file.empty()) {
-      const fs::path kept = fs::temp_directory_path() / "tirefe_bad_decks" / expectation.kept_file;
+      const fs::path kept = run_folder() / expectation.kept_file;
       const auto output = tirefe::io::Hdf5File::open_read_only(kept.string());
       const std::vector<double> time = output.read_doubles("/history/time");
       CHECK(static_cast<int>(time.size()) >= expectation.kept_rows);
@@ -125,7 +140,7 @@ TEST_CASE("the self-checking decks in inputs/ pass their checks", "[decks]") {
 TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF index and plots", "[decks][drum]") {
   // A 0.5 s spin-up instead of 4 s: the passage at full speed that follows is the same
   // impact as in the full run (docs/drum_cleat.md).
-  const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
+  const fs::path output = run_folder();
   const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "drum_cleat.lua").string();
   const RunResult result = run_tirefe(deck + " spin_up_time=0.5 end_time=3.0 check=true output=drum_short.h5");
   INFO("errors: " << result.errors);
@@ -161,12 +176,18 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
   REQUIRE(std::system(plot.c_str()) == 0);
   for (const char* suffix : {"_forces.png", "_impact.png", "_spectrum.png", "_snapshots.png"})
     CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
+  // The general plot of any result file, on the same run.
+  const std::string general = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_results.py").string() +
+                              " " + file.string() + " > /dev/null 2>&1";
+  REQUIRE(std::system(general.c_str()) == 0);
+  for (const char* suffix : {"_history.png", "_shapes.png"})
+    CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
 }
 
 TEST_CASE("vehicle pothole deck, short version: loads, strikes, four result files and the plots", "[decks][vehicle]") {
   // A 0.5 s ramp and the chuckhole 0.1 s into the cruise instead of 5 s and 1 s: the same
   // crossing at 48 km/h by the left wheels, with the deck's own checks (docs/vehicle.md).
-  const fs::path output = fs::temp_directory_path() / "tirefe_bad_decks";
+  const fs::path output = run_folder();
   const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "vehicle_pothole.lua").string();
   const RunResult result = run_tirefe(deck + " settle=0.05 ramp=0.5 cruise=0.45 lead=0.1");
   INFO("errors: " << result.errors);
@@ -218,7 +239,7 @@ model:solve{ to = 1.0 }
   INFO(result.errors);
   CHECK(result.exit_status == 1);
   CHECK(result.errors.find("could not be solved") != std::string::npos);
-  const fs::path file = fs::temp_directory_path() / "tirefe_bad_decks" / "fails_midway.h5";
+  const fs::path file = run_folder() / "fails_midway.h5";
   tirefe::io::Hdf5File output = tirefe::io::Hdf5File::open_read_only(file.string());
   const std::vector<double> time = output.read_doubles("/history/time");
   REQUIRE(time.size() == 3);

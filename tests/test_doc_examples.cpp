@@ -5,11 +5,17 @@
 // an error and with every tirefe.check passed.
 #include <catch2/catch.hpp>
 
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "deck_support.hpp"
+#include "io/checkpoint.hpp"
+#include "io/hdf5_file.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -64,7 +70,60 @@ int run_examples(const std::string& doc) {
   return decks;
 }
 
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// Runs the `build/tirefe ...` lines of a doc's sh blocks, in order, in 'folder' (which
+/// sees the shipped inputs/ as its own); each must exit with status 0. Returns their number.
+int run_commands(const std::string& doc, const tirefe::testing::TempDir& folder) {
+  fs::create_directory_symlink(fs::path(TIREFE_SOURCE_DIR) / "inputs", folder.path("inputs"));
+  const std::string program = "build/tirefe ";
+  int commands = 0;
+  for (const DocBlock& block : fenced_blocks(std::string(TIREFE_SOURCE_DIR) + "/" + doc)) {
+    if (block.info != "sh") continue;
+    std::istringstream lines(block.text);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind(program, 0) != 0) continue;
+      const std::string command =
+          "cd " + folder.path() + " && " + TIREFE_BINARY + " " + line.substr(program.size()) + " > /dev/null 2>&1";
+      INFO(doc << ", the block at line " << block.line << ": " << line);
+      const int status = std::system(command.c_str());
+      REQUIRE(WIFEXITED(status));
+      CHECK(WEXITSTATUS(status) == 0);
+      ++commands;
+    }
+  }
+  return commands;
+}
+
 }  // namespace
+
+TEST_CASE("the commands of docs/restart.md run, and the restarted run's file equals the whole run's", "[docs][restart]") {
+  tirefe::testing::TempDir folder;
+  REQUIRE(run_commands("docs/restart.md", folder) == 2);
+  const fs::path whole = folder.path("results"), restarted = whole / "restarted";
+  const auto checkpoint = tirefe::io::read_checkpoint((whole / "rolling.ckpt.h5").string());
+  CHECK(checkpoint.analysis.state.time == Approx(2.3).epsilon(1e-12));
+  const auto reference = tirefe::io::Hdf5File::open_read_only((whole / "tire_restart.h5").string());
+  const auto result = tirefe::io::Hdf5File::open_read_only((restarted / "tire_restart.h5").string());
+  // Every row dataset, history, fields and contact rows, over the whole run.
+  int compared = 0;
+  for (const auto& rows : checkpoint.rows) {
+    INFO(rows.path);
+    const std::vector<double> a = result.read_doubles(rows.path), b = reference.read_doubles(rows.path);
+    REQUIRE(a.size() == b.size());
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+    ++compared;
+  }
+  CHECK(compared >= 20);
+  CHECK(reference.read_doubles("/history/time").back() == Approx(2.6).epsilon(1e-12));
+  // The run is a rolling tire: loaded, turning at the road's speed over its rolling radius.
+  CHECK(reference.read_doubles("/history/spindle_fz").back() == Approx(3590).epsilon(0.02));
+  CHECK(reference.read_doubles("/history/spin_rate").back() == Approx(8.0 / 0.2717).epsilon(0.01));
+  CHECK(text_of(restarted / "tire_restart.xmf") == text_of(whole / "tire_restart.xmf"));
+}
 
 TEST_CASE("the examples of docs/tire.md, docs/contact.md and docs/output.md run and pass their checks", "[docs]") {
   CHECK(run_examples("docs/tire.md") == 3);

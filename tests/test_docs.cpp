@@ -1,8 +1,13 @@
 // The macro reference in docs/ is generated from the macro specs: keep it current.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <regex>
+#include <string>
+#include <vector>
 
 #include "macros/macro_table.hpp"
 #include "tirefe/test_paths.hpp"
@@ -13,4 +18,73 @@ TEST_CASE("docs/macros.md is the current macro reference (regenerate: tirefe --m
   REQUIRE(in.good());
   const std::string documented((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(documented == tirefe::macros::macro_reference());
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The repository's text files: sources, decks, scripts, docs, data. Build folders (those
+// holding a CMakeCache.txt) and hidden folders are not the repository's.
+std::vector<fs::path> repository_text_files() {
+  const std::vector<std::string> extensions = {".md", ".cpp", ".hpp", ".lua", ".py", ".sh", ".txt", ".csv", ".tir"};
+  std::vector<fs::path> files;
+  const fs::path root(TIREFE_SOURCE_DIR);
+  for (auto entry = fs::recursive_directory_iterator(root); entry != fs::recursive_directory_iterator(); ++entry) {
+    const fs::path& path = entry->path();
+    if (entry->is_directory()) {
+      if (path.filename().string().front() == '.' || fs::exists(path / "CMakeCache.txt")) entry.disable_recursion_pending();
+      continue;
+    }
+    const std::string extension = path.extension().string();
+    if (std::find(extensions.begin(), extensions.end(), extension) != extensions.end()) files.push_back(path);
+  }
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("no file of the repository names a document outside it", "[docs]") {
+  // Spelt in pieces so that this file does not name them itself.
+  const std::vector<std::string> outside = {std::string("..") + "/shared", std::string("shared") + "/docs",
+                                            std::string("MODEL") + ".md", std::string("TIRE-") + "DATA",
+                                            std::string("STYLE") + ".md", std::string("PERFORMANCE") + ".md"};
+  const std::vector<fs::path> files = repository_text_files();
+  CHECK(files.size() > 100);
+  for (const fs::path& path : files) {
+    const std::string text = file_text(path);
+    for (const std::string& name : outside) {
+      INFO(path.string() << " names " << name << ": point at docs/model.md or docs/tire_data.md instead");
+      CHECK(text.find(name) == std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("every repository path that the docs and the README name exists", "[docs]") {
+  // docs/NAME.md, inputs/..., post/NAME.py, scripts/NAME.sh, src/..., lua/..., tests/...,
+  // bench/... not preceded by another path part (build/bench_x, results/x are outputs).
+  const std::regex mention(R"((^|[^\w/.-])((docs|inputs|post|scripts|src|lua|tests|bench)/[\w/.-]*\w/?))");
+  const fs::path root(TIREFE_SOURCE_DIR);
+  std::vector<fs::path> documents = {root / "README.md"};
+  for (const auto& entry : fs::directory_iterator(root / "docs"))
+    if (entry.path().extension() == ".md") documents.push_back(entry.path());
+  int mentions = 0;
+  for (const fs::path& document : documents) {
+    std::ifstream in(document);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      for (std::sregex_iterator match(line.begin(), line.end(), mention), end; match != end; ++match) {
+        const std::string named = (*match)[2];
+        INFO(document.string() << ":" << number << " names " << named << ", which is not in the repository");
+        CHECK(fs::exists(root / named));
+        ++mentions;
+      }
+    }
+  }
+  CHECK(mentions > 100);
 }

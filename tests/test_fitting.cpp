@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -465,6 +466,52 @@ third_deflection = tirefe.read_csv{ file = "tip.csv" }.deflection[3]
   CHECK(shape[0] == file.read_doubles("/fit/history/objective").size());
   CHECK(shape[1] == 1);
   CHECK(file.read_doubles("/fit/history/objective").size() >= 3);
+}
+
+TEST_CASE("tirefe.fit with curve_points writes the fitted model on a fine grid and the file's units", "[fitting]") {
+  TempDir folder;
+  // F = k d^2 with k = 2e7 N/m^2, deflections in mm and forces in kN in the file.
+  folder.write("curve.csv", "deflection_mm, force_kN, pressure_kPa\n5, 0.5, 200\n15, 4.5, 220\n10, 2, 210\n");
+  const std::string deck = folder.write("fit_curve.lua", R"(
+local function law(p, columns)
+  local forces = {}
+  for i, d in ipairs(columns.deflection) do forces[i] = p.k * d * d * columns.pressure[i] / columns.pressure[i] end
+  return forces
+end
+tirefe.fit{ parameters = { { name = "k", initial = 1e7, lower = 1e5, upper = 1e9 } }, data_file = "curve.csv", data_column = "force",
+            model = law, tolerance = 1e-10, output = "grid.h5", curve_points = 11 }
+-- A model that returns its values at the data points whatever it is given: no curve.
+tirefe.fit{ parameters = { { name = "k", initial = 1e7, lower = 1e5, upper = 1e9 } }, data_file = "curve.csv", data_column = "force",
+            model = function(p) return { p.k * 25e-6, p.k * 225e-6, p.k * 100e-6 } end, tolerance = 1e-10,
+            output = "points.h5", curve_points = 11 }
+)");
+  DeckRun run(folder.path("out"));
+  run.run(deck);
+  const auto file = tirefe::io::Hdf5File::open_read_only(folder.path("out/grid.h5"));
+  const std::vector<double> x = file.read_doubles("/fit/curve/x"), curve = file.read_doubles("/fit/curve/prediction");
+  REQUIRE(x.size() == 11);
+  REQUIRE(curve.size() == 11);
+  const double k = file.read_doubles("/fit/parameters/value")[0];
+  CHECK(k == Approx(2e7).epsilon(1e-8));
+  for (size_t i = 0; i < x.size(); ++i) {
+    CHECK(x[i] == Approx(0.005 + 0.001 * static_cast<double>(i)).epsilon(1e-12));  // 5 to 15 mm, in m
+    CHECK(curve[i] == Approx(k * x[i] * x[i]).epsilon(1e-12));
+  }
+  CHECK(file.read_string_attribute("/fit/x", "file_unit") == "mm");
+  CHECK(file.read_double_attribute("/fit/x", "to_si") == 1e-3);
+  CHECK(file.read_string_attribute("/fit/data", "file_unit") == "kN");
+  CHECK(file.read_double_attribute("/fit/data", "to_si") == 1e3);
+  const auto points = tirefe::io::Hdf5File::open_read_only(folder.path("out/points.h5"));
+  CHECK_FALSE(points.exists("/fit/curve"));
+  CHECK(points.read_doubles("/fit/prediction").size() == 3);
+
+  // post/plot_fit.py draws both: the continuous curve, and the values at the data points.
+  for (const char* name : {"grid", "points"}) {
+    const std::string plot = "/usr/bin/python3 " + std::string(TIREFE_SOURCE_DIR) + "/post/plot_fit.py " +
+                             folder.path("out/" + std::string(name) + ".h5") + " > /dev/null";
+    CHECK(std::system(plot.c_str()) == 0);
+    CHECK(std::filesystem::file_size(folder.path("out/" + std::string(name) + "_fit.png")) > 10000);
+  }
 }
 
 TEST_CASE("tirefe.fit reports a malformed CSV row and a failing model at the deck line", "[fitting]") {

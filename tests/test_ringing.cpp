@@ -7,6 +7,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "test_support.hpp"
+
+#include "deck_support.hpp"
 #include "post/matrix_pencil.hpp"
 #include "post/ringing.hpp"
 #include "post/spectrum.hpp"
@@ -116,4 +119,49 @@ TEST_CASE("ringing reading: bad windows and bands are refused with a message", "
   CHECK_THROWS_WITH(read_ringing(signal.time, signal.value, 0.0, 0.05, {100.0, 400.0}),
                     Catch::Contains("no damped sinusoid"));
   CHECK_THROWS_AS(read_ringing(signal.time, signal.value, 0.05, 0.0), std::invalid_argument);
+}
+
+TEST_CASE("cleat ringing summary: the measured column only for the test's own conditions", "[post][ringing][drum]") {
+  // lua/cleat_ringing.lua, as inputs/drum_cleat.lua prints its summary, on made-up readings:
+  // the measured frequencies hold for 51.3 km/h, 3800 N, 208 kPa and the 25 x 660 mm cleat only.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("summary.lua", R"(
+local ringing = require("cleat_ringing")
+local readings = {}
+for _, window in ipairs(ringing.windows) do
+  readings[window.name] = { what = window.what, spectrum_frequency = 35.5, pencil_frequency = 35.7,
+                            damping_ratio = 0.143, frequency = 35.6, uncertainty = 0.1 }
+end
+local test = { speed_kmh = 51.3, load = 3800, pressure_kpa = 208, cleat_height = 0.025, cleat_length = 0.66,
+               drum_diameter = 1.7, tire = "tires.145SR12_tread_layer" }
+local function changed(key, value)
+  local conditions = {}
+  for k, v in pairs(test) do conditions[k] = v end
+  conditions[key] = value
+  return conditions
+end
+local function table_text(conditions)
+  return table.concat(ringing.table_lines(readings, ringing.measured(conditions)), "\n")
+end
+local function has(text, part) return text:find(part, 1, true) and 1 or 0 end
+
+local own = table_text(test)
+tirefe.check{ name = "test's conditions: a measured column", value = has(own, "reading        measured"), expected = 1 }
+tirefe.check{ name = "test's conditions: Fz on top measured 88 Hz", value = has(own, "Hz   88 Hz"), expected = 1 }
+tirefe.check{ name = "test's conditions: no note", value = has(own, "measured values are for"), expected = 0 }
+for _, case in ipairs{ { "speed_kmh", 40 }, { "load", 3000 }, { "pressure_kpa", 250 }, { "cleat_height", 0.015 },
+                       { "cleat_length", 0.5 }, { "drum_diameter", 2.0 } } do
+  local other = table_text(changed(case[1], case[2]))
+  local name = case[1] .. " = " .. case[2] .. ": "
+  tirefe.check{ name = name .. "no measured column", value = has(other, "measured\n"), expected = 0 }
+  tirefe.check{ name = name .. "no measured value", value = has(other, "Hz   88 Hz") + has(other, "Hz   35 Hz"),
+                expected = 0 }
+  tirefe.check{ name = name .. "the note", value = has(other, "(measured values are for 51.3 km/h, 3800 N, 208 kPa"),
+                expected = 1 }
+end
+-- Within 0.1 % is the test's speed.
+tirefe.check{ name = "51.30001 km/h is the test's", value = has(table_text(changed("speed_kmh", 51.30001)), "88 Hz"),
+              expected = 1 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 3 + 6 * 3 + 1);
 }

@@ -1,7 +1,7 @@
 // SidewallWedge and TreadPressure: the arch solution of eq. 1, the membrane law against
 // the circular membrane, the near-straight regularisation, tangents against central
 // finite differences, rigid-body invariance, the sign of the shear term, the pressure
-// resultants, and the inflated ring against MODEL.md section 8's hoop-force formula.
+// resultants, and the inflated ring against docs/model.md section 3's hoop-force formula.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -463,7 +463,7 @@ void build_ring(InflatedRing& ring, std::shared_ptr<const PressureSchedule> pres
 
 }  // namespace
 
-TEST_CASE("inflated ring: round, no spindle reaction, hoop force N = R (p w - F_sw) (MODEL.md 8)",
+TEST_CASE("inflated ring: round, no spindle reaction, hoop force N = R (p w - F_sw) (docs/model.md section 3)",
           "[sidewall][pressure]") {
   for (double bending : {0.0, 100.0, -100.0}) {
     InflatedRing ring;

@@ -1,4 +1,4 @@
-// The spindle force interface (MODEL.md section 6): the condensed Jacobian H_ss against
+// The spindle force interface (docs/model.md section 6): the condensed Jacobian H_ss against
 // central finite differences of the converged spindle force on a tire rolling with
 // friction on a moving flat road; trial solves leave the tire's history alone.
 #include <catch2/catch.hpp>

@@ -145,12 +145,30 @@ def test_metric_reductions_on_known_series(folder):
 def test_plot_sweep_writes_a_png(folder):
     manifest = os.path.join(folder, "parallel", "manifest.csv")
     output = os.path.join(folder, "plot.png")
+    # load_parameter = P L^2 / EI is a pure number: its unit is given.
     result = subprocess.run([sys.executable, os.path.join(POST, "plot_sweep.py"), manifest, "--x", "load_parameter",
-                             "--y", "peak_deflection", "--group", "elements", "-o", output],
+                             "--x-unit", "1", "--y", "peak_deflection", "--group", "elements", "-o", output],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
     with open(output, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_plot_sweep_labels_every_axis_with_its_unit(folder):
+    """The runs record each metric's unit (the channel's, Hz for a frequency) in manifest.json;
+    a parameter's unit is read off its name or given."""
+    loader = importlib.util.spec_from_file_location("plot_sweep", os.path.join(POST, "plot_sweep.py"))
+    plot_sweep = importlib.util.module_from_spec(loader)
+    loader.loader.exec_module(plot_sweep)
+    units = plot_sweep.recorded_units(os.path.join(folder, "parallel", "manifest.csv"))
+    assert plot_sweep.axis_label("peak_deflection", units, None) == "peak_deflection [m]"
+    assert plot_sweep.axis_label("swing", units, None) == "swing [m]"
+    assert plot_sweep.axis_label("frequency", units, None) == "frequency [Hz]"
+    assert plot_sweep.axis_label("wall_time_s", units, None) == "wall_time_s [s]"
+    assert plot_sweep.axis_label("speed_kmh", units, None) == "speed_kmh [km/h]"
+    assert plot_sweep.axis_label("pressure_kPa", units, None) == "pressure_kPa [kPa]"
+    assert plot_sweep.axis_label("load_parameter", units, "1") == "load_parameter [1]"
+    assert plot_sweep.axis_label("load_parameter", units, None) == "load_parameter [unit not recorded]"
 
 
 def test_the_documented_cleat_sweep_runs_as_written(folder):

@@ -1,5 +1,5 @@
 // NodeSurfaceContact: one node against a rigid moving surface, with Coulomb friction, by
-// the augmented Lagrangian method (MODEL.md sec. 4, eqs. 14-19; Laursen and Simo 1993).
+// the augmented Lagrangian method (docs/model.md sec. 4, eqs. 14-19; Laursen and Simo 1993).
 //
 // With x = X + u the node's position and the closest-point projection of x on the surface
 // at time t giving gap g, outward normal nu, tangent tau and convected coordinate s:

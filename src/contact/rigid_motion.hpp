@@ -8,7 +8,7 @@
 //     v = d'(t) + theta'(t) k x (x - c - d(t))      (k the out-of-plane unit vector).
 // A spinning drum is a rotation about its axis, a road moving under a vehicle a
 // translation. Closest-point projections are computed in the material frame, so gap and
-// arc-length coordinate do not depend on the motion (frame indifference, MODEL.md sec. 4).
+// arc-length coordinate do not depend on the motion (frame indifference, docs/model.md sec. 4).
 #pragma once
 
 #include <Eigen/Dense>

@@ -3,7 +3,7 @@
 //
 // project(x, t) maps x into the material frame, projects there, and rotates normal and
 // tangent back: the gap g, the convected coordinate s and the curvature do not depend on
-// the motion, so slip measured in s is frame-indifferent (MODEL.md sec. 4). velocity()
+// the motion, so slip measured in s is frame-indifferent (docs/model.md sec. 4). velocity()
 // gives the velocity of the surface's material point (a spinning drum's rim speed, a
 // moving road's speed), from which the sliding velocity V_T = (v_node - v_surface).tau.
 //

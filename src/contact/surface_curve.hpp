@@ -1,6 +1,6 @@
 // SurfaceCurve: the boundary of a rigid body in its own (material) frame, a chain of
 // straight pieces and circular arcs parametrised by arc length s, with the closest-point
-// projection that node-to-surface contact needs (MODEL.md eq. 14).
+// projection that node-to-surface contact needs (docs/model.md eq. 14).
 //
 // Orientation: walking along increasing s the solid lies on the right, so the outward unit
 // normal is nu = k x tau (k out of the plane, tau the unit tangent). The curvature kappa is

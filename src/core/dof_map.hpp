@@ -3,7 +3,7 @@
 // Prescribed DOFs (fixed or driven by a load function) get no equation; their values
 // live in the Model's constraint list. DOFs of "condensed" nodes (the spindle, for the
 // spindle-force macro) are numbered after every other free DOF, so the tangent splits
-// into the blocks [K_uu K_us; K_su K_ss] of MODEL.md eq. (25) by a single index.
+// into the blocks [K_uu K_us; K_su K_ss] of docs/model.md eq. (25) by a single index.
 #pragma once
 
 #include <vector>

@@ -1,6 +1,6 @@
 // The element contract shared by every element, load and contact kernel.
 //
-// An element never knows which integrator drives it (STYLE.md). It returns
+// An element never knows which integrator drives it (docs/kernel.md). It returns
 //     residual = wK * f_int(u) + wC * C v + wM * M a
 //     tangent  = cK * dF_int/du + cC * C + cM * M
 // where the integrator alone chooses the weights w and the tangent factors c

@@ -1,6 +1,6 @@
 // PressureSchedule: the inflation pressure as a function of time, p(t) = p_0 f(t),
 // shared (through a std::shared_ptr) by every sidewall wedge and tread pressure load
-// of one tire, so that the membrane term of the sidewalls (MODEL.md eq. 9) and the
+// of one tire, so that the membrane term of the sidewalls (docs/model.md eq. 9) and the
 // pressure on the tread always see the same value. f is a LoadFunction (FEAP's PROP):
 // LoadFunction::linear() ramps the pressure up with the quasi-static load level.
 #pragma once

@@ -1,4 +1,4 @@
-// SidewallWedge: the sidewall part of one wedge of the ring tire (MODEL.md section 3,
+// SidewallWedge: the sidewall part of one wedge of the ring tire (docs/model.md section 3,
 // paper eqs. 1-13). Nodes: spindle S, tread nodes a and b (counter-clockwise); only
 // the spindle rotation theta_S among the rotations enters. Reference data: X_S, X_a, X_b.
 //

@@ -1,5 +1,5 @@
 // TreadPressure: the inflation pressure on the tread of one wedge, a follower load
-// (MODEL.md section 1). Nodes: tread nodes a and b, counter-clockwise about the spindle.
+// (docs/model.md section 1). Nodes: tread nodes a and b, counter-clockwise about the spindle.
 //
 // The pressure p(t) (the tire's shared PressureSchedule) over the tread width w acts
 // normal to the DEFORMED chord c = x_b - x_a (x = X + u), outward: for counter-clockwise

@@ -46,12 +46,20 @@ void write_fit_file(const std::string& path, const FitProblem& problem, const Fi
 
   file.write_vector("/fit/data", to_std(problem.data));
   file.write_attribute("/fit/data", "label", axes.data_label);
+  if (!axes.data_unit.empty()) file.write_attribute("/fit/data", "file_unit", axes.data_unit);
+  file.write_attribute("/fit/data", "to_si", axes.data_to_si);
   file.write_vector("/fit/weights", to_std(problem.weights.size() ? problem.weights
                                                                   : Eigen::VectorXd::Ones(problem.data.size()).eval()));
   file.write_vector("/fit/prediction", to_std(result.prediction));
   if (axes.x.size()) {
     file.write_vector("/fit/x", to_std(axes.x));
     file.write_attribute("/fit/x", "label", axes.x_label);
+    if (!axes.x_unit.empty()) file.write_attribute("/fit/x", "file_unit", axes.x_unit);
+    file.write_attribute("/fit/x", "to_si", axes.x_to_si);
+  }
+  if (axes.curve_x.size()) {
+    file.write_vector("/fit/curve/x", to_std(axes.curve_x));
+    file.write_vector("/fit/curve/prediction", to_std(axes.curve_prediction));
   }
 
   const size_t rows = result.history.size();

@@ -312,6 +312,8 @@ void ResultFile::index_restored_frames() {
     write_views(frame);
     index_.add_frame(times[frame]);
   }
+  // The frames go on where the interrupted run's would have, not at the first step.
+  if (!times.empty()) schedule_next_frame(times.back());
   flush();
   write_index();
 }
@@ -407,14 +409,17 @@ void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
                          (field_time_interval_ > 0.0 && record.time >= next_field_time_);
   if (frame_due) {
     write_fields(analysis, record.step);  // flushes
-    if (field_time_interval_ > 0.0) {
-      // The next multiple of the interval after this frame (a tiny margin absorbs round-off in t).
-      const double margin = 1e-9 * field_time_interval_;
-      next_field_time_ = (std::floor((record.time + margin) / field_time_interval_) + 1.0) * field_time_interval_ - margin;
-    }
+    schedule_next_frame(record.time);
   }
   else
     flush_if_due();
+}
+
+void ResultFile::schedule_next_frame(double frame_time) {
+  if (field_time_interval_ <= 0.0) return;
+  // The next multiple of the interval after this frame (a tiny margin absorbs round-off in t).
+  const double margin = 1e-9 * field_time_interval_;
+  next_field_time_ = (std::floor((frame_time + margin) / field_time_interval_) + 1.0) * field_time_interval_ - margin;
 }
 
 void ResultFile::flush_if_due() {

@@ -144,6 +144,8 @@ class ResultFile {
   void write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes);
   void start_history();
   void flush_if_due();
+  /// With frames by time: the first step at or after the next multiple of the interval.
+  void schedule_next_frame(double frame_time);
 
   Hdf5File file_;
   bool discarded_;

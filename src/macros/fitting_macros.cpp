@@ -9,9 +9,12 @@
 // it ends the fit with a deck error, as does a stop asked for by SIGINT or SIGTERM.
 // Unreachable models are collected before and after every call, so the result files they
 // opened are closed before the next call reopens them.
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <numeric>
+#include <optional>
 
 #include "fitting/curve_data.hpp"
 #include "fitting/fit_output.hpp"
@@ -66,9 +69,9 @@ std::vector<fitting::FitParameter> read_parameters(lua_State* L, const MacroArgu
 }
 
 /// Pushes {name = {values...}, ...} with every column in SI.
-void push_columns(lua_State* L, const fitting::CurveData& curve) {
-  lua_createtable(L, 0, static_cast<int>(curve.columns().size()));
-  for (const auto& column : curve.columns()) {
+void push_columns(lua_State* L, const std::vector<fitting::DataColumn>& columns) {
+  lua_createtable(L, 0, static_cast<int>(columns.size()));
+  for (const auto& column : columns) {
     lua_createtable(L, static_cast<int>(column.values.size()), 0);
     for (size_t i = 0; i < column.values.size(); ++i) {
       lua_pushnumber(L, column.values[i]);
@@ -80,6 +83,39 @@ void push_columns(lua_State* L, const fitting::CurveData& curve) {
 
 std::string axis_label(const fitting::DataColumn& column) {
   return column.si_unit.empty() ? column.name : column.name + " [" + column.si_unit + "]";
+}
+
+/// The SI value of one unit of the column as written in its file (1 without a unit).
+double file_unit_to_si(const fitting::DataColumn& column) {
+  for (const auto& suffix : fitting::unit_suffixes())
+    if (column.unit == suffix.suffix) return suffix.to_si;
+  return 1.0;
+}
+
+/// The file's columns on 'points' abscissae evenly spaced over the range of column
+/// 'x': x itself, the others interpolated linearly between the data points.
+std::vector<fitting::DataColumn> columns_on_grid(const std::vector<fitting::DataColumn>& columns, size_t x,
+                                                 long long points) {
+  const std::vector<double>& abscissa = columns[x].values;
+  std::vector<size_t> order(abscissa.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return abscissa[a] < abscissa[b]; });
+  const double first = abscissa[order.front()], last = abscissa[order.back()];
+  std::vector<fitting::DataColumn> grid = columns;
+  for (auto& column : grid) column.values.assign(static_cast<size_t>(points), 0.0);
+  for (long long k = 0; k < points; ++k) {
+    const double at = first + (last - first) * static_cast<double>(k) / static_cast<double>(points - 1);
+    size_t i = 0;  // the sorted interval [i, i + 1] holding 'at'
+    while (i + 2 < order.size() && abscissa[order[i + 1]] < at) ++i;
+    const double a = abscissa[order[i]], b = abscissa[order[i + 1]];
+    const double weight = b > a ? std::clamp((at - a) / (b - a), 0.0, 1.0) : 0.0;
+    for (size_t c = 0; c < columns.size(); ++c) {
+      const std::vector<double>& values = columns[c].values;
+      grid[c].values[static_cast<size_t>(k)] =
+          c == x ? at : values[order[i]] + weight * (values[order[i + 1]] - values[order[i]]);
+    }
+  }
+  return grid;
 }
 
 /// A registry reference released when the macro returns, also on an error.
@@ -223,7 +259,13 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   if (arguments.has("data_file") && arguments.has("x"))
     throw std::invalid_argument("'x' goes with 'data'; with 'data_file' the file's first other column is the abscissa");
 
+  const long long curve_points = arguments.integer("curve_points");
+  if (curve_points > 10000)
+    throw std::invalid_argument("'curve_points' = " + std::to_string(curve_points) + " is more than a plot needs "
+                                "(at most 10000)");
   fitting::FitAxes axes;
+  std::optional<fitting::CurveData> curve;  // the data file
+  size_t x_column = 0;
   if (arguments.has("data")) {
     problem.data = to_eigen(arguments.number_list("data"));
     if (arguments.has("x")) axes.x = to_eigen(arguments.number_list("x"));
@@ -231,16 +273,23 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   } else {
     if (!arguments.has("data_column"))
       throw std::invalid_argument("'data_file' needs 'data_column' (the measured column)");
-    const auto curve = fitting::CurveData::read_csv(deck_relative(session, arguments.string("data_file")));
-    const fitting::DataColumn& measured = curve.column(arguments.string("data_column"));
+    curve = fitting::CurveData::read_csv(deck_relative(session, arguments.string("data_file")));
+    const fitting::DataColumn& measured = curve->column(arguments.string("data_column"));
     problem.data = to_eigen(measured.values);
     axes.data_label = axis_label(measured);
-    for (const auto& column : curve.columns())
+    axes.data_unit = measured.unit;
+    axes.data_to_si = file_unit_to_si(measured);
+    for (size_t c = 0; c < curve->columns().size(); ++c) {
+      const fitting::DataColumn& column = curve->columns()[c];
       if (&column != &measured && axes.x.size() == 0) {
         axes.x = to_eigen(column.values);
         axes.x_label = axis_label(column);
+        axes.x_unit = column.unit;
+        axes.x_to_si = file_unit_to_si(column);
+        x_column = c;
       }
-    push_columns(L, curve);
+    }
+    push_columns(L, curve->columns());
   }
   const RegistryReference columns(L);
   if (axes.x.size() && axes.x.size() != problem.data.size())
@@ -253,6 +302,23 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   problem.model = lua_model(L, function, columns, problem.parameters);
   const fitting::FitResult result = fitting::fit(problem, fit_options(arguments, session));
 
+  if (arguments.has("output") && curve && axes.x.size() > 1 && curve_points >= 2 && result.values.allFinite()) {
+    // The fitted model between the data points, for the plot: one more evaluation with
+    // the data file's columns on a fine grid. A model that cannot take them (it fails, or
+    // returns as many values as there are data points) is drawn at the data points only.
+    const std::vector<fitting::DataColumn> grid = columns_on_grid(curve->columns(), x_column, curve_points);
+    push_columns(L, grid);
+    const RegistryReference grid_columns(L);
+    try {
+      const Eigen::VectorXd on_grid = lua_model(L, function, grid_columns, problem.parameters)(result.values);
+      if (on_grid.size() == curve_points) {
+        axes.curve_x = to_eigen(grid[x_column].values);
+        axes.curve_prediction = on_grid;
+      }
+    } catch (const fitting::EvaluationError&) {  // the model failed on the grid: no curve
+    } catch (const std::invalid_argument&) {      // it returned something else than numbers: no curve
+    }
+  }
   if (arguments.has("output")) {
     fitting::write_fit_file(deck_output_path(session, arguments.string("output")), problem, result, axes,
                             session.deck_path);
@@ -262,7 +328,7 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
 }
 
 int read_csv_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
-  push_columns(L, fitting::CurveData::read_csv(deck_relative(session, arguments.string("file"))));
+  push_columns(L, fitting::CurveData::read_csv(deck_relative(session, arguments.string("file"))).columns());
   return 1;
 }
 
@@ -302,7 +368,12 @@ void add_fitting_macros(MacroTable& table) {
          {"relative_step", VT::Number, false, "", "finite-difference step relative to the parameter",
           std::string("1e-6"), Range::Positive},
          {"log", VT::Boolean, false, "", "print every iteration", std::string("true")},
-         {"output", VT::String, false, "", "HDF5 file for the history, data and prediction (in the output folder)"}},
+         {"output", VT::String, false, "", "HDF5 file for the history, data and prediction (in the output folder)"},
+         {"curve_points", VT::Integer, false, "",
+          "with data_file and output: the model at the fitted values on this many points evenly spread over the "
+          "abscissa's range (one more evaluation, the other columns interpolated), for a continuous curve in the "
+          "plot; 0: none",
+          std::string("0"), Range::NonNegative}},
         "local fit = tirefe.fit{\n"
         "  parameters = { { name = \"k_sw\", initial = 80, lower = 1, upper = 1000, log = true } },\n"
         "  data_file = \"vertical_208kPa.csv\", data_column = \"force\",\n"

@@ -127,7 +127,7 @@ TireParameters load_tire_parameters(const std::string& source) {
 void add_tire_macros(MacroTable& table) {
   table.model_macros.push_back(
       {{"tire",
-        "Builds a ring tire (MODEL.md section 1): a spindle node, N tread nodes on the outer circle, and N wedges "
+        "Builds a ring tire (docs/model.md section 1): a spindle node, N tread nodes on the outer circle, and N wedges "
         "of tread beam + sidewall + inflation pressure, with the rim and hub as mass and rotary inertia on the "
         "spindle; optionally a tread-rubber layer between the tread nodes and the road. Returns {spindle, tread, "
         "contact, spindle_set, tread_set, contact_set} (deck node numbers and set names; contact the nodes that "

@@ -343,7 +343,7 @@ void add_vehicle_macros(MacroTable& table) {
       {{"spindle_force",
         "Solves one dynamic step of the tire with its spindle held at {x, y} (and turned to 'spin', or spinning "
         "freely without it) at the end of the step, and returns the force that holds it there and its Jacobian "
-        "(MODEL.md section 6): {fx, fy, mz, jacobian = 3x3 d(fx, fy, mz)/d(x, y, spin), time, "
+        "(docs/model.md section 6): {fx, fy, mz, jacobian = 3x3 d(fx, fy, mz)/d(x, y, spin), time, "
         "newton_iterations}. The step stays a trial (calling again re-solves it from the same state) until "
         "'commit' accepts it. The model's integrator must be dynamic; docs/spindle.md.",
         {{"node", VT::Integer, true, "", "the tire's spindle node (tire.spindle)", std::nullopt, Range::Positive},

@@ -179,7 +179,7 @@ class Analysis : private StepEquations {
   /// them, HHT-weighted like the step's equations (the reactions once accepted).
   void driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const;
   /// H = K_ss - K_su K_uu^-1 K_us of the effective tangent at the converged trial step
-  /// over the driven DOFs (MODEL.md eq. 27): the Jacobian of driven_forces() with
+  /// over the driven DOFs (docs/model.md eq. 27): the Jacobian of driven_forces() with
   /// respect to the driven displacements. One factorization of the converged tangent.
   const DrivenDofSolver::SmallMatrix& driven_tangent();
 

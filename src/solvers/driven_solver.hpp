@@ -1,6 +1,6 @@
 // DrivenDofSolver: Newton's linear solves with some free equations driven from outside
 // (the spindle of a tire whose motion a vehicle prescribes), and the Schur complement
-// of the tangent onto those equations (MODEL.md section 6, eqs. 25-27).
+// of the tangent onto those equations (docs/model.md section 6, eqs. 25-27).
 //
 // Partition the effective tangent A over the free equations into the driven equations
 // s and all others u. Newton then solves A_uu x_u = b_u with x_s = 0, and the driven

@@ -1,5 +1,5 @@
 // RingSolver: a direct solver that exploits the tire's structure, and the spindle-force
-// condensation (MODEL.md section 6, eqs. 25-30) from the same factorization.
+// condensation (docs/model.md section 6, eqs. 25-30) from the same factorization.
 //
 // Structure. The free equations belong to nodes; a node's equations (ux, uy, rz, fewer
 // if some are prescribed) form its block. The ring nodes r_0 ... r_{n-1}, in ring order,
@@ -91,7 +91,7 @@ class RingSolver final : public LinearSolver {
   void solve(Eigen::MatrixXd& right_hand_sides) const override;
   const char* name() const override { return "ring"; }
 
-  /// The partial factorization (MODEL.md eq. 26): eliminates every ring equation and
+  /// The partial factorization (docs/model.md eq. 26): eliminates every ring equation and
   /// forms the border Schur complement H, without factoring H (which may be singular,
   /// e.g. the stiffness of a free tire on its spindle, quasi-statically). Enough for
   /// border_schur_complement() and condense(), not for solve(). Throws SingularMatrix

@@ -1,4 +1,4 @@
-// TireBuilder: the ring tire of MODEL.md section 1 from named physical parameters.
+// TireBuilder: the ring tire of docs/model.md section 1 from named physical parameters.
 //
 // One spindle node at the wheel centre and N tread nodes equally spaced on the circle
 // of the unloaded outer diameter (the tread nodes carry the contact). Each wedge i joins

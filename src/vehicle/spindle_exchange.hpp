@@ -38,7 +38,7 @@ struct SpindleReply {
   /// like the tire's step equations (the physical reaction with Newmark, alpha = 0).
   /// The answer to Commit or Revert: the physical force at the committed step.
   double force[3] = {};
-  /// jacobian[i][j] = d force_i / d (x, y, spin)_j: H_ss of MODEL.md eq. 27 (row and
+  /// jacobian[i][j] = d force_i / d (x, y, spin)_j: H_ss of docs/model.md eq. 27 (row and
   /// column 2 zero when the spin is free).
   double jacobian[3][3] = {};
   double time = 0.0;           // at the end of the solved step (Commit, Revert: the committed one) [s]

@@ -1,4 +1,4 @@
-// TireSpindle: a tire seen from a vehicle through its spindle (MODEL.md section 6).
+// TireSpindle: a tire seen from a vehicle through its spindle (docs/model.md section 6).
 //
 // The host (a multibody code, the Vehicle of this module, a co-simulation master) puts
 // the spindle somewhere at the end of a time step; solve_step() solves the tire's
