@@ -251,12 +251,13 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   arguments.push_value("model");
   const RegistryReference function(L);
   problem.model = lua_model(L, function, columns, problem.parameters);
+  // Checked before the fit's work, which a refused name would waste.
+  const std::string output =
+      arguments.has("output") ? deck_output_path(session, arguments.string("output"), OutputFile::hdf5("a fit result file"))
+                              : "";
   const fitting::FitResult result = fitting::fit(problem, fit_options(arguments, session));
 
-  if (arguments.has("output")) {
-    fitting::write_fit_file(deck_output_path(session, arguments.string("output")), problem, result, axes,
-                            session.deck_path);
-  }
+  if (!output.empty()) fitting::write_fit_file(output, problem, result, axes, session.deck_path);
   push_result(L, result, problem.parameters);
   return 1;
 }

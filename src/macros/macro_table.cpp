@@ -1,7 +1,6 @@
 #include "macros/macro_table.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -119,21 +118,6 @@ const MacroTable& macro_table() {
     return built;
   }();
   return table;
-}
-
-std::string deck_relative(const DeckSession& session, const std::string& file) {
-  std::filesystem::path path(file);
-  if (path.is_relative() && !session.deck_path.empty())
-    path = std::filesystem::path(session.deck_path).parent_path() / path;
-  return path.string();
-}
-
-std::string deck_output_path(const DeckSession& session, const std::string& file) {
-  std::filesystem::path path(file);
-  if (path.is_relative()) path = std::filesystem::path(session.output_dir) / path;
-  std::error_code ignored;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
-  return path.string();
 }
 
 const MacroSpec& model_macro_spec(const std::string& name) {
