@@ -60,7 +60,9 @@ void DeckModel::write_checkpoint(const std::string& file) {
   if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state
   if (analysis_.accepted_steps() == 0) throw ModelError("a checkpoint needs at least one solved step");
   if (!owned()) return;  // the owner writes it (after the same checks: every rank fails alike)
-  io::write_checkpoint(path, io::capture_checkpoint(analysis_, output_.get(), index_, title_));
+  io::Checkpoint checkpoint = io::capture_checkpoint(analysis_, output_.get(), index_, title_);
+  checkpoint.parameters = session_.parameters;
+  io::write_checkpoint(path, checkpoint);
   last_checkpoint_ = std::chrono::steady_clock::now();
 }
 
@@ -80,6 +82,7 @@ void DeckModel::require_state(const std::string& what) const {
 }
 
 void DeckModel::load_checkpoint() {
+  io::check_parameters(*restart_, session_.parameters);
   io::restore_checkpoint(*restart_, analysis_, output_.get());
   restart_.reset();
   session_.restart.reset();

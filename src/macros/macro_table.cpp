@@ -4,6 +4,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
 
 namespace tirefe::macros {
@@ -163,7 +164,10 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
   lua_pop(L, 1);
 
   sandbox.set_parameters_observer(
-      [&session](const std::vector<std::pair<std::string, std::string>>& resolved) { session.parameters = resolved; });
+      [&session](const std::vector<std::pair<std::string, std::string>>& resolved) {
+        session.parameters = resolved;
+        if (session.restart) io::check_parameters(*session.restart, resolved);  // at the deck's parameters line
+      });
   lua_getglobal(L, "tirefe");
   for (size_t i = 0; i < table.module_macros.size(); ++i) {
     lua_pushinteger(L, static_cast<lua_Integer>(i));
