@@ -70,3 +70,7 @@ TEST_CASE("the examples of docs/tire.md and docs/contact.md run and pass their c
   CHECK(run_examples("docs/tire.md") == 3);
   CHECK(run_examples("docs/contact.md") == 2);
 }
+
+TEST_CASE("the example of docs/security.md runs and passes its checks", "[docs][files]") {
+  CHECK(run_examples("docs/security.md") == 1);
+}
