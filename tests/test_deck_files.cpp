@@ -163,7 +163,7 @@ TEST_CASE("a deck's read of a foreign file names it without a line of its conten
                       "--allow-read DIR (docs/security.md)\n");
 }
 
-TEST_CASE("--allow-read and --allow-write widen what a deck may read and write", "[files][decks]") {
+TEST_CASE("the options --allow-read and --allow-write widen what a deck may read and write", "[files][decks]") {
   TempDir dir;
   dir.write("data/curve.csv", "deflection [m],force [N]\n0,0\n0.01,1500\n");
   const std::string deck = dir.write(
