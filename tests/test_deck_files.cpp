@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "io/hdf5_file.hpp"
 #include "macros/deck_files.hpp"
