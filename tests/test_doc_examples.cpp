@@ -130,3 +130,7 @@ TEST_CASE("the examples of docs/tire.md, docs/contact.md and docs/output.md run 
   CHECK(run_examples("docs/contact.md") == 2);
   CHECK(run_examples("docs/output.md") == 1);
 }
+
+TEST_CASE("the example of docs/security.md runs and passes its checks", "[docs][files]") {
+  CHECK(run_examples("docs/security.md") == 1);
+}

@@ -30,9 +30,9 @@ struct Run {
   std::string output;  // standard output and error
 };
 
-Run run_deck(const fs::path& folder, const std::string& arguments) {
+Run run_deck(const fs::path& folder, const std::string& arguments, const std::string& deck = kDeck) {
   fs::remove_all(folder);
-  const std::string command = std::string(TIREFE_BINARY) + " " + kDeck + " --output-dir " + folder.string() + " " +
+  const std::string command = std::string(TIREFE_BINARY) + " " + deck + " --output-dir " + folder.string() + " " +
                               arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);
@@ -41,6 +41,18 @@ Run run_deck(const fs::path& folder, const std::string& arguments) {
   while (fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+/// A copy of the restart deck in 'folder' that sets 'change' right after its parameters
+/// (on the same line, so that line numbers stay): another model with the same parameters.
+std::string edited_deck(const fs::path& folder, const std::string& change) {
+  std::ifstream in(kDeck);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string end_of_parameters = "with_contact = 1 }";
+  text.replace(text.find(end_of_parameters), end_of_parameters.size(), end_of_parameters + " " + change);
+  fs::create_directories(folder);
+  std::ofstream(folder / "restart_deck.lua") << text;
+  return (folder / "restart_deck.lua").string();
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
@@ -114,8 +126,11 @@ TEST_CASE("a restart refuses a checkpoint of another model", "[reliability][rest
   const fs::path root = fs::temp_directory_path() / "tirefe_restart_other";
   REQUIRE(run_deck(root / "whole", "--quiet t_mid=0.02 t_end=0.04").status == 0);
   const std::string checkpoint = (root / "whole" / "mid.ckpt.h5").string();
+  const std::string same_parameters = "--quiet t_mid=0.02 t_end=0.04 --restart " + checkpoint;
+  // The deck edited after its parameters: the parameters match, the model does not.
+  const fs::path decks = root / "edited";
   SECTION("another node count") {
-    const Run other = run_deck(root / "other", "--quiet t_mid=0.02 t_end=0.04 elements=20 --restart " + checkpoint);
+    const Run other = run_deck(root / "other", same_parameters, edited_deck(decks, "p.elements = 20"));
     CHECK(other.status == 1);
     CHECK(other.output.find("restart_deck.lua:33:") != std::string::npos);
     CHECK(other.output.find("the checkpoint is of another model: it has 24 nodes, the deck's model 20") !=
@@ -123,13 +138,29 @@ TEST_CASE("a restart refuses a checkpoint of another model", "[reliability][rest
   }
   SECTION("another integrator") {
     // Same mesh and blocks; only the deck's integrator differs.
-    const Run other = run_deck(root / "other", "--quiet t_mid=0.02 t_end=0.04 alpha=-0.2 --restart " + checkpoint);
+    const Run other = run_deck(root / "other", same_parameters, edited_deck(decks, "p.alpha = -0.2"));
     CHECK(other.status == 1);
     CHECK(other.output.find("the checkpoint was taken with another integrator than the deck's") != std::string::npos);
   }
   SECTION("another set of element blocks") {
-    const Run other = run_deck(root / "other", "--quiet t_mid=0.02 t_end=0.04 with_contact=0 --restart " + checkpoint);
+    const Run other = run_deck(root / "other", same_parameters, edited_deck(decks, "p.with_contact = 0"));
     CHECK(other.status == 1);
     CHECK(other.output.find("it has 2 element blocks, the deck's model 1") != std::string::npos);
   }
+}
+
+TEST_CASE("a restart refuses parameters other than the checkpoint's", "[reliability][restart]") {
+  // The restarted file's /parameters would say t_end = 0.05 of rows computed for 0.04.
+  const fs::path root = fs::temp_directory_path() / "tirefe_restart_parameters";
+  REQUIRE(run_deck(root / "whole", "--quiet t_mid=0.02 t_end=0.04").status == 0);
+  const std::string checkpoint = (root / "whole" / "mid.ckpt.h5").string();
+  CHECK(tirefe::io::read_checkpoint(checkpoint).parameters.size() == 7);
+  const Run changed = run_deck(root / "changed", "--quiet t_mid=0.02 t_end=0.05 dt=0.001 --restart " + checkpoint);
+  CHECK(changed.status == 1);
+  CHECK(changed.output == "tirefe: " + kDeck +
+                              ":4: the restart changes the parameters the checkpoint was written with: dt = 0.001 "
+                              "(the checkpoint's: 0.002), t_end = 0.05 (the checkpoint's: 0.04); a restart continues "
+                              "the same case (give the checkpoint's values, or run without --restart)\n");
+  CHECK_FALSE(fs::exists(root / "changed" / "restart.h5"));  // refused before any file is written
+  CHECK(run_deck(root / "same", "--quiet t_end=0.04 t_mid=0.02 --restart " + checkpoint).status == 0);
 }

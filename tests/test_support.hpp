@@ -2,9 +2,11 @@
 // small model builders.
 #pragma once
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <Eigen/Dense>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -101,6 +103,21 @@ inline std::string replaced(std::string text, const std::string& from, const std
 
 /// The same double to the last bit (and the sign of a zero).
 inline bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// A shell command's exit status and its standard output (add 2>&1 for errors too).
+struct CommandResult {
+  int status;
+  std::string output;
+};
+inline CommandResult run_command(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) throw std::runtime_error("cannot run '" + command + "'");
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
+}
 
 /// A fresh temporary folder, removed with its contents at scope exit.
 class TempDir {

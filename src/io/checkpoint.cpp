@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 namespace tirefe::io {
 
@@ -130,6 +131,25 @@ void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, Result
   output->index_restored_frames();
 }
 
+void check_parameters(const Checkpoint& checkpoint,
+                      const std::vector<std::pair<std::string, std::string>>& parameters) {
+  std::map<std::string, std::string> saved(checkpoint.parameters.begin(), checkpoint.parameters.end());
+  std::string differences;
+  auto add = [&differences](const std::string& text) { differences += (differences.empty() ? "" : ", ") + text; };
+  for (const auto& [name, value] : parameters) {
+    const auto found = saved.find(name);
+    if (found == saved.end())
+      add(name + " = " + value + " (not in the checkpoint)");
+    else if (found->second != value)
+      add(name + " = " + value + " (the checkpoint's: " + found->second + ")");
+    if (found != saved.end()) saved.erase(found);
+  }
+  for (const auto& [name, value] : saved) add(name + " missing (the checkpoint's: " + value + ")");
+  if (!differences.empty())
+    throw ModelError("the restart changes the parameters the checkpoint was written with: " + differences +
+                     "; a restart continues the same case (give the checkpoint's values, or run without --restart)");
+}
+
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
   const std::string partial = path + ".partial";
   {
@@ -168,6 +188,15 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
       file.write_int_vector(group + "/row_shape", rows.row_shape);
       file.write_attribute(group, "path", rows.path);
       file.write_attribute(group, "rows", rows.rows);
+    }
+    if (!checkpoint.parameters.empty()) {
+      std::vector<std::string> names, values;
+      for (const auto& [name, value] : checkpoint.parameters) {
+        names.push_back(name);
+        values.push_back(value);
+      }
+      file.write_strings("/parameters/names", names);
+      file.write_strings("/parameters/values", values);
     }
     // Written last: a file without it is incomplete.
     file.write_attribute("/", "format", std::string(kFormat));
@@ -221,6 +250,12 @@ Checkpoint read_checkpoint(const std::string& path) {
       if (rows.rows < 0 || row_size <= 0 || static_cast<long long>(rows.values.size()) != rows.rows * row_size)
         throw IoError("rows of '" + rows.path + "' are incomplete");
       checkpoint.rows.push_back(std::move(rows));
+    }
+    if (file.exists("/parameters/names")) {
+      const std::vector<std::string> names = file.read_strings("/parameters/names");
+      const std::vector<std::string> values = file.read_strings("/parameters/values");
+      if (names.size() != values.size()) throw IoError("its parameters are incomplete");
+      for (size_t i = 0; i < names.size(); ++i) checkpoint.parameters.emplace_back(names[i], values[i]);
     }
     return checkpoint;
   } catch (const IoError& error) {

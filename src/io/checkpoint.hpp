@@ -5,6 +5,8 @@
 //                       energy bookkeeping and the integrator (AnalysisSnapshot)
 //   /blocks/<i>         every element block's committed history as bytes, with the
 //                       block's name, kernel type and history size as attributes
+//   /parameters         the deck's parameters (names, values as text), which a restart
+//                       must repeat
 //   /rows/<i>           every row the result file held (its history, fields and
 //                       contact datasets), so that a restarted run writes a complete file
 // A restart rebuilds the model with the deck, checks that it is the same model (nodes,
@@ -12,6 +14,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/result_file.hpp"
@@ -41,12 +44,19 @@ struct Checkpoint {
   bool has_output = false;
   int steps_recorded = 0;
   std::vector<SavedRows> rows;
+  /// The deck's tirefe.parameters after command-line overrides (name, value as text).
+  std::vector<std::pair<std::string, std::string>> parameters;
 };
 
 /// The state of 'analysis' and the rows of 'output' (may be null) now.
 Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_index, const std::string& title);
 /// Loads a checkpoint into a model built by the same deck; throws ModelError naming what differs.
 void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, ResultFile* output);
+
+/// Throws ModelError listing every parameter whose value differs from the checkpoint's:
+/// a restart continues the same case, so that the result file's /parameters stay true.
+void check_parameters(const Checkpoint& checkpoint,
+                      const std::vector<std::pair<std::string, std::string>>& parameters);
 
 /// Writes beside 'path' first and renames, so a run killed meanwhile keeps the last checkpoint whole.
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);

@@ -39,17 +39,35 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
   });
 }
 
-std::string DeckModel::output_path(const std::string& file) const { return deck_output_path(session_, file); }
+DeckModel::~DeckModel() {
+  // A model collected by Lua (the fit's evaluations) frees its file names for the next one.
+  for (const std::string& purpose : {result_purpose(), xdmf_purpose(), checkpoint_purpose()})
+    release_outputs(session_, purpose);
+}
+
+std::string DeckModel::result_purpose() const { return "the result file of " + described(); }
+std::string DeckModel::checkpoint_purpose() const { return "the checkpoint of " + described(); }
+std::string DeckModel::xdmf_purpose() const { return "the XDMF index of " + result_purpose(); }
+
+std::string DeckModel::described() const { return "model " + std::to_string(index_) + " ('" + title_ + "')"; }
+
+std::string DeckModel::checkpoint_path(const std::string& file) {
+  return deck_output_path(session_, file, OutputFile::hdf5(checkpoint_purpose()));
+}
 
 void DeckModel::write_checkpoint(const std::string& file) {
+  const std::string path = checkpoint_path(file);
   if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state
   if (analysis_.accepted_steps() == 0) throw ModelError("a checkpoint needs at least one solved step");
   if (!owned()) return;  // the owner writes it (after the same checks: every rank fails alike)
-  io::write_checkpoint(output_path(file), io::capture_checkpoint(analysis_, output_.get(), index_, title_));
+  io::Checkpoint checkpoint = io::capture_checkpoint(analysis_, output_.get(), index_, title_);
+  checkpoint.parameters = session_.parameters;
+  io::write_checkpoint(path, checkpoint);
   last_checkpoint_ = std::chrono::steady_clock::now();
 }
 
 void DeckModel::schedule_checkpoints(const std::string& file, int steps, double minutes) {
+  checkpoint_path(file);  // refused at the macro's line, not at the first step that writes it
   checkpoint_file_ = file;
   checkpoint_steps_ = steps;
   checkpoint_minutes_ = minutes;
@@ -79,6 +97,7 @@ void DeckModel::require_state(const std::string& what) const {
 }
 
 void DeckModel::load_checkpoint() {
+  io::check_parameters(*restart_, session_.parameters);
   io::restore_checkpoint(*restart_, analysis_, output_.get());
   restart_.reset();
   session_.restart.reset();
@@ -120,8 +139,12 @@ int DeckModel::load_function(const std::string& name) const {
 void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval) {
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
   const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters};
+  // Every process claims the names, so that every rank refuses a clash alike.
+  const std::string path = deck_output_path(session_, file, OutputFile::hdf5(result_purpose()));
+  deck_output_path(session_, fs::path(file).replace_extension(".xmf").string(),
+                   {xdmf_purpose(), "an XDMF index", "<?xml"});
   if (owned())
-    output_ = std::make_unique<io::ResultFile>(output_path(file), metadata);
+    output_ = std::make_unique<io::ResultFile>(path, metadata);
   else
     output_ = std::make_unique<io::ResultFile>(file, metadata, io::ResultStorage::Discarded);
   output_->set_field_interval(field_interval);

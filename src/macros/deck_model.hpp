@@ -21,6 +21,7 @@ namespace tirefe::macros {
 class DeckModel {
  public:
   DeckModel(std::string title, DeckSession& session);
+  ~DeckModel();
 
   const std::string& title() const { return title_; }
   /// Counted from 1 in the order the deck creates its models.
@@ -75,7 +76,14 @@ class DeckModel {
 
  private:
   void print_step(const StepRecord& record) const;
-  std::string output_path(const std::string& file) const;
+  /// "model 2 ('rear tire')", for messages.
+  std::string described() const;
+  /// The checkpoint's path in the output folder, claimed for this model's checkpoints.
+  std::string checkpoint_path(const std::string& file);
+  // What this model's files are, claimed under these names in the session.
+  std::string result_purpose() const;
+  std::string checkpoint_purpose() const;
+  std::string xdmf_purpose() const;
   void load_checkpoint();
 
   std::string title_;

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -20,6 +21,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet] [--verbose]\n"
+    "                       [--allow-read DIR] [--allow-write DIR]\n"
     "       tirefe --macros | --version\n";
 
 struct CommandLine {
@@ -27,6 +29,7 @@ struct CommandLine {
   std::map<std::string, std::string> overrides;
   std::string output_dir = "results";
   std::string restart;
+  std::vector<std::string> read_folders, write_folders;
   bool quiet = false, verbose = false;
 };
 
@@ -38,6 +41,10 @@ std::string parse(int argc, char** argv, CommandLine& line) {
       line.output_dir = argv[++i];
     } else if (argument == "--restart" && i + 1 < argc) {
       line.restart = argv[++i];
+    } else if (argument == "--allow-read" && i + 1 < argc) {
+      line.read_folders.push_back(argv[++i]);
+    } else if (argument == "--allow-write" && i + 1 < argc) {
+      line.write_folders.push_back(argv[++i]);
     } else if (argument == "--quiet") {
       line.quiet = true;
     } else if (argument == "--verbose") {
@@ -53,6 +60,20 @@ std::string parse(int argc, char** argv, CommandLine& line) {
     }
   }
   return line.deck.empty() ? kUsage : "";
+}
+
+/// The deck's text; throws a std::runtime_error saying why a path is not a deck file to run.
+std::string read_deck_text(const std::string& deck) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(deck, error);
+  if (!std::filesystem::exists(status)) throw std::runtime_error("no deck file '" + deck + "'");
+  if (std::filesystem::is_directory(status))
+    throw std::runtime_error("'" + deck + "' is a folder; give a deck file in it (DECK.lua)");
+  if (!std::filesystem::is_regular_file(status))  // a FIFO or a device would block or never end
+    throw std::runtime_error("'" + deck + "' is not a regular file; give a deck file (DECK.lua)");
+  std::ifstream in(deck, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read the deck file '" + deck + "'");
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 }  // namespace
@@ -71,11 +92,14 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
 
   DeckSession session;
   session.output_dir = line.output_dir;
+  session.read_folders = line.read_folders;
+  session.write_folders = line.write_folders;
   session.quiet = line.quiet;
   session.deck_path = line.deck;
-  {
-    std::ifstream deck(line.deck, std::ios::binary);  // kept in every output file
-    session.deck_text.assign(std::istreambuf_iterator<char>(deck), std::istreambuf_iterator<char>());
+  try {
+    session.deck_text = read_deck_text(line.deck);  // kept in every output file
+  } catch (const std::exception& error) {
+    return {2, "tirefe: " + std::string(error.what()) + "\n"};
   }
   if (!line.restart.empty()) {
     try {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -41,6 +42,11 @@ using TireExchangeFactory = std::function<std::unique_ptr<TireExchange>(
 struct DeckSession {
   std::string output_dir = "results";
   std::string deck_path;
+  /// Folders the command line lets the deck read or write besides its own (--allow-read,
+  /// --allow-write; docs/security.md).
+  std::vector<std::string> read_folders, write_folders;
+  /// Every file the run writes, by resolved path: what it is (one file, one purpose).
+  std::map<std::string, std::string> output_purposes;
   std::string deck_text;
   bool quiet = false;
   std::vector<CheckResult> checks;

@@ -300,9 +300,13 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   arguments.push_value("model");
   const RegistryReference function(L);
   problem.model = lua_model(L, function, columns, problem.parameters);
+  // Checked before the fit's work, which a refused name would waste.
+  const std::string output =
+      arguments.has("output") ? deck_output_path(session, arguments.string("output"), OutputFile::hdf5("a fit result file"))
+                              : "";
   const fitting::FitResult result = fitting::fit(problem, fit_options(arguments, session));
 
-  if (arguments.has("output") && curve && axes.x.size() > 1 && curve_points >= 2 && result.values.allFinite()) {
+  if (!output.empty() && curve && axes.x.size() > 1 && curve_points >= 2 && result.values.allFinite()) {
     // The fitted model between the data points, for the plot: one more evaluation with
     // the data file's columns on a fine grid. A model that cannot take them (it fails, or
     // returns as many values as there are data points) is drawn at the data points only.
@@ -319,10 +323,7 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
     } catch (const std::invalid_argument&) {      // it returned something else than numbers: no curve
     }
   }
-  if (arguments.has("output")) {
-    fitting::write_fit_file(deck_output_path(session, arguments.string("output")), problem, result, axes,
-                            session.deck_path);
-  }
+  if (!output.empty()) fitting::write_fit_file(output, problem, result, axes, session.deck_path);
   push_result(L, result, problem.parameters);
   return 1;
 }

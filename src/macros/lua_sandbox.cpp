@@ -2,6 +2,8 @@
 // error plumbing that reports every deck problem as "deck.lua:LINE: message".
 #include "macros/lua_sandbox.hpp"
 
+#include "macros/deck_files.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -12,6 +14,8 @@
 #include <optional>
 #include <utility>
 #include <vector>
+
+#include "macros/deck_files.hpp"
 
 namespace tirefe::macros {
 namespace {
@@ -108,6 +112,10 @@ int lua_require(lua_State* L) {
       tried.push_back(candidate.string());
       std::error_code ec;
       if (!fs::is_regular_file(candidate, ec)) continue;
+      if (!lies_within(resolved_path(candidate), resolved_path(dir)))  // a symlink out of the folder
+        raise_deck_error(L, "module '" + name + "': '" + tried.back() +
+                                "' is a symbolic link out of its folder; modules are read from the deck's folder "
+                                "and lua/ only (docs/security.md)");
       if (luaL_loadfilex(L, tried.back().c_str(), "t") != LUA_OK)
         raise_deck_error(L, "cannot load module '" + name + "': " + error_text(L, -1));
       lua_pushstring(L, name.c_str());

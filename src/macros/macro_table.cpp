@@ -1,10 +1,10 @@
 #include "macros/macro_table.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
+#include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
 
 namespace tirefe::macros {
@@ -121,21 +121,6 @@ const MacroTable& macro_table() {
   return table;
 }
 
-std::string deck_relative(const DeckSession& session, const std::string& file) {
-  std::filesystem::path path(file);
-  if (path.is_relative() && !session.deck_path.empty())
-    path = std::filesystem::path(session.deck_path).parent_path() / path;
-  return path.string();
-}
-
-std::string deck_output_path(const DeckSession& session, const std::string& file) {
-  std::filesystem::path path(file);
-  if (path.is_relative()) path = std::filesystem::path(session.output_dir) / path;
-  std::error_code ignored;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
-  return path.string();
-}
-
 const MacroSpec& model_macro_spec(const std::string& name) {
   for (const auto& macro : macro_table().model_macros)
     if (macro.spec.name == name) return macro.spec;
@@ -179,7 +164,10 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
   lua_pop(L, 1);
 
   sandbox.set_parameters_observer(
-      [&session](const std::vector<std::pair<std::string, std::string>>& resolved) { session.parameters = resolved; });
+      [&session](const std::vector<std::pair<std::string, std::string>>& resolved) {
+        session.parameters = resolved;
+        if (session.restart) io::check_parameters(*session.restart, resolved);  // at the deck's parameters line
+      });
   lua_getglobal(L, "tirefe");
   for (size_t i = 0; i < table.module_macros.size(); ++i) {
     lua_pushinteger(L, static_cast<lua_Integer>(i));

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "macros/deck_files.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_spec.hpp"
 
@@ -58,11 +59,6 @@ ParameterSpec set_key();
 int deck_node(DeckModel& deck, long long number);
 /// 0-based nodes named by the 'node' or 'set' argument (exactly one of them).
 std::vector<int> target_nodes(DeckModel& deck, const MacroArguments& arguments);
-
-/// A file a deck reads: a relative path is taken from the deck's folder (every deck input).
-std::string deck_relative(const DeckSession& session, const std::string& file);
-/// A file a deck writes: a relative path goes in the output folder, created as needed.
-std::string deck_output_path(const DeckSession& session, const std::string& file);
 
 /// The spec of a model macro by name (model:tire's is "tire").
 const MacroSpec& model_macro_spec(const std::string& name);

@@ -114,7 +114,8 @@ int write_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& a
     writer.number(key.key, key.file_scale * value, meaning + (unit.empty() ? "" : " [" + unit + "]"));
   }
   lua_pop(L, 1);
-  const std::string path = deck_output_path(session, arguments.string("file"));
+  const std::string path = deck_output_path(session, arguments.string("file"),
+                                             {"a tire property file (tirefe.write_tire)", "a tire property file", "$---"});
   if (session.processes.rank == 0) writer.save(path);  // every process runs the deck: one writes
   lua_pushstring(L, path.c_str());
   return 1;
