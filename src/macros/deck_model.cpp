@@ -67,6 +67,7 @@ void DeckModel::load_checkpoint() {
   io::restore_checkpoint(*restart_, analysis_, output_.get());
   restart_.reset();
   session_.restart.reset();
+  session_.progress.clear();
   if (!session_.quiet)
     std::printf("  restarted at step %d, t = %g\n", analysis_.accepted_steps(), analysis_.state().time);
 }
@@ -153,7 +154,8 @@ const std::vector<StepRecord>& DeckModel::advance(double duration) {
 }
 
 void DeckModel::print_step(const StepRecord& record) const {
-  if (session_.quiet) return;
+  session_.progress.record(record);
+  if (!session_.verbose) return;
   std::printf("  step %5d  t = %-11.6g dt = %-10.4g newton %2d  |R| %.2e%s\n", record.step, record.time,
               record.step_size, record.newton_iterations, record.residual,
               record.cuts ? ("  (after " + std::to_string(record.cuts) + " cuts)").c_str() : "");

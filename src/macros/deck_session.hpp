@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "macros/progress_line.hpp"
+
 namespace tirefe {
 class TireExchange;
 class TireSpindle;
@@ -43,6 +45,9 @@ struct DeckSession {
   std::string deck_path;
   std::string deck_text;
   bool quiet = false;
+  bool verbose = false;  // one line per accepted step on standard output
+  /// The in-place progress line (drawn on a terminal only); output during a run clears it first.
+  ProgressLine progress;
   std::vector<CheckResult> checks;
   // The deck's tirefe.parameters{...} after command-line overrides, as text, for the
   // result file's /parameters (a run's file says which case it is).
