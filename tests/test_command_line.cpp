@@ -99,7 +99,8 @@ TEST_CASE("tirefe --help and -h print the usage, the options, the exit statuses 
   CHECK(unknown.err.rfind("tirefe: unknown option '--hepl'\nusage: tirefe DECK.lua", 0) == 0);
 }
 
-TEST_CASE("--list-parameters lists every parameter of the drum-cleat deck with its default and unit, running no model",
+TEST_CASE("tirefe --list-parameters lists every parameter of the drum-cleat deck with its default and unit, "
+          "running no model",
           "[cli]") {
   tirefe::testing::TempDir folder;
   const Run list = run_in(folder.path(), tirefe_binary() + " --list-parameters " + source_path("inputs/drum_cleat.lua"));
@@ -123,7 +124,7 @@ TEST_CASE("--list-parameters lists every parameter of the drum-cleat deck with i
   CHECK(fs::is_empty(folder.path()));
 }
 
-TEST_CASE("--list-parameters: a missing deck is a usage error (2), an unreadable one a deck error (1)", "[cli]") {
+TEST_CASE("tirefe --list-parameters: a missing deck is a usage error (2), an unreadable one a deck error (1)", "[cli]") {
   tirefe::testing::TempDir folder;
   const Run missing = run_in(folder.path(), tirefe_binary() + " --list-parameters");
   CHECK(missing.status == 2);
@@ -139,7 +140,7 @@ TEST_CASE("--list-parameters: a missing deck is a usage error (2), an unreadable
   CHECK(fs::is_empty(folder.path()));
 }
 
-TEST_CASE("--list-parameters stops a deck that builds a model before declaring parameters", "[cli]") {
+TEST_CASE("tirefe --list-parameters stops a deck that builds a model before declaring parameters", "[cli]") {
   tirefe::testing::TempDir folder;
   folder.write("model_first.lua",
                "local model = tirefe.model{ title = 'not listed' }\n"
@@ -151,7 +152,7 @@ TEST_CASE("--list-parameters stops a deck that builds a model before declaring p
   CHECK(!fs::exists(folder.path("results")));
 }
 
-TEST_CASE("a documented parameter gives the deck its plain default; overrides convert to the default's type",
+TEST_CASE("a documented parameter gives the deck its plain default, and overrides convert to the default's type",
           "[cli][decks]") {
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write(

@@ -20,7 +20,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
   load_functions_["constant"] = model_.add_load_function(LoadFunction::constant(1.0));
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
     if (output_) output_->record(analysis, record);
-    print_step(record);
+    report_step(record);
     if (const int signal = stop_signal().load()) {
       if (output_) output_->flush();
       throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
@@ -153,7 +153,7 @@ const std::vector<StepRecord>& DeckModel::advance(double duration) {
   return no_records_;
 }
 
-void DeckModel::print_step(const StepRecord& record) const {
+void DeckModel::report_step(const StepRecord& record) const {
   session_.progress.record(record);
   if (!session_.verbose) return;
   std::printf("  step %5d  t = %-11.6g dt = %-10.4g newton %2d  |R| %.2e%s\n", record.step, record.time,

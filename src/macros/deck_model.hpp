@@ -67,7 +67,8 @@ class DeckModel {
   bool restarting() const { return restart_ != nullptr; }
 
  private:
-  void print_step(const StepRecord& record) const;
+  /// The progress line, and with --verbose one line on standard output.
+  void report_step(const StepRecord& record) const;
   std::string output_path(const std::string& file) const;
   void load_checkpoint();
 

@@ -147,8 +147,9 @@ ParameterDeclaration read_declaration(lua_State* L, const std::string& name) {
     lua_pushnil(L);
     while (lua_next(L, table)) {
       lua_pop(L, 1);
-      const bool known = lua_isinteger(L, -1) ? lua_tointeger(L, -1) == 1 || lua_tointeger(L, -1) == 2
-                                              : lua_type(L, -1) == LUA_TSTRING && std::string(lua_tostring(L, -1)) == "unit";
+      const bool known = lua_isinteger(L, -1)
+                             ? lua_tointeger(L, -1) == 1 || lua_tointeger(L, -1) == 2
+                             : lua_type(L, -1) == LUA_TSTRING && std::string(lua_tostring(L, -1)) == "unit";
       if (!known) raise_deck_error(L, form + " takes no key '" + luaL_tolstring(L, -1, nullptr) + "'");
     }
     lua_rawgeti(L, table, 2);

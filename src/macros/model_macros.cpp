@@ -170,7 +170,8 @@ int newton_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   NewtonSettings& settings = deck.analysis().newton_settings();
   settings.residual_tolerance = arguments.number_or("tolerance", settings.residual_tolerance);
   settings.max_iterations = static_cast<int>(arguments.integer_or("max_iterations", settings.max_iterations));
-  if (arguments.has("log")) deck.analysis().set_log(arguments.boolean("log") ? &std::cout : nullptr);
+  if (arguments.has("log"))
+    deck.analysis().set_log(arguments.boolean("log") ? &deck.session().progress.output() : nullptr);
   return 0;
 }
 

@@ -66,7 +66,8 @@ void ProgressLine::draw(Clock::time_point now) {
   if (end_time_ && simulated > 0.0 && spent > 0.0) remaining = (*end_time_ - time_) * spent / simulated;
   std::fflush(stdout);  // the deck's own output first, above the line
   // The cursor is left at the start: output that does not clear the line overwrites it.
-  std::fprintf(stream_, "\r%s\x1b[K\r", text(time_, end_time_, steps_, cuts_, seconds(now - start_), remaining).c_str());
+  const std::string line = text(time_, end_time_, steps_, cuts_, seconds(now - start_), remaining);
+  std::fprintf(stream_, "\r%s\x1b[K\r", line.c_str());
   std::fflush(stream_);
   drawn_ = true;
   last_draw_ = now;
@@ -78,6 +79,17 @@ void ProgressLine::clear() {
   std::fputs("\r\x1b[K", stream_);
   std::fflush(stream_);
   drawn_ = false;
+}
+
+int ProgressLine::ClearingBuffer::overflow(int c) {
+  if (c == traits_type::eof()) return traits_type::not_eof(c);
+  line.clear();
+  return std::fputc(c, stdout);
+}
+
+std::streamsize ProgressLine::ClearingBuffer::xsputn(const char* text, std::streamsize count) {
+  line.clear();
+  return static_cast<std::streamsize>(std::fwrite(text, 1, static_cast<size_t>(count), stdout));
 }
 
 }  // namespace tirefe::macros

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <mutex>
 #include <optional>
+#include <ostream>
+#include <streambuf>
 #include <string>
 
 namespace tirefe {
@@ -35,8 +37,18 @@ class ProgressLine {
   void record(const StepRecord& record);
   /// Erases the line so that other output starts on a clean one; the next step redraws it.
   void clear();
+  /// Standard output for logs written during steps (Newton, fits): erases the line first.
+  std::ostream& output() { return output_; }
 
  private:
+  // Unbuffered: every write clears the line, then goes to stdout (in order with printf).
+  struct ClearingBuffer : std::streambuf {
+    explicit ClearingBuffer(ProgressLine& owner) : line(owner) {}
+    int overflow(int c) override;
+    std::streamsize xsputn(const char* text, std::streamsize count) override;
+    ProgressLine& line;
+  };
+
   void draw(Clock::time_point now);
 
   std::mutex mutex_;
@@ -50,6 +62,8 @@ class ProgressLine {
   std::optional<std::pair<double, Clock::time_point>> first_;
   double time_ = 0.0;
   int steps_ = 0, cuts_ = 0;
+  ClearingBuffer buffer_{*this};
+  std::ostream output_{&buffer_};
 };
 
 }  // namespace tirefe::macros
