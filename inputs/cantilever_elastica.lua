@@ -5,7 +5,13 @@
 --
 --   tirefe inputs/cantilever_elastica.lua [elements=40] [load_parameter=10]
 
-local p = tirefe.parameters{ elements = 40, length = 1.0, EI = 1.0, load_parameter = 10.0, steps = 10 }
+local p = tirefe.parameters{
+  elements = { 40, "beam elements" },
+  length = { 1.0, "cantilever length L", unit = "m" },
+  EI = { 1.0, "bending stiffness", unit = "N m^2" },
+  load_parameter = { 10.0, "tip load P L^2 / EI" },
+  steps = { 10, "load steps" },
+}
 
 local model = tirefe.model{ title = "Tip-loaded cantilever (elastica)" }
 

@@ -6,7 +6,12 @@
 --
 --   tirefe inputs/cantilever_rollup.lua [elements=32]
 
-local p = tirefe.parameters{ elements = 32, length = 1.0, EI = 2.0, steps = 8 }
+local p = tirefe.parameters{
+  elements = { 32, "beam elements (even)" },
+  length = { 1.0, "cantilever length L", unit = "m" },
+  EI = { 2.0, "bending stiffness", unit = "N m^2" },
+  steps = { 8, "load steps" },
+}
 assert(p.elements % 2 == 0, "elements must be even (the check uses the middle node)")
 
 local model = tirefe.model{ title = "Cantilever rolled up by an end moment" }

@@ -17,36 +17,38 @@
 -- wheel axes (docs/output.md, "Axes and signs"): Fz > 0 the load, Fx < 0 where the cleat
 -- retards the wheel, spin rate > 0 rolling forward.
 
+-- Each parameter: { default, "meaning", unit = "..." } (tirefe --list-parameters lists them).
 local p = tirefe.parameters{
-  tire = "tires.145SR12_tread_layer", -- parameter set in lua/tires/ (tires.145SR12: the paper's model)
-  elements = 100,              -- wedges around the tire
-  pressure_kpa = 208,          -- inflation pressure [kPa]
-  load = 3800,                 -- spindle load on the drum [N]
-  drum_diameter = 1.7,         -- [m]
-  cleat_height = 0.025,        -- [m]
-  cleat_length = 0.66,         -- along the drum surface [m]
-  cleat_edge_radius = 0.005,   -- rounding of the cleat's top edges [m]
-  cleat_start_deg = -90,       -- where the cleat's middle is at rest (degrees from +x; -90: bottom)
-  friction = 0.3,
-  contact_penalty = 2e7,       -- normal contact penalty [N/m]: 1.5 kN on a node penetrates 0.08 mm
-  tangential_factor = 30,      -- tangential penalty / the structure's own tangential stiffness at a contact node
-  contact_tolerance = 5e-4,    -- penetration left after the Uzawa updates [m]
-  multiplier_tolerance = 1e3,  -- relative multiplier change asking for another Uzawa update (1e3: only penetration does)
-  speed_kmh = 51.3,            -- final drum surface speed
-  spin_up_time = 4.0,          -- [s] from rest, starting at t = 2 s
-  end_time = 8.0,              -- [s]
-  integrator = "hht",          -- hht or newmark
-  newmark_gamma = 0.5,         -- Newmark gamma (beta = (gamma + 1/2)^2 / 4); 0.5 is the average acceleration rule
-  newton_tolerance = 1e-5,     -- on the residual relative to the step's force level
-  alpha = -0.1,                -- HHT alpha
-  dt = 5e-4,                   -- time step at full speed while the cleat is away from the tire [s]
-  dt_max = 2e-3,               -- ... growing as 1 / speed during the spin-up up to this [s]
-  dt_cleat = 2.5e-4,           -- time step from just before the cleat reaches the tire until ring_time after it left [s]
-  ring_time = 0.15,            -- [s]: covers the ringing windows read after the cleat
-  fields_interval = 0.005,     -- time between deformed-shape frames [s]
-  output = "drum_cleat.h5",
-  check = false,               -- self-checks of the run (the test suite's short version sets it)
+  tire = { "tires.145SR12_tread_layer", "parameter set in lua/tires/ (tires.145SR12: the paper's model)" },
+  elements = { 100, "wedges around the tire" },
+  pressure_kpa = { 208, "inflation pressure", unit = "kPa" },
+  load = { 3800, "spindle load on the drum", unit = "N" },
+  drum_diameter = { 1.7, "drum diameter", unit = "m" },
+  cleat_height = { 0.025, "cleat height", unit = "m" },
+  cleat_length = { 0.66, "cleat length along the drum surface", unit = "m" },
+  cleat_edge_radius = { 0.005, "rounding of the cleat's top edges", unit = "m" },
+  cleat_start_deg = { -90, "where the cleat's middle is at rest, from +x (-90: bottom)", unit = "deg" },
+  friction = { 0.3, "Coulomb friction coefficient" },
+  contact_penalty = { 2e7, "normal contact penalty (1.5 kN on a node penetrates 0.08 mm)", unit = "N/m" },
+  tangential_factor = { 30, "tangential penalty / the structure's tangential stiffness at a contact node" },
+  contact_tolerance = { 5e-4, "penetration left after the Uzawa updates", unit = "m" },
+  multiplier_tolerance = { 1e3, "relative multiplier change asking for an update (1e3: only penetration does)" },
+  speed_kmh = { 51.3, "final drum surface speed", unit = "km/h" },
+  spin_up_time = { 4.0, "spin-up of the drum from rest, from t = 2 s", unit = "s" },
+  end_time = { 8.0, "end of the run", unit = "s" },
+  integrator = { "hht", "hht or newmark" },
+  newmark_gamma = { 0.5, "Newmark gamma, beta = (gamma + 1/2)^2 / 4 (0.5: average acceleration)" },
+  newton_tolerance = { 1e-5, "Newton tolerance on the residual relative to the step's force level" },
+  alpha = { -0.1, "HHT alpha" },
+  dt = { 5e-4, "time step at full speed away from the cleat", unit = "s" },
+  dt_max = { 2e-3, "largest time step, during the spin-up (dt grows as 1 / speed)", unit = "s" },
+  dt_cleat = { 2.5e-4, "time step from just before the cleat until ring_time after it", unit = "s" },
+  ring_time = { 0.15, "fine steps after the cleat left the tire (past the last ringing window)", unit = "s" },
+  fields_interval = { 0.005, "time between deformed-shape frames", unit = "s" },
+  output = { "drum_cleat.h5", "result file (in the output folder)" },
+  check = { false, "the deck's self-checks (the test suite's short run sets it)" },
 }
+tirefe.progress{ end_time = p.end_time }
 
 local function require_positive(name)
   if not (p[name] > 0) then error(string.format("parameter %s = %g must be positive", name, p[name]), 2) end

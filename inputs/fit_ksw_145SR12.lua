@@ -9,7 +9,10 @@
 --
 --   tirefe inputs/fit_ksw_145SR12.lua [elements=100] [step_mm=2.5]
 
-local p = tirefe.parameters{ elements = 100, step_mm = 2.5 }
+local p = tirefe.parameters{
+  elements = { 100, "wedges around the tire" },
+  step_mm = { 2.5, "spindle deflection per quasi-static step", unit = "mm" },
+}
 local reference = tirefe.read_csv{ file = "145SR12_vertical_208kPa.csv" }
 
 -- Vertical spindle forces [N] of the inflated tire pressed on a flat, frictionless road by

@@ -23,13 +23,16 @@
 --   tirefe inputs/loaded_modes_145SR12.lua [load=3800] [mu=0.3] [modes=12] [speed_kmh=51.3] [phases=5]
 
 local p = tirefe.parameters{
-  load = 3800.0, mu = 0.3, modes = 12, elements = 100,
-  speed_kmh = 51.3,          -- drum surface speed of the rolling linearisation
-  rolling_radius = 0.2716,   -- [m] both tires on this drum at 3800 N (docs/calibration.md)
-  spin_up_time = 0.15,       -- [s] smooth drum ramp from rest to speed ...
-  rolling_time = 0.05,       -- [s] ... then held before the linearisations
-  dt = 1e-3,                 -- [s] time step of the rolling run
-  phases = 5,                -- rolling linearisations spread over one node's passage through the patch
+  load = { 3800.0, "spindle load on the drum", unit = "N" },
+  mu = { 0.3, "friction coefficient" },
+  modes = { 12, "modes computed" },
+  elements = { 100, "wedges around the tire" },
+  speed_kmh = { 51.3, "drum surface speed of the rolling linearisation", unit = "km/h" },
+  rolling_radius = { 0.2716, "rolling radius of both tires on this drum at 3800 N", unit = "m" },
+  spin_up_time = { 0.15, "smooth drum ramp from rest to speed", unit = "s" },
+  rolling_time = { 0.05, "rolling at speed before the linearisations", unit = "s" },
+  dt = { 1e-3, "time step of the rolling run", unit = "s" },
+  phases = { 5, "rolling linearisations spread over one node's passage through the patch" },
 }
 local drum_radius = 0.85
 local speed = p.speed_kmh / 3.6

@@ -6,8 +6,16 @@
 --
 --   tirefe inputs/quarter_car.lua [speed_kmh=18] [depth=0.02] [dt=1e-3]
 
-local p = tirefe.parameters{ speed_kmh = 18.0, depth = 0.02, length = 0.3, dt = 1e-3, body = 300.0,
-                             carrier = 30.0, k_s = 2.0e4, mu = 0.9 }
+local p = tirefe.parameters{
+  speed_kmh = { 18.0, "road speed", unit = "km/h" },
+  depth = { 0.02, "pothole depth", unit = "m" },
+  length = { 0.3, "pothole length", unit = "m" },
+  dt = { 1e-3, "time step", unit = "s" },
+  body = { 300.0, "body mass of the quarter car", unit = "kg" },
+  carrier = { 30.0, "wheel carrier mass", unit = "kg" },
+  k_s = { 2.0e4, "suspension spring rate", unit = "N/m" },
+  mu = { 0.9, "tire-road friction coefficient" },
+}
 local g = 9.81
 local tp = require("tires.145SR12")
 local tire_on_road = require("tire_on_road")

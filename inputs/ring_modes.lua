@@ -6,7 +6,12 @@
 --
 --   tirefe inputs/ring_modes.lua [elements=96]
 
-local p = tirefe.parameters{ elements = 96, radius = 0.27, EI = 20.0, rhoA = 1.5 }
+local p = tirefe.parameters{
+  elements = { 96, "beam elements around the ring" },
+  radius = { 0.27, "ring radius R", unit = "m" },
+  EI = { 20.0, "bending stiffness", unit = "N m^2" },
+  rhoA = { 1.5, "mass per length", unit = "kg/m" },
+}
 
 local model = tirefe.model{ title = "Free ring modes" }
 local ring = {}

@@ -7,7 +7,11 @@
 --
 --   tirefe inputs/road_files.lua [start=3] [level=-0.28] [edge_radius=0.02]
 
-local p = tirefe.parameters{ start = 3.0, level = -0.28, edge_radius = 0.02 }
+local p = tirefe.parameters{
+  start = { 3.0, "where the chuckhole starts along the road", unit = "m" },
+  level = { -0.28, "road level (y)", unit = "m" },
+  edge_radius = { 0.02, "rounding of the chuckhole's edges", unit = "m" },
+}
 local model = tirefe.model{ title = "road files" }
 
 model:surface{ name = "built_in", type = "profile", pothole = { p.start, 0.76, 0.10 }, level = p.level,

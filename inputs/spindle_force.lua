@@ -7,7 +7,13 @@
 --
 --   tirefe inputs/spindle_force.lua [steps=150] [dt=1e-3] [speed=5]
 
-local p = tirefe.parameters{ steps = 150, dt = 1e-3, speed = 5.0, deflection = 0.02, mu = 0.8 }
+local p = tirefe.parameters{
+  steps = { 150, "rolling steps" },
+  dt = { 1e-3, "time step", unit = "s" },
+  speed = { 5.0, "road speed", unit = "m/s" },
+  deflection = { 0.02, "spindle pressed onto the road by", unit = "m" },
+  mu = { 0.8, "tire-road friction coefficient" },
+}
 
 local model = tirefe.model{ title = "spindle force of a rolling tire" }
 local tp = require("tires.145SR12")

@@ -4,7 +4,11 @@
 --
 --   tirefe inputs/tire_inflation.lua [elements=100] [pressure_kpa=208]
 
-local p = tirefe.parameters{ elements = 100, pressure_kpa = 208.0, steps = 4 }
+local p = tirefe.parameters{
+  elements = { 100, "wedges around the tire" },
+  pressure_kpa = { 208.0, "inflation pressure", unit = "kPa" },
+  steps = { 4, "load steps" },
+}
 
 local model = tirefe.model{ title = "145 SR-12 inflation on a fixed hub" }
 local parameters = require("tires.145SR12")

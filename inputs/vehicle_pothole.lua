@@ -27,12 +27,22 @@
 -- Fundamentals of Vehicle Dynamics, SAE 1992, chapters 5-6); the paper's own
 -- multibody model is not published.
 
-local p = tirefe.parameters{ dt = 5e-4, dt_pothole = 2.5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, lead = 1.0,
-                             depth = 0.10, length = 0.76,
-                             speed_kmh = 48.0, mu = 0.9, threads = 1,
-                             newton_tolerance = 1e-6,   -- tire Newton, on |R| / R_ref: spindle forces to ~5 mN
-                             vehicle_tolerance = 1e-6,  -- vehicle corrector, on |r|_inf / total weight (~14 mN)
-                             predictor = "zero_acceleration" }
+local p = tirefe.parameters{
+  dt = { 5e-4, "time step", unit = "s" },
+  dt_pothole = { 2.5e-4, "time step while a wheel crosses the chuckhole", unit = "s" },
+  settle = { 1.0, "settling on the still road after inflation and pressing", unit = "s" },
+  ramp = { 5.0, "the road's speed-up from rest", unit = "s" },
+  cruise = { 2.0, "at speed after the ramp", unit = "s" },
+  lead = { 1.0, "time at speed before the chuckhole reaches the front wheel", unit = "s" },
+  depth = { 0.10, "chuckhole depth", unit = "m" },
+  length = { 0.76, "chuckhole length", unit = "m" },
+  speed_kmh = { 48.0, "road speed", unit = "km/h" },
+  mu = { 0.9, "tire-road friction coefficient" },
+  threads = { 1, "1: the tires solved on threads, 0: one after another" },
+  newton_tolerance = { 1e-6, "tire Newton, on |R| / R_ref: spindle forces to ~5 mN" },
+  vehicle_tolerance = { 1e-6, "vehicle corrector, on |r|_inf / total weight (~14 mN)" },
+  predictor = { "zero_acceleration", "the tires' HHT predictor" },
+}
 local g = 9.81
 local tp = require("tires.145SR12")
 tp.pressure = 0.243e6
@@ -44,6 +54,7 @@ local body = { mass = sprung, pitch_inertia = sprung * (1.2 * wheelbase / 2)^2,
 local carrier = 35.0
 local v = p.speed_kmh / 3.6
 local start = 2.0 + p.settle                         -- inflation 1 s, press 1 s, settling
+tirefe.progress{ end_time = start + p.ramp + p.cruise }
 local ahead = 0.5 * v * p.ramp + v * p.lead          -- the chuckhole reaches the front wheel 'lead' into the cruise
 
 local corners = {}

@@ -5,5 +5,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
-./build/tirefe inputs/drum_cleat.lua --quiet
+./build/tirefe inputs/drum_cleat.lua   # a progress line on a terminal, none in a log
 /usr/bin/python3 post/plot_drum_cleat.py results/drum_cleat.h5

@@ -20,7 +20,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
   load_functions_["constant"] = model_.add_load_function(LoadFunction::constant(1.0));
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
     if (output_) output_->record(analysis, record);
-    print_step(record);
+    report_step(record);
     if (const int signal = stop_signal().load()) {
       if (output_) output_->flush();
       throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
@@ -101,6 +101,7 @@ void DeckModel::load_checkpoint() {
   io::restore_checkpoint(*restart_, analysis_, output_.get());
   restart_.reset();
   session_.restart.reset();
+  session_.progress.clear();
   if (!session_.quiet)
     std::printf("  restarted at step %d, t = %g\n", analysis_.accepted_steps(), analysis_.state().time);
 }
@@ -190,8 +191,9 @@ const std::vector<StepRecord>& DeckModel::advance(double duration) {
   return no_records_;
 }
 
-void DeckModel::print_step(const StepRecord& record) const {
-  if (session_.quiet) return;
+void DeckModel::report_step(const StepRecord& record) const {
+  session_.progress.record(record);
+  if (!session_.verbose) return;
   std::printf("  step %5d  t = %-11.6g dt = %-10.4g newton %2d  |R| %.2e%s\n", record.step, record.time,
               record.step_size, record.newton_iterations, record.residual,
               record.cuts ? ("  (after " + std::to_string(record.cuts) + " cuts)").c_str() : "");

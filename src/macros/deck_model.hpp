@@ -75,7 +75,8 @@ class DeckModel {
   Heading wheel_heading(int node) const;
 
  private:
-  void print_step(const StepRecord& record) const;
+  /// The progress line, and with --verbose one line on standard output.
+  void report_step(const StepRecord& record) const;
   /// "model 2 ('rear tire')", for messages.
   std::string described() const;
   /// The checkpoint's path in the output folder, claimed for this model's checkpoints.

@@ -1,5 +1,6 @@
 #include "macros/deck_runner.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -7,11 +8,13 @@
 #include <iostream>
 #include <iterator>
 #include <map>
+#include <vector>
 
 #include "io/checkpoint.hpp"
 #include "macros/interrupt.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
+#include "macros/parameter_list.hpp"
 #include "tirefe/version.hpp"
 #include "tirefe/source_paths.hpp"
 
@@ -20,9 +23,38 @@ namespace tirefe::macros {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet] [--verbose]\n"
+    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet | --verbose]\n"
     "                       [--allow-read DIR] [--allow-write DIR]\n"
-    "       tirefe --macros | --version\n";
+    "       tirefe --list-parameters DECK.lua\n"
+    "       tirefe --help | --macros | --version\n";
+
+constexpr const char* kHelp =
+    "\n"
+    "Runs an input deck, a Lua script that builds finite-element tire models and solves them.\n"
+    "\n"
+    "  key=value               set a parameter the deck declares with tirefe.parameters{...}\n"
+    "  --output-dir DIR        folder for result files (default: results)\n"
+    "  --restart CHECKPOINT    continue from a file written by model:checkpoint\n"
+    "  --quiet                 no progress line, no step or modal reports\n"
+    "  --verbose               one line per step on standard output instead of the progress\n"
+    "                          line, and the Lua traceback of an error\n"
+    "  --allow-read DIR        let the deck read files in DIR too (repeatable; docs/security.md)\n"
+    "  --allow-write DIR       let the deck write files in DIR too (repeatable)\n"
+    "  --list-parameters DECK  the deck's parameters (name, default, unit, meaning); runs no model\n"
+    "  --macros                the macro reference (Markdown)\n"
+    "  --version               version and git commit\n"
+    "  -h, --help              this text\n"
+    "\n"
+    "Progress: when standard error is a terminal, one line rewritten in place at most four\n"
+    "times a second: the model's time, steps, step cuts, wall time spent and, if the deck\n"
+    "calls tirefe.progress{ end_time = T }, the wall time left. Nothing when it is not.\n"
+    "\n"
+    "Exit status: 0 success; 1 an error in the deck or the model (one line naming the deck\n"
+    "file and line); 2 a usage error; 3 a self-check of the deck failed; 130 or 143 when\n"
+    "SIGINT or SIGTERM stopped the run (after the step in progress, files closed).\n"
+    "\n"
+    "Documentation: README.md and docs/ (decks.md: decks and this command line; macros.md:\n"
+    "every macro) in " TIREFE_SOURCE_DIR "\n";
 
 struct CommandLine {
   std::string deck;
@@ -32,6 +64,21 @@ struct CommandLine {
   std::vector<std::string> read_folders, write_folders;
   bool quiet = false, verbose = false;
 };
+
+bool is_help(const std::string& argument) { return argument == "--help" || argument == "-h"; }
+
+/// tirefe --list-parameters DECK (either order): the table, or a usage or deck error.
+DeckOutcome list_parameters(int argc, char** argv) {
+  const std::string first = argv[1], deck = argc == 3 ? argv[first == "--list-parameters" ? 2 : 1] : "";
+  if (deck.empty() || deck.rfind("-", 0) == 0)
+    return {2, std::string("tirefe: --list-parameters takes one deck and nothing else\n") + kUsage};
+  try {
+    std::cout << parameter_table(deck, declared_parameters(deck));
+  } catch (const DeckError& error) {
+    return {1, "tirefe: " + std::string(error.what()) + "\n"};
+  }
+  return {};
+}
 
 /// Empty when the line is good, else what is wrong with it.
 std::string parse(int argc, char** argv, CommandLine& line) {
@@ -49,7 +96,7 @@ std::string parse(int argc, char** argv, CommandLine& line) {
       line.quiet = true;
     } else if (argument == "--verbose") {
       line.verbose = true;
-    } else if (argument.rfind("--", 0) == 0) {
+    } else if (argument.rfind("-", 0) == 0) {
       return "tirefe: unknown option '" + argument + "'\n" + kUsage;
     } else if (const auto equals = argument.find('='); equals != std::string::npos && equals > 0) {
       line.overrides[argument.substr(0, equals)] = argument.substr(equals + 1);
@@ -79,6 +126,12 @@ std::string read_deck_text(const std::string& deck) {
 }  // namespace
 
 DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(DeckSession&)>& configure) {
+  const std::vector<std::string> arguments(argv + 1, argv + argc);
+  if (std::any_of(arguments.begin(), arguments.end(), is_help)) {
+    std::cout << kUsage << kHelp;
+    return {};
+  }
+  if (std::count(arguments.begin(), arguments.end(), "--list-parameters")) return list_parameters(argc, argv);
   if (argc == 2 && std::string(argv[1]) == "--macros") {
     std::cout << macro_reference();
     return {};
@@ -95,6 +148,8 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
   session.read_folders = line.read_folders;
   session.write_folders = line.write_folders;
   session.quiet = line.quiet;
+  session.verbose = line.verbose && !line.quiet;
+  if (!line.quiet && !line.verbose) session.progress.draw_on(ProgressLine::terminal(stderr));
   session.deck_path = line.deck;
   try {
     session.deck_text = read_deck_text(line.deck);  // kept in every output file
@@ -109,6 +164,11 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
     }
   }
   if (configure) configure(session);
+  // Erased before the run's last words (the error, the checks' summary).
+  struct ClearProgress {
+    ProgressLine& line;
+    ~ClearProgress() { line.clear(); }
+  } clear_progress{session.progress};
   LuaSandbox sandbox(TIREFE_LUA_DIR);
   install_stop_handlers();
   try {
@@ -125,6 +185,7 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
   } catch (const std::exception& error) {
     return {1, "tirefe: " + line.deck + ": " + error.what() + "\n"};
   }
+  session.progress.clear();
   if (!session.checks.empty()) {
     const int failed = session.failed_checks();
     std::printf("%s: %d passed, %d failed\n", line.deck.c_str(), static_cast<int>(session.checks.size()) - failed,

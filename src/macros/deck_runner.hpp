@@ -1,8 +1,9 @@
 // The `tirefe` command line: parses it, runs the deck, and says how the run ended. The
 // process around it (tirefe, or tirefe-mpi on every MPI rank) prints the error and
 // exits with the status.
-//   tirefe deck.lua [key=value ...] [--output-dir DIR] [--restart FILE] [--quiet] [--verbose]
-//   tirefe --macros        prints the macro reference (Markdown)
+//   tirefe deck.lua [key=value ...] [--output-dir DIR] [--restart FILE] [--quiet | --verbose]
+//   tirefe --list-parameters DECK    the deck's parameters, without running it
+//   tirefe --help | --macros | --version
 #pragma once
 
 #include <functional>
@@ -20,8 +21,8 @@ struct DeckOutcome {
 };
 
 /// Runs the command line; 'configure' (may be empty) adjusts the session before the deck
-/// runs. Standard output gets --macros, --version, the deck's own output and the
-/// self-check summary.
+/// runs. Standard output gets --help, --list-parameters, --macros, --version, the deck's
+/// own output and the self-check summary; standard error the progress line on a terminal.
 DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(DeckSession&)>& configure);
 
 }  // namespace tirefe::macros

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "macros/progress_line.hpp"
+
 namespace tirefe {
 class TireExchange;
 class TireSpindle;
@@ -49,6 +51,9 @@ struct DeckSession {
   std::map<std::string, std::string> output_purposes;
   std::string deck_text;
   bool quiet = false;
+  bool verbose = false;  // one line per accepted step on standard output
+  /// The in-place progress line (drawn on a terminal only); output during a run clears it first.
+  ProgressLine progress;
   std::vector<CheckResult> checks;
   // The deck's tirefe.parameters{...} after command-line overrides, as text, for the
   // result file's /parameters (a run's file says which case it is).

@@ -53,6 +53,7 @@ int undamped_modes(lua_State* L, DeckModel& deck, const MacroArguments& argument
   const ModalResult result = modal_analysis(deck.analysis(), count);
   deck.output_or_default().write_modes(label, deck.analysis(), result);
   if (!deck.session().quiet) {
+    deck.session().progress.clear();
     std::printf("  modal analysis at t = %g (%s):\n", deck.analysis().state().time, label.c_str());
     for (size_t i = 0; i < result.frequencies_hz.size(); ++i)
       std::printf("    mode %3zu  %12.4f Hz%s\n", i + 1, result.frequencies_hz[i],
@@ -75,6 +76,7 @@ int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments,
   deck.output_or_default().write_modes(label, deck.analysis(), result);
   const int node = arguments.has("reaction_node") ? deck_node(deck, arguments.integer("reaction_node")) : -1;
   if (!deck.session().quiet) {
+    deck.session().progress.clear();
     std::printf("  %s modal analysis at t = %g (%s)", settings.damping ? "damped" : "undamped",
                 deck.analysis().state().time, label.c_str());
     if (settings.spin_rate != 0.0) std::printf(", frame turning at %g rad/s", settings.spin_rate);

@@ -179,7 +179,7 @@ fitting::PredictionModel lua_model(lua_State* L, const RegistryReference& functi
   };
 }
 
-fitting::FitOptions fit_options(const MacroArguments& arguments, const DeckSession& session) {
+fitting::FitOptions fit_options(const MacroArguments& arguments, DeckSession& session) {
   fitting::FitOptions options;
   if (arguments.has("method"))
     options.method = arguments.string("method") == "brent" ? fitting::FitMethod::Brent
@@ -189,7 +189,7 @@ fitting::FitOptions fit_options(const MacroArguments& arguments, const DeckSessi
   options.differences = arguments.string("differences") == "central" ? fitting::FiniteDifference::Central
                                                                       : fitting::FiniteDifference::Forward;
   options.relative_step = arguments.number("relative_step");
-  options.log = !session.quiet && arguments.boolean("log") ? &std::cout : nullptr;
+  options.log = !session.quiet && arguments.boolean("log") ? &session.progress.output() : nullptr;
   return options;
 }
 

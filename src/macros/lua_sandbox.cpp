@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -133,6 +134,53 @@ int lua_require(lua_State* L) {
   raise_deck_error(L, "module '" + name + "' not found; searched: " + join(tried));
 }
 
+// The string on top of the stack, popped: a documented parameter's meaning or unit ("" if nil).
+std::string optional_text(lua_State* L, const std::string& form, const char* what) {
+  std::string text;
+  if (lua_type(L, -1) == LUA_TSTRING)
+    text = lua_tostring(L, -1);
+  else if (!lua_isnil(L, -1))
+    raise_deck_error(L, form + ": the " + what + " must be a string, not a " + luaL_typename(L, -1));
+  lua_pop(L, 1);
+  return text;
+}
+
+// The declaration of parameter 'name' whose value is on top of the stack. A documented
+// one, { default, "meaning", unit = "..." }, is replaced there by its default (left on the stack).
+ParameterDeclaration read_declaration(lua_State* L, const std::string& name) {
+  ParameterDeclaration declaration{name, "", "", ""};
+  if (lua_istable(L, -1)) {
+    const int table = lua_gettop(L);
+    const std::string form = "tirefe.parameters: " + name + " = { default, \"meaning\", unit = \"...\" }";
+    lua_pushnil(L);
+    while (lua_next(L, table)) {
+      lua_pop(L, 1);
+      const bool known = lua_isinteger(L, -1)
+                             ? lua_tointeger(L, -1) == 1 || lua_tointeger(L, -1) == 2
+                             : lua_type(L, -1) == LUA_TSTRING && std::string(lua_tostring(L, -1)) == "unit";
+      if (!known) raise_deck_error(L, form + " takes no key '" + luaL_tolstring(L, -1, nullptr) + "'");
+    }
+    lua_rawgeti(L, table, 2);
+    declaration.meaning = optional_text(L, form, "meaning");
+    lua_getfield(L, table, "unit");
+    declaration.unit = optional_text(L, form, "unit");
+    lua_rawgeti(L, table, 1);
+    const int type = lua_type(L, -1);
+    if (type != LUA_TNUMBER && type != LUA_TBOOLEAN && type != LUA_TSTRING)
+      raise_deck_error(L, form + ": the default comes first, a number, boolean or string");
+    lua_replace(L, table);
+  }
+  if (lua_type(L, -1) == LUA_TNUMBER && !lua_isinteger(L, -1)) {
+    char text[32];  // 2e7 reads better as 20000000 than as Lua's 20000000.0
+    std::snprintf(text, sizeof text, "%.14g", lua_tonumber(L, -1));
+    declaration.default_text = text;
+  } else {
+    declaration.default_text = luaL_tolstring(L, -1, nullptr);
+    lua_pop(L, 1);
+  }
+  return declaration;
+}
+
 }  // namespace
 
 LuaSandbox::LuaSandbox(std::string lua_dir) : lua_dir_(std::move(lua_dir)), state_(luaL_newstate(), lua_close) {
@@ -233,11 +281,22 @@ void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::stri
   register_function("parameters", protected_call<lua_parameters>);  // the bindings may have replaced 'tirefe'
 
   lua_State* L = state();
+  stopped_ = false;
+  declared_.clear();
+  if (stop_at_parameters_) {
+    lua_getglobal(L, "tirefe");
+    lua_newtable(L);
+    lua_pushcfunction(L, stop_before_macro);
+    lua_setfield(L, -2, "__index");
+    lua_setmetatable(L, -2);
+    lua_pop(L, 1);
+  }
   const int base = lua_gettop(L);
   lua_pushcfunction(L, message_handler);
   int status = luaL_loadfilex(L, deck_path.c_str(), "t");
   const bool loaded = status == LUA_OK;
   if (loaded) status = lua_pcall(L, 0, 0, base + 1);
+  if (status != LUA_OK && stopped_) status = LUA_OK;
   if (status != LUA_OK) {
     std::string message = error_text(L, -1);
     lua_settop(L, base);
@@ -249,7 +308,7 @@ void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::stri
     throw DeckError(message);
   }
   lua_settop(L, base);
-  if (!parameters_called_ && !overrides_.empty())
+  if (!parameters_called_ && !overrides_.empty() && !stop_at_parameters_)
     throw DeckError(deck_path + ": command-line parameter '" + overrides_.begin()->first +
                     "' is not declared by the deck (declare it with tirefe.parameters{...})");
 }
@@ -304,20 +363,28 @@ int lua_parameters(lua_State* L) {
     raise_deck_error(L, "tirefe.parameters expects a table of defaults, e.g. tirefe.parameters{ speed_kmh = 50 }");
   lua_settop(L, 1);
   lua_newtable(L);  // 2: the result; the deck's defaults table stays untouched
-  std::vector<std::string> declared;
+  std::vector<ParameterDeclaration> declarations;
   lua_pushnil(L);
   while (lua_next(L, 1)) {
     if (lua_type(L, -2) != LUA_TSTRING) raise_deck_error(L, "tirefe.parameters: parameter names must be strings");
-    declared.emplace_back(lua_tostring(L, -2));
+    declarations.push_back(read_declaration(L, lua_tostring(L, -2)));
     lua_pushvalue(L, -2);
     lua_insert(L, -2);
     lua_rawset(L, 2);
   }
-  std::sort(declared.begin(), declared.end());
+  std::sort(declarations.begin(), declarations.end(),
+            [](const ParameterDeclaration& a, const ParameterDeclaration& b) { return a.name < b.name; });
+  std::vector<std::string> declared;
+  for (const auto& declaration : declarations) declared.push_back(declaration.name);
 
   LuaSandbox* self = LuaSandbox::from(L);
   if (!self) return 1;
   self->parameters_called_ = true;
+  self->declared_ = declarations;
+  if (self->stop_at_parameters_) {
+    self->stopped_ = true;
+    raise_deck_error(L, "stopped after tirefe.parameters (--list-parameters)");
+  }
   for (const auto& [key, text] : self->overrides_) {
     lua_getfield(L, 2, key.c_str());
     const int type = lua_type(L, -1);
@@ -347,6 +414,11 @@ int lua_parameters(lua_State* L) {
     self->parameters_observer_(resolved);
   }
   return 1;
+}
+
+int stop_before_macro(lua_State* L) {
+  if (LuaSandbox* self = LuaSandbox::from(L)) self->stopped_ = true;
+  raise_deck_error(L, "stopped before tirefe." + std::string(luaL_tolstring(L, 2, nullptr)) + " (--list-parameters)");
 }
 
 }  // namespace tirefe::macros

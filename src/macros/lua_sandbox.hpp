@@ -24,6 +24,12 @@ class DeckError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// One parameter a deck declares: tirefe.parameters{ name = default } or, documented,
+/// tirefe.parameters{ name = { default, "meaning", unit = "unit" } } (meaning, unit optional).
+struct ParameterDeclaration {
+  std::string name, default_text, unit, meaning;
+};
+
 class LuaSandbox {
  public:
   // lua_dir: the project's lua/ folder (modules shipped with tirefe).
@@ -44,6 +50,12 @@ class LuaSandbox {
   // sorted by name: the result file records which case a run is.
   using ParametersObserver = std::function<void(const std::vector<std::pair<std::string, std::string>>&)>;
   void set_parameters_observer(ParametersObserver observer) { parameters_observer_ = std::move(observer); }
+
+  // --list-parameters: run_file ends the deck at its tirefe.parameters{...} call, or at
+  // its first use of another tirefe function (no macros are installed then).
+  void stop_at_parameters() { stop_at_parameters_ = true; }
+  // What the deck's tirefe.parameters{...} declared, sorted by name.
+  const std::vector<ParameterDeclaration>& declared_parameters() const { return declared_; }
 
   const std::string& deck_path() const { return deck_path_; }
   const std::string& deck_text() const { return deck_text_; }
@@ -67,9 +79,13 @@ class LuaSandbox {
   std::map<std::string, std::string> overrides_;
   std::string last_traceback_;
   bool parameters_called_ = false;
+  bool stop_at_parameters_ = false;
+  bool stopped_ = false;  // by stop_at_parameters
+  std::vector<ParameterDeclaration> declared_;
   ParametersObserver parameters_observer_;
 
   friend int lua_parameters(lua_State* L);
+  friend int stop_before_macro(lua_State* L);
 };
 
 // "deck.lua:LINE: " for the innermost stack level running the deck itself (so errors raised
@@ -86,6 +102,8 @@ bool push_parsed(lua_State* L, int lua_type, bool integer, const std::string& te
 // tirefe.parameters(defaults): a new table holding the defaults with the command-line
 // overrides applied, each converted to its default's type.
 int lua_parameters(lua_State* L);
+// The tirefe table's __index under stop_at_parameters: the deck is past its parameters.
+int stop_before_macro(lua_State* L);
 
 // Wraps a C++ binding so that a std::exception it throws becomes a Lua error at the deck
 // line. Lua's own errors (a pointer type in the C++ build) pass through untouched.

@@ -42,6 +42,15 @@ DeckSession& session_of(lua_State* L) {
   return *session;
 }
 
+/// print() of a deck: clears the progress line first, so that the text starts on a clean line.
+int print_clearing_progress(lua_State* L) {
+  session_of(L).progress.clear();
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 0);
+  return 0;
+}
+
 /// Calls without arguments (model:step()) get an empty argument table.
 void ensure_argument_table(lua_State* L, int index) {
   if (lua_isnoneornil(L, index)) {
@@ -145,6 +154,9 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
   lua_State* L = sandbox.state();
   lua_pushlightuserdata(L, &session);
   lua_setfield(L, LUA_REGISTRYINDEX, kSessionKey);
+  lua_getglobal(L, "print");
+  lua_pushcclosure(L, print_clearing_progress, 1);
+  lua_setglobal(L, "print");
 
   const MacroTable& table = macro_table();
   luaL_newmetatable(L, kModelMetatable);

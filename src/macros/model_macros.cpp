@@ -1,6 +1,7 @@
 // The structural macros: building a model (nodes, sets, sections, beams, supports,
 // loads, load functions) and driving its solution (integrator, Newton, step control,
-// dt, step, solve, output, history, queries), plus tirefe.model and tirefe.check.
+// dt, step, solve, output, history, queries), plus tirefe.model, tirefe.check and
+// tirefe.progress.
 // Deck node numbers start at 1 (FEAP and Lua convention); the kernel counts from 0.
 #include <cmath>
 #include <cstdio>
@@ -170,7 +171,8 @@ int newton_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   NewtonSettings& settings = deck.analysis().newton_settings();
   settings.residual_tolerance = arguments.number_or("tolerance", settings.residual_tolerance);
   settings.max_iterations = static_cast<int>(arguments.integer_or("max_iterations", settings.max_iterations));
-  if (arguments.has("log")) deck.analysis().set_log(arguments.boolean("log") ? &std::cout : nullptr);
+  if (arguments.has("log"))
+    deck.analysis().set_log(arguments.boolean("log") ? &deck.session().progress.output() : nullptr);
   return 0;
 }
 
@@ -360,6 +362,7 @@ int print_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   deck.require_state("model:print");
   if (deck.analysis().state().displacement.size() != deck.model().mesh().dof_count())
     throw ModelError("no step has been solved yet");
+  deck.session().progress.clear();
   std::printf("  %s at t = %g\n  %6s %14s %14s %14s\n", arguments.string("quantity").c_str(),
               deck.analysis().state().time, "node", "ux", "uy", "rz");
   for (int node : nodes)
@@ -382,8 +385,14 @@ int check_macro(lua_State*, DeckSession& session, const MacroArguments& argument
                                                    : arguments.number("tolerance");
   const bool passed = std::abs(value - expected) <= allowed;
   session.checks.push_back({name, passed});
+  session.progress.clear();
   std::printf("  check %-40s %s: %.8g, expected %.8g +- %.3g\n", name.c_str(), passed ? "ok    " : "FAILED", value,
               expected, allowed);
+  return 0;
+}
+
+int progress_macro(lua_State*, DeckSession& session, const MacroArguments& arguments) {
+  session.progress.set_end_time(arguments.number("end_time"));
   return 0;
 }
 
@@ -454,6 +463,13 @@ void add_model_macros(MacroTable& table) {
           Range::NonNegative}},
         "tirefe.check{ name = \"tip deflection / L\", value = v, expected = 0.81061, tolerance = 1e-3 }"},
        check_macro});
+  table.module_macros.push_back(
+      {{"progress",
+        "Says when the run ends, so that the progress line shown on a terminal can estimate the wall time "
+        "left (tirefe --help). Without it the line shows the time spent only.",
+        {{"end_time", VT::Number, true, "s", "the time of the model at the end of the run"}},
+        "tirefe.progress{ end_time = 8.0 }"},
+       progress_macro});
 
   auto add = [&table](MacroSpec spec, ModelHandler handler) { table.model_macros.push_back({std::move(spec), handler}); };
   add({"node", "Adds a node at a reference position; returns its number (from 1).",

@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
   if (outcome.status == 0) {
     outcome = tirefe::macros::run_deck_command(argc, argv, [&](tirefe::macros::DeckSession& session) {
       session.processes = {rank, ranks};
+      if (rank != 0) session.progress.draw_on(nullptr);  // rank 0 alone shows the progress line
       session.tire_exchange = [](std::vector<tirefe::TireSpindle*> tires, std::vector<int> owners, bool threads) {
         return std::make_unique<tirefe::MpiTireGroup>(std::move(tires), owners, threads, MPI_COMM_WORLD);
       };
