@@ -24,12 +24,10 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-/// A session whose deck is <dir>/deck/deck.lua and whose output folder is <dir>/out.
-tirefe::macros::DeckSession session_in(const TempDir& dir) {
-  tirefe::macros::DeckSession session;
+/// Places a session's deck at <dir>/deck/deck.lua and its output folder at <dir>/out.
+void place_in(tirefe::macros::DeckSession& session, const TempDir& dir) {
   session.deck_path = dir.write("deck/deck.lua", "");
   session.output_dir = dir.path("out");
-  return session;
 }
 
 std::string refusal(const std::function<void()>& action) {
@@ -49,7 +47,8 @@ tirefe::testing::CommandResult run_tirefe(const std::string& arguments) {
 
 TEST_CASE("a deck reads from its folder, lua/, inputs/ and the folders the command line allows", "[files]") {
   TempDir dir;
-  auto session = session_in(dir);
+  tirefe::macros::DeckSession session;
+  place_in(session, dir);
   const std::string data = dir.write("deck/data/road.csv", "x,y\n0,0\n");
   dir.write("other/secret.csv", "x,y\n1,1\n");
 
@@ -84,7 +83,8 @@ TEST_CASE("a deck reads from its folder, lua/, inputs/ and the folders the comma
 
 TEST_CASE("a deck writes only in the output folder, never over a file of another kind", "[files]") {
   TempDir dir;
-  auto session = session_in(dir);
+  tirefe::macros::DeckSession session;
+  place_in(session, dir);
   const OutputFile result = OutputFile::hdf5("the result file of model 1 ('a')");
 
   CHECK(deck_output_path(session, "sub/r.h5", result) == dir.path("out/sub/r.h5"));
