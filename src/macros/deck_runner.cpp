@@ -19,7 +19,8 @@ namespace tirefe::macros {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet] [--verbose]\n"
+    "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--lua-memory MIB] [--quiet]\n"
+    "       [--verbose]\n"
     "       tirefe --macros | --version\n";
 
 struct CommandLine {
@@ -27,8 +28,16 @@ struct CommandLine {
   std::map<std::string, std::string> overrides;
   std::string output_dir = "results";
   std::string restart;
+  size_t lua_memory_mib = kDefaultLuaMemoryMiB;
   bool quiet = false, verbose = false;
 };
+
+/// A --lua-memory value: a whole number of MiB from 1 to 1 TiB.
+bool parse_mib(const std::string& text, size_t& mib) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 7) return false;
+  mib = std::stoul(text);
+  return mib >= 1 && mib <= (size_t{1} << 20);
+}
 
 /// Empty when the line is good, else what is wrong with it.
 std::string parse(int argc, char** argv, CommandLine& line) {
@@ -38,6 +47,10 @@ std::string parse(int argc, char** argv, CommandLine& line) {
       line.output_dir = argv[++i];
     } else if (argument == "--restart" && i + 1 < argc) {
       line.restart = argv[++i];
+    } else if (argument == "--lua-memory" && i + 1 < argc) {
+      if (!parse_mib(argv[++i], line.lua_memory_mib))
+        return "tirefe: --lua-memory takes a whole number of MiB from 1 to 1048576, got '" + std::string(argv[i]) +
+               "'\n" + kUsage;
     } else if (argument == "--quiet") {
       line.quiet = true;
     } else if (argument == "--verbose") {
@@ -86,6 +99,7 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
   }
   if (configure) configure(session);
   LuaSandbox sandbox(TIREFE_LUA_DIR);
+  sandbox.set_memory_limit_mib(line.lua_memory_mib);
   install_stop_handlers();
   try {
     install_macros(sandbox, session);
