@@ -73,8 +73,9 @@ int call_model_macro(lua_State* L) {
   std::string failure;
   try {
     DeckModel& deck = check_model(L, 1);
-    MacroArguments arguments(L, 2, macro.spec);
+    // Busy before anything reaches Lua again (a collection may run a finaliser on any allocation).
     const DeckModel::Busy busy(deck, "model:" + macro.spec.name);
+    MacroArguments arguments(L, 2, macro.spec);
     const int results = macro.handler(L, deck, arguments);
     deck.check_size();
     return results;
