@@ -179,9 +179,13 @@ std::string LuaSandbox::memory_message() const {
 }
 
 void LuaSandbox::stop_hook(lua_State* L, lua_Debug*) {
-  if (const int signal = stop_signal().load())
-    raise_deck_error(L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                            " while the deck ran Lua code");
+  const int signal = stop_signal().load();
+  if (!signal) return;
+  // From now on every instruction raises again: a deck catching the error with pcall
+  // cannot go on, the error climbs to the top.
+  lua_sethook(L, stop_hook, LUA_MASKCOUNT, 1);
+  raise_deck_error(L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                          " while the deck ran Lua code");
 }
 
 LuaSandbox* LuaSandbox::from(lua_State* L) {
