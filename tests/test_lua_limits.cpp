@@ -82,7 +82,7 @@ TEST_CASE("SIGTERM stops a deck looping in pure Lua, with its line and status 14
   CHECK_THAT(message, StartsWith("tirefe: " + path + ":") && Contains("stopped by SIGTERM while the deck ran Lua code"));
 }
 
-TEST_CASE("Lua memory beyond the bound is a deck error at its line; the sandbox stays usable", "[lua][limits]") {
+TEST_CASE("Lua memory beyond the bound is a deck error at its line, and the sandbox stays usable", "[lua][limits]") {
   TempDir dir;
   macros::LuaSandbox sandbox("");
   CHECK(sandbox.memory_limit_mib() == macros::kDefaultLuaMemoryMiB);
