@@ -143,6 +143,14 @@ TEST_CASE("macro arguments are validated with the deck line and key in the messa
       {"tirefe.beam{EA = 1, GA = 1, EI = math.huge}", "macro 'beam': key 'EI' is not a finite number"},
       {"tirefe.beam{EA = 1, GA = 1, EI = -3}", "macro 'beam': key 'EI' must be positive (got -3)"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2.5}", "key 'elements' must be an integer, got number 2.5"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^32 + 24}",  // would wrap to 24 in an int
+       "key 'elements' must be an integer from 1 to 2147483647 (got number 4294967320)"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2147483648}",
+       "key 'elements' must be an integer from 1 to 2147483647 (got number 2147483648)"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 0}", "key 'elements' must be positive (got 0)"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, nodes = {1, -2^31 - 1}}",
+       "key 'nodes' entry 2 must be an integer from -2147483648 to 2147483647 (got number -2147483649)"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^63}", "key 'elements' must be an integer, got number 9.2233720368548e+18"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, damping = 1.5}", "key 'damping' must be between 0 and 1 (got 1.5)"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, integrator = 'newmak'}",
        "key 'integrator' must be one of newmark, hht, static (got 'newmak')"},
@@ -187,6 +195,12 @@ tirefe.beam{EA = 1e7, GA = 1e5, EI = 12.5, elements = 1e2, radii = {0.30, 0.31},
   CHECK(last_beam.callback_result == 42);
   CHECK(sandbox.deck_text().find("tirefe.beam{EA = 1e7") != std::string::npos);
   CHECK(sandbox.deck_path() == deck);
+
+  // The ends of an int are accepted (2^31 - 1 as an integral float too).
+  sandbox.run_file(dir.write("ends.lua", "tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^31 - 1, "
+                                         "nodes = {-2147483648, 2147483647}}\n"));
+  CHECK(last_beam.elements == 2147483647);
+  CHECK(last_beam.nodes == std::vector<long long>{-2147483648LL, 2147483647});
 }
 
 TEST_CASE("the deck sandbox offers only safe libraries and text-only loading", "[lua][sandbox]") {

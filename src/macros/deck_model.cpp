@@ -111,6 +111,20 @@ void DeckModel::mark_advanced_elsewhere(const std::string& how) {
            " by " + how + "; read its results from the table " + how + " returns or from its result file";
 }
 
+DeckModel::Busy::Busy(DeckModel& deck, std::string what) : deck_(deck), outer_(std::move(deck.busy_with_)) {
+  deck_.busy_with_ = std::move(what);
+}
+
+void DeckModel::check_size() const {
+  const int nodes = model_.mesh().node_count();
+  int elements = 0;
+  for (const auto& block : model_.blocks()) elements += block->size();
+  if (nodes > kMaxNodes || elements > kMaxElements)
+    throw ModelError("model '" + title_ + "' has grown to " + std::to_string(nodes) + " nodes and " +
+                     std::to_string(elements) + " elements; a model holds at most " + std::to_string(kMaxNodes) +
+                     " nodes and " + std::to_string(kMaxElements) + " elements");
+}
+
 void DeckModel::define_section(const std::string& name, const BeamSection& section) {
   section.check();
   sections_[name] = section;

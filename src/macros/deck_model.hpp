@@ -32,6 +32,30 @@ class DeckModel {
   /// every later macro on it is refused with that message.
   void mark_advanced_elsewhere(const std::string& how);
   const std::string& stale() const { return stale_; }
+
+  /// Marks the model busy for a scope: a macro on it runs, or a vehicle steps it. A Lua
+  /// function the model calls back meanwhile (a load function's 'fn') must not change or
+  /// step it, so every macro on a busy model is refused (check_model).
+  class Busy {
+   public:
+    Busy(DeckModel& deck, std::string what);
+    ~Busy() { deck_.busy_with_ = std::move(outer_); }
+    Busy(const Busy&) = delete;
+    Busy& operator=(const Busy&) = delete;
+
+   private:
+    DeckModel& deck_;
+    std::string outer_;
+  };
+  /// What keeps the model busy ("model:step", "tirefe.vehicle"), or "".
+  const std::string& busy_with() const { return busy_with_; }
+  /// The largest model a deck may build (docs/decks.md, Limits): a loop adding nodes or
+  /// elements without end stops here with its deck line, before the memory runs out.
+  static constexpr int kMaxNodes = 1000000;
+  static constexpr int kMaxElements = 1000000;
+  /// Throws ModelError if the model has grown beyond kMaxNodes or kMaxElements.
+  void check_size() const;
+
   Model& model() { return model_; }
   Analysis& analysis() { return analysis_; }
   DeckSession& session() { return session_; }
@@ -106,6 +130,7 @@ class DeckModel {
   std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
   std::vector<StepRecord> no_records_;
   std::string stale_;
+  std::string busy_with_;
 };
 
 }  // namespace tirefe::macros

@@ -24,7 +24,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet | --verbose]\n"
-    "                       [--allow-read DIR] [--allow-write DIR]\n"
+    "                       [--allow-read DIR] [--allow-write DIR] [--lua-memory MIB]\n"
     "       tirefe --list-parameters DECK.lua\n"
     "       tirefe --help | --macros | --version\n";
 
@@ -40,6 +40,7 @@ constexpr const char* kHelp =
     "                          line, and the Lua traceback of an error\n"
     "  --allow-read DIR        let the deck read files in DIR too (repeatable; docs/security.md)\n"
     "  --allow-write DIR       let the deck write files in DIR too (repeatable)\n"
+    "  --lua-memory MIB        the most memory the deck's Lua may hold (default 1024 MiB)\n"
     "  --list-parameters DECK  the deck's parameters (name, default, unit, meaning); runs no model\n"
     "  --macros                the macro reference (Markdown)\n"
     "  --version               version and git commit\n"
@@ -62,6 +63,7 @@ struct CommandLine {
   std::string output_dir = "results";
   std::string restart;
   std::vector<std::string> read_folders, write_folders;
+  size_t lua_memory_mib = kDefaultLuaMemoryMiB;
   bool quiet = false, verbose = false;
 };
 
@@ -80,6 +82,13 @@ DeckOutcome list_parameters(int argc, char** argv) {
   return {};
 }
 
+/// A --lua-memory value: a whole number of MiB from 1 to 1 TiB.
+bool parse_mib(const std::string& text, size_t& mib) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 7) return false;
+  mib = std::stoul(text);
+  return mib >= 1 && mib <= (size_t{1} << 20);
+}
+
 /// Empty when the line is good, else what is wrong with it.
 std::string parse(int argc, char** argv, CommandLine& line) {
   for (int i = 1; i < argc; ++i) {
@@ -92,6 +101,10 @@ std::string parse(int argc, char** argv, CommandLine& line) {
       line.read_folders.push_back(argv[++i]);
     } else if (argument == "--allow-write" && i + 1 < argc) {
       line.write_folders.push_back(argv[++i]);
+    } else if (argument == "--lua-memory" && i + 1 < argc) {
+      if (!parse_mib(argv[++i], line.lua_memory_mib))
+        return "tirefe: --lua-memory takes a whole number of MiB from 1 to 1048576, got '" + std::string(argv[i]) +
+               "'\n" + kUsage;
     } else if (argument == "--quiet") {
       line.quiet = true;
     } else if (argument == "--verbose") {
@@ -170,6 +183,7 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
     ~ClearProgress() { line.clear(); }
   } clear_progress{session.progress};
   LuaSandbox sandbox(TIREFE_LUA_DIR);
+  sandbox.set_memory_limit_mib(line.lua_memory_mib);
   install_stop_handlers();
   try {
     install_macros(sandbox, session);

@@ -144,7 +144,8 @@ fitting::PredictionModel lua_model(lua_State* L, const RegistryReference& functi
       lua_setfield(L, -2, parameters[j].name.c_str());
     }
     columns.push();
-    const bool failed = lua_pcall(L, 2, 1, 0) != LUA_OK;
+    const int status = lua_pcall(L, 2, 1, 0);
+    const bool failed = status != LUA_OK;
     // Close what the call built (models and their result files) before the next call.
     struct Collect {
       lua_State* L;
@@ -156,6 +157,10 @@ fitting::PredictionModel lua_model(lua_State* L, const RegistryReference& functi
       lua_pop(L, 1);
       // A run asked to stop (SIGINT, SIGTERM) stops the fit too, not just this evaluation.
       if (stop_signal().load()) throw std::runtime_error(message);
+      // So does a deck out of Lua memory.
+      const LuaSandbox* sandbox = LuaSandbox::from(L);
+      if (sandbox && (status == LUA_ERRMEM || sandbox->memory_exceeded()))
+        throw std::runtime_error(sandbox->memory_message());
       throw fitting::EvaluationError(message);
     }
     if (!lua_istable(L, -1)) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "macros/deck_files.hpp"
+#include "macros/interrupt.hpp"
 
 namespace tirefe::macros {
 namespace {
@@ -183,15 +184,63 @@ ParameterDeclaration read_declaration(lua_State* L, const std::string& name) {
 
 }  // namespace
 
-LuaSandbox::LuaSandbox(std::string lua_dir) : lua_dir_(std::move(lua_dir)), state_(luaL_newstate(), lua_close) {
+// Instructions between two looks at the stop flag: a few microseconds of Lua.
+constexpr int kStopHookInstructions = 10000;
+
+LuaSandbox::LuaSandbox(std::string lua_dir) : lua_dir_(std::move(lua_dir)) {
+  memory_.sandbox = this;
+  state_ = lua_newstate(allocate, &memory_);
   if (!state_) throw std::runtime_error("cannot create a Lua state (out of memory)");
   lua_State* L = state();
+  lua_atpanic(L, [](lua_State* P) -> int {
+    throw std::runtime_error(std::string("unprotected Lua error: ") + error_text(P, -1));
+  });
+  // A deck looping in pure Lua still stops on SIGINT / SIGTERM (coroutines inherit the hook).
+  lua_sethook(L, stop_hook, LUA_MASKCOUNT, kStopHookInstructions);
   lua_pushlightuserdata(L, this);
   lua_setfield(L, LUA_REGISTRYINDEX, kSandboxKey);
   lua_newtable(L);
   lua_setfield(L, LUA_REGISTRYINDEX, kLoadedKey);
   open_safe_libraries();
   register_function("parameters", protected_call<lua_parameters>);
+}
+
+LuaSandbox::~LuaSandbox() { lua_close(state_); }
+
+void* LuaSandbox::allocate(void* account, void* block, size_t old_size, size_t new_size) {
+  auto& memory = *static_cast<MemoryAccount*>(account);
+  if (!block) old_size = 0;  // then old_size is the kind of object, not a size
+  if (new_size == 0) {
+    std::free(block);
+    memory.used -= old_size;
+    return nullptr;
+  }
+  if (new_size > old_size && new_size - old_size > memory.limit - std::min(memory.used, memory.limit)) {
+    if (!memory.refused && memory.sandbox && memory.sandbox->state_)
+      memory.refused_at = deck_location(memory.sandbox->state_, memory.sandbox->deck_path_);
+    memory.refused = true;
+    return nullptr;  // Lua raises its memory error
+  }
+  void* moved = std::realloc(block, new_size);
+  if (!moved) return nullptr;
+  memory.used = memory.used - old_size + new_size;
+  if (new_size > old_size) memory.refused = false;  // Lua's retry after an emergency collection worked
+  return moved;
+}
+
+std::string LuaSandbox::memory_message() const {
+  return "the deck used more than " + std::to_string(memory_limit_mib()) +
+         " MiB of Lua memory (the limit; --lua-memory MIB sets another)";
+}
+
+void LuaSandbox::stop_hook(lua_State* L, lua_Debug*) {
+  const int signal = stop_signal().load();
+  if (!signal) return;
+  // From now on every instruction raises again: a deck catching the error with pcall
+  // cannot go on, the error climbs to the top.
+  lua_sethook(L, stop_hook, LUA_MASKCOUNT, 1);
+  raise_deck_error(L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                          " while the deck ran Lua code");
 }
 
 LuaSandbox* LuaSandbox::from(lua_State* L) {
@@ -300,6 +349,8 @@ void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::stri
   if (status != LUA_OK) {
     std::string message = error_text(L, -1);
     lua_settop(L, base);
+    if (status == LUA_ERRMEM) message = (memory_.refused ? memory_.refused_at : std::string()) + memory_message();
+    memory_.refused = false;
     if (!loaded) {  // the parser names the deck by its (possibly truncated) short_src
       if (const auto location = split_location(message))
         message = deck_path + ":" + location->line + ": " + location->body;
@@ -315,7 +366,11 @@ void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::stri
 
 std::string deck_location(lua_State* L) {
   const LuaSandbox* self = LuaSandbox::from(L);
-  const std::string deck_source = self && !self->deck_path().empty() ? "@" + self->deck_path() : std::string();
+  return deck_location(L, self ? self->deck_path() : std::string());
+}
+
+std::string deck_location(lua_State* L, const std::string& deck_path) {
+  const std::string deck_source = deck_path.empty() ? std::string() : "@" + deck_path;
   std::string innermost;
   lua_Debug ar;
   for (int level = 0; lua_getstack(L, level, &ar); ++level) {

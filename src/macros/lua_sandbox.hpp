@@ -30,14 +30,19 @@ struct ParameterDeclaration {
   std::string name, default_text, unit, meaning;
 };
 
+// The bytes the Lua state of a deck may hold (string.rep(1e9) or a table of millions of
+// entries is refused there, not by the machine running out of memory).
+constexpr size_t kDefaultLuaMemoryMiB = 1024;
+
 class LuaSandbox {
  public:
   // lua_dir: the project's lua/ folder (modules shipped with tirefe).
   explicit LuaSandbox(std::string lua_dir);
+  ~LuaSandbox();
   LuaSandbox(const LuaSandbox&) = delete;  // the Lua registry points back at this object
   LuaSandbox& operator=(const LuaSandbox&) = delete;
 
-  lua_State* state() { return state_.get(); }
+  lua_State* state() { return state_; }
 
   // Runs a deck file (Lua source text only). 'overrides' are command-line key=value pairs
   // consumed by tirefe.parameters{...}. Every failure is thrown as DeckError.
@@ -67,13 +72,34 @@ class LuaSandbox {
   // The sandbox owning L, or nullptr for a plain Lua state.
   static LuaSandbox* from(lua_State* L);
 
+  // At most this many MiB of Lua memory (kDefaultLuaMemoryMiB unless set); an allocation
+  // beyond it fails as Lua's "not enough memory", reported as the deck using too much.
+  void set_memory_limit_mib(size_t mib) { memory_.limit = mib << 20; }
+  size_t memory_limit_mib() const { return memory_.limit >> 20; }
+  // True once an allocation was refused for the limit: the run's memory error is the deck's.
+  bool memory_exceeded() const { return memory_.refused; }
+  // "the deck used more than N MiB of Lua memory ..." (the message of such a failure).
+  std::string memory_message() const;
+
  private:
+  // The Lua allocator's account: bytes in use and the bound, and where the deck was
+  // when an allocation was refused (a memory error carries no location of its own).
+  struct MemoryAccount {
+    size_t used = 0;
+    size_t limit = kDefaultLuaMemoryMiB << 20;
+    bool refused = false;
+    std::string refused_at;  // "deck.lua:LINE: ", or "" if unknown
+    LuaSandbox* sandbox = nullptr;
+  };
+  static void* allocate(void* account, void* block, size_t old_size, size_t new_size);
+  static void stop_hook(lua_State* L, lua_Debug* ar);
   static int message_handler(lua_State* L);
   void open_safe_libraries();
   void ensure_tirefe_table();
 
+  MemoryAccount memory_;
   std::string lua_dir_;
-  std::unique_ptr<lua_State, void (*)(lua_State*)> state_;
+  lua_State* state_ = nullptr;
   std::string deck_path_;
   std::string deck_text_;
   std::map<std::string, std::string> overrides_;
@@ -91,6 +117,9 @@ class LuaSandbox {
 // "deck.lua:LINE: " for the innermost stack level running the deck itself (so errors raised
 // inside helper modules still point at the deck line), else the innermost Lua level; "" if none.
 std::string deck_location(lua_State* L);
+// The same for a known deck path; reads the call stack only (pushes nothing, allocates no
+// Lua memory), so the allocator may call it.
+std::string deck_location(lua_State* L, const std::string& deck_path);
 
 // Raises a Lua error carrying deck_location(L) + message. Never returns.
 [[noreturn]] void raise_deck_error(lua_State* L, const std::string& message);

@@ -70,14 +70,28 @@ Problem type_problem(lua_State* L, int index, ValueType type, const std::string&
   return what + " must be " + with_article(type) + ", got " + describe_value(L, index);
 }
 
+// An integer (an integral float such as 1e3 too) between the range's lower end and p.maximum:
+// a value outside would wrap when the binding stores it in an int (2^32 + 24 as 24).
+Problem integer_problem(lua_State* L, int index, const ParameterSpec& p, const std::string& what) {
+  const lua_Integer value = lua_tointeger(L, index);
+  const long long lowest = p.range == Range::Positive ? 1 : p.range == Range::Any ? -kIntegerLimit - 1 : 0;
+  const long long highest = p.range == Range::Fraction01 ? std::min(1LL, p.maximum) : p.maximum;
+  if (value >= lowest && value <= highest) return std::nullopt;
+  return what + " must be an integer from " + std::to_string(lowest) + " to " + std::to_string(highest) + " (got " +
+         describe_value(L, index) + ")";
+}
+
 Problem check_number(lua_State* L, int index, ValueType type, const ParameterSpec& p, const std::string& what) {
   if (lua_type(L, index) != LUA_TNUMBER) return type_problem(L, index, type, what);
   const double value = lua_tonumber(L, index);
   if (!std::isfinite(value)) return what + " is not a finite number";
-  int exact = 0;
-  if (type == ValueType::Integer) lua_tointegerx(L, index, &exact);  // accepts integral floats such as 1e3
-  if (type == ValueType::Integer && !exact) return type_problem(L, index, type, what);
+  if (type == ValueType::Integer) {
+    int exact = 0;
+    lua_tointegerx(L, index, &exact);
+    if (!exact) return type_problem(L, index, type, what);
+  }
   if (const auto problem = range_problem(p, value)) return what + " " + *problem;
+  if (type == ValueType::Integer) return integer_problem(L, index, p, what);
   return std::nullopt;
 }
 
@@ -363,6 +377,8 @@ std::string markdown_reference(const std::vector<MacroSpec>& specs) {
       if (p.range == Range::Positive) type += " > 0";
       if (p.range == Range::NonNegative) type += " >= 0";
       if (p.range == Range::Fraction01) type += " in [0, 1]";
+      if ((p.type == ValueType::Integer || p.type == ValueType::IntegerList) && p.maximum != kIntegerLimit)
+        type += ", at most " + std::to_string(p.maximum);
       const std::string need = p.required ? "required" : p.default_value ? "default `" + *p.default_value + "`" : "optional";
       std::string meaning = p.doc;
       std::vector<std::string> choices;

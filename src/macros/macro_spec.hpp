@@ -26,6 +26,10 @@ enum class ValueType {
 
 enum class Range { Any, Positive, NonNegative, Fraction01 /* [0,1] */ };
 
+/// The largest value an Integer key takes unless its spec sets a smaller one: counts,
+/// node numbers and intervals are C++ ints, and a larger Lua integer would wrap.
+constexpr long long kIntegerLimit = 2147483647;
+
 struct ParameterSpec {
   std::string key;
   ValueType type = ValueType::Number;
@@ -36,6 +40,7 @@ struct ParameterSpec {
   std::optional<std::string> default_value = std::nullopt;
   Range range = Range::Any;  // applies to numbers and to every entry of number lists/matrices
   std::vector<std::string> choices = {};  // allowed values of a String key (empty: any)
+  long long maximum = kIntegerLimit;       // the largest value of an Integer key or IntegerList entry
 };
 
 struct MacroSpec {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 
 #include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
@@ -80,8 +81,13 @@ int call_model_macro(lua_State* L) {
   ensure_argument_table(L, 2);
   std::string failure;
   try {
+    DeckModel& deck = check_model(L, 1);
+    // Busy before anything reaches Lua again (a collection may run a finaliser on any allocation).
+    const DeckModel::Busy busy(deck, "model:" + macro.spec.name);
     MacroArguments arguments(L, 2, macro.spec);
-    return macro.handler(L, check_model(L, 1), arguments);
+    const int results = macro.handler(L, deck, arguments);
+    deck.check_size();
+    return results;
   } catch (const std::exception& error) {
     failure = "macro '" + macro.spec.name + "': " + error.what();
   }
@@ -105,9 +111,16 @@ int unknown_macro(lua_State* L) {
                           suggestion(name, known));
 }
 
+/// What a model userdata holds. Lua frees the userdata's memory itself; its finaliser only
+/// closes the model, so the handle stays a valid (empty) object should a Lua finaliser
+/// resurrect the userdata, and every later macro on it says the model was closed.
+struct ModelHandle {
+  std::unique_ptr<DeckModel> model;
+};
+static_assert(std::is_nothrow_default_constructible_v<ModelHandle>);
+
 int collect_model(lua_State* L) {
-  auto* owner = static_cast<std::unique_ptr<DeckModel>*>(luaL_checkudata(L, 1, kModelMetatable));
-  owner->~unique_ptr();
+  static_cast<ModelHandle*>(luaL_checkudata(L, 1, kModelMetatable))->model.reset();
   return 0;
 }
 
@@ -137,17 +150,27 @@ const MacroSpec& model_macro_spec(const std::string& name) {
 }
 
 DeckModel& check_model(lua_State* L, int index) {
-  auto* owner = static_cast<std::unique_ptr<DeckModel>*>(luaL_testudata(L, index, kModelMetatable));
-  if (!owner || !*owner) raise_deck_error(L, "expected a model made by tirefe.model{...}");
-  if (!(*owner)->stale().empty()) raise_deck_error(L, (*owner)->stale());
-  return **owner;
+  auto* handle = static_cast<ModelHandle*>(luaL_testudata(L, index, kModelMetatable));
+  if (!handle) raise_deck_error(L, "expected a model made by tirefe.model{...}");
+  if (!handle->model)
+    raise_deck_error(L, "this model was closed when Lua collected it (a finaliser kept it): "
+                        "keep the model in a variable for as long as the deck uses it");
+  DeckModel& deck = *handle->model;
+  if (!deck.stale().empty()) raise_deck_error(L, deck.stale());
+  if (!deck.busy_with().empty())
+    raise_deck_error(L, "model '" + deck.title() + "' is busy in " + deck.busy_with() +
+                            ": a Lua function called while it assembles or steps (a load function's 'fn') "
+                            "may not use its macros");
+  return deck;
 }
 
 DeckModel& push_new_model(lua_State* L, const std::string& title, DeckSession& session) {
-  void* memory = lua_newuserdatauv(L, sizeof(std::unique_ptr<DeckModel>), 0);
-  auto* owner = new (memory) std::unique_ptr<DeckModel>(std::make_unique<DeckModel>(title, session));
+  // The model is made before the userdata, so that a failure leaves no half-built handle.
+  auto model = std::make_unique<DeckModel>(title, session);
+  auto* handle = new (lua_newuserdatauv(L, sizeof(ModelHandle), 0)) ModelHandle{};
   luaL_setmetatable(L, kModelMetatable);
-  return **owner;
+  handle->model = std::move(model);
+  return *handle->model;
 }
 
 void install_macros(LuaSandbox& sandbox, DeckSession& session) {

@@ -183,6 +183,7 @@ int step_control_macro(lua_State*, DeckModel& deck, const MacroArguments& argume
   control.max_cuts = static_cast<int>(arguments.integer_or("max_cuts", control.max_cuts));
   control.easy_iterations = static_cast<int>(arguments.integer_or("easy_iterations", control.easy_iterations));
   control.max_augmentations = static_cast<int>(arguments.integer_or("max_augmentations", control.max_augmentations));
+  control.step_budget = static_cast<int>(arguments.integer_or("step_budget", control.step_budget));
   control.growth = arguments.number_or("growth", control.growth);
   if (control.growth < 1.0) throw ModelError("growth must be at least 1");
   return 0;
@@ -545,12 +546,16 @@ void add_model_macros(MacroTable& table) {
   add({"step_control", "Automatic step cutting and growth.",
        {{"min_dt", VT::Number, false, "s", "smallest step before giving up", std::string("0"), Range::NonNegative},
         {"max_dt", VT::Number, false, "s", "largest step (0: the nominal dt)", std::string("0"), Range::NonNegative},
-        {"max_cuts", VT::Integer, false, "", "halvings of one step", std::string("10"), Range::NonNegative},
+        {"max_cuts", VT::Integer, false, "", "halvings of one step", std::string("10"), Range::NonNegative, {}, 50},
         {"easy_iterations", VT::Integer, false, "", "grow the step after converging in this many iterations",
          std::string("4"), Range::NonNegative},
         {"growth", VT::Number, false, "", "growth factor back toward dt", std::string("2"), Range::Positive},
         {"max_augmentations", VT::Integer, false, "", "contact multiplier updates per step (0: penalty only)",
-         std::string("20"), Range::NonNegative}},
+         std::string("20"), Range::NonNegative},
+        {"step_budget", VT::Integer, false, "",
+         "steps one model:step or model:solve may take per nominal step it spans, plus as many again; the run "
+         "stops with an error past it (0: no budget)",
+         std::string("100"), Range::NonNegative}},
        "model:step_control{ max_cuts = 6 }"},
       step_control_macro);
   add({"dt", "Sets the nominal time (or load) step (FEAP's DT).",

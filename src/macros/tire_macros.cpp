@@ -12,6 +12,10 @@ namespace {
 
 using VT = ValueType;
 
+// More wedges than this are no tire anyone solves (100 resolve the contact patch); a
+// number like 2e7 is a typo, refused before the memory goes.
+constexpr long long kMaxTireElements = 100000;
+
 TireParameters tire_parameters(const MacroArguments& arguments) {
   TireParameters parameters;
   parameters.elements = static_cast<int>(arguments.integer("elements"));
@@ -134,7 +138,8 @@ void add_tire_macros(MacroTable& table) {
         "touch the road: the layer's nodes, or the tread nodes without a layer). "
         "docs/tire.md explains every parameter and where the 145 SR-12 values come from.",
         {{"name", VT::String, false, "", "prefix of the tire's blocks and node sets", std::string("tire")},
-         {"elements", VT::Integer, false, "", "number of wedges N", std::string("100"), Range::Positive},
+         {"elements", VT::Integer, false, "", "number of wedges N", std::string("100"), Range::Positive, {},
+          kMaxTireElements},
          positive("outer_diameter", "m", "unloaded, uninflated diameter at the tread nodes"),
          positive("rim_diameter", "m", "effective rim diameter"),
          positive("tread_width", "m", "width the inflation pressure acts on"),

@@ -258,6 +258,9 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   });
   const auto start = std::chrono::steady_clock::now();
   const RemoteTiresGuard remote_tires{decks};
+  std::vector<std::unique_ptr<DeckModel::Busy>> busy;  // a tire's load function must not step or change a tire
+  for (DeckModel* deck : decks)
+    if (deck->busy_with().empty()) busy.push_back(std::make_unique<DeckModel::Busy>(*deck, "tirefe.vehicle"));
   try {
     vehicle.advance(arguments.number("duration"), arguments.number("dt"), windows);
   } catch (...) {

@@ -469,8 +469,23 @@ const std::vector<StepRecord>& Analysis::advance_to(double target) {
       step = std::min(nominal_step_, step * control_.growth);
     current_step_ = step;
     notify_step(record);
+    if (committed_.time < target - time_round_off)
+      check_step_budget(static_cast<int>(records_.size()), duration / nominal_step_, record.step_size);
   }
   return records_;
+}
+
+void Analysis::check_step_budget(int steps_taken, double nominal_steps, double step) const {
+  if (control_.step_budget <= 0) return;
+  const double allowed = control_.step_budget * (std::ceil(nominal_steps - 1e-9) + 1.0);
+  if (steps_taken < allowed) return;
+  std::ostringstream message;
+  message << "the step budget ran out at t = " << committed_.time << ": " << steps_taken << " steps where dt = "
+          << nominal_step_ << " asks for " << std::ceil(nominal_steps - 1e-9) << " (the last dt = " << step
+          << "); steps that converge only far below dt point to a model out of balance or too light "
+          << "(a tiny rotary inertia). Check the loads, supports and masses, or raise "
+          << "model:step_control{ step_budget = " << control_.step_budget << " }";
+  throw StepFailure(message.str());
 }
 
 AnalysisSnapshot Analysis::snapshot() {

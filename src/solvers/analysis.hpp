@@ -45,6 +45,11 @@ struct StepControl {
   int easy_iterations = 4;   // grow the step after converging in this many iterations or fewer
   double growth = 2.0;       // growth factor back toward the nominal step
   int max_augmentations = 20;  // augmented-Lagrangian updates per step
+  // One advance may take at most step_budget steps per nominal step it spans (plus
+  // step_budget): a step that keeps converging only at a small fraction of the nominal one
+  // (an out-of-balance start, a tiny rotary inertia) stops the run instead of filling the
+  // disk with steps. 0: no budget.
+  int step_budget = 100;
 };
 
 /// Energies at the end of an accepted step; initial + external_work = kinetic + strain + dissipated.
@@ -199,6 +204,7 @@ class Analysis : private StepEquations {
   void analyze_pattern();
   void select_solver(LinearSolver& solver);
   bool try_step(double step, double end_time, StepRecord& record);
+  void check_step_budget(int steps_taken, double nominal_steps, double step) const;
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
   void update_committed_reactions();

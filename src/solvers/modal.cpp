@@ -16,6 +16,9 @@ namespace tirefe {
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
+// The modal analyses work on dense matrices: 10 000 equations are 0.8 GB for each of K, C
+// and M, far beyond any tire (a 100-element tire has a few hundred).
+constexpr int kMaxModalEquations = 10000;
 using Complex = std::complex<double>;
 
 /// Restores trial = committed history however an assembly ends.
@@ -54,6 +57,10 @@ struct Linearisation {
     if (mode_count < 1)
       throw ModelError("modal analysis: ask for at least one mode (got " + std::to_string(mode_count) + ")");
     assembler.update_pattern();
+    if (model.dof_map().equation_count() > kMaxModalEquations)
+      throw ModelError("modal analysis: the model has " + std::to_string(model.dof_map().equation_count()) +
+                       " free equations, more than the " + std::to_string(kMaxModalEquations) +
+                       " its dense matrices can hold");
     const int dof_count = model.dof_map().dof_count();
     for (Eigen::VectorXd* field : {&state.displacement, &state.velocity, &state.acceleration}) {
       const Eigen::Index old_size = std::min<Eigen::Index>(field->size(), dof_count);

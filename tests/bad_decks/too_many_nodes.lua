@@ -1,0 +1,6 @@
+-- expect line 5: a model holds at most 1000000 nodes and 1000000 elements
+-- A loop that never stops adding nodes is stopped at the limit, not by the memory running out.
+local model = tirefe.model{ title = "endless" }
+for i = 1, 1e9 do
+  model:node{ x = i, y = 0 }
+end
