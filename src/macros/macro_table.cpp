@@ -128,11 +128,30 @@ std::string deck_relative(const DeckSession& session, const std::string& file) {
   return path.string();
 }
 
+namespace {
+
+// Creates 'folder' with its missing parents, naming the one that cannot be made and why
+// (a read-only parent, a file in the way) rather than leaving the file's creation to
+// fail with "No such file or directory".
+void create_output_folder(const std::filesystem::path& folder) {
+  std::filesystem::path made;
+  for (const std::filesystem::path& part : folder) {
+    made /= part;
+    std::error_code error;
+    if (std::filesystem::is_directory(made, error)) continue;
+    if (std::filesystem::exists(made, error))
+      throw std::runtime_error("cannot create the output folder '" + made.string() + "': a file of that name is in the way");
+    if (!std::filesystem::create_directory(made, error) && error)
+      throw std::runtime_error("cannot create the output folder '" + made.string() + "': " + error.message());
+  }
+}
+
+}  // namespace
+
 std::string deck_output_path(const DeckSession& session, const std::string& file) {
   std::filesystem::path path(file);
   if (path.is_relative()) path = std::filesystem::path(session.output_dir) / path;
-  std::error_code ignored;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ignored);
+  if (path.has_parent_path()) create_output_folder(path.parent_path());
   return path.string();
 }
 
