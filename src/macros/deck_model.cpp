@@ -51,6 +51,7 @@ void DeckModel::write_checkpoint(const std::string& file) {
 
 void DeckModel::schedule_checkpoints(const std::string& file, int steps, double minutes) {
   checkpoint_file_ = file;
+  if (owned()) io::remove_unfinished_checkpoint(output_path(file));  // a killed run's
   checkpoint_steps_ = steps;
   checkpoint_minutes_ = minutes;
   last_checkpoint_ = std::chrono::steady_clock::now();
