@@ -380,8 +380,8 @@ TEST_CASE("an output folder that cannot be made is named, with the reason", "[re
     folder.write("taken", "a file, not a folder");
     const std::string output = folder.path("taken/results");
     CHECK(WEXITSTATUS(wait_for(start(TIREFE_BINARY, {deck, "--quiet", "--output-dir", output}, log))) == 1);
-    CHECK_THAT(text_of(log), Catch::Contains("cannot create the output folder '" + folder.path("taken") +
-                                             "': a file of that name is in the way"));
+    CHECK_THAT(text_of(log), Catch::Contains("cannot create the output folder '" + folder.path("taken") + "' for '" +
+                                             output + "/short.h5': a file of that name is in the way"));
   }
   SECTION("a read-only parent") {
     const fs::path locked = folder.path("locked");
@@ -398,6 +398,7 @@ TEST_CASE("an output folder that cannot be made is named, with the reason", "[re
     fs::permissions(locked, fs::perms::owner_all);
     CHECK(WEXITSTATUS(status) == 1);
     CHECK_THAT(text_of(log), Catch::Contains("cannot create the output folder '" + (locked / "results").string() +
+                                             "' for '" + (locked / "results" / "short.h5").string() +
                                              "': " + (root ? "Read-only file system" : "Permission denied")));
   }
 }

@@ -130,19 +130,21 @@ std::string deck_relative(const DeckSession& session, const std::string& file) {
 
 namespace {
 
-// Creates 'folder' with its missing parents, naming the one that cannot be made and why
-// (a read-only parent, a file in the way) rather than leaving the file's creation to
-// fail with "No such file or directory".
-void create_output_folder(const std::filesystem::path& folder) {
+// Creates the folder of the output 'file' with its missing parents, naming the one that
+// cannot be made and why (a read-only parent, a file in the way) rather than leaving the
+// file's creation to fail with "No such file or directory".
+void create_output_folder(const std::filesystem::path& file) {
+  auto failure = [&](const std::filesystem::path& folder, const std::string& reason) {
+    return std::runtime_error("cannot create the output folder '" + folder.string() + "' for '" + file.string() +
+                              "': " + reason);
+  };
   std::filesystem::path made;
-  for (const std::filesystem::path& part : folder) {
+  for (const std::filesystem::path& part : file.parent_path()) {
     made /= part;
     std::error_code error;
     if (std::filesystem::is_directory(made, error)) continue;
-    if (std::filesystem::exists(made, error))
-      throw std::runtime_error("cannot create the output folder '" + made.string() + "': a file of that name is in the way");
-    if (!std::filesystem::create_directory(made, error) && error)
-      throw std::runtime_error("cannot create the output folder '" + made.string() + "': " + error.message());
+    if (std::filesystem::exists(made, error)) throw failure(made, "a file of that name is in the way");
+    if (!std::filesystem::create_directory(made, error) && error) throw failure(made, error.message());
   }
 }
 
@@ -151,7 +153,7 @@ void create_output_folder(const std::filesystem::path& folder) {
 std::string deck_output_path(const DeckSession& session, const std::string& file) {
   std::filesystem::path path(file);
   if (path.is_relative()) path = std::filesystem::path(session.output_dir) / path;
-  if (path.has_parent_path()) create_output_folder(path.parent_path());
+  if (path.has_parent_path()) create_output_folder(path);
   return path.string();
 }
 
