@@ -311,7 +311,7 @@ model:solve{ to = 5e-3, dt = 1e-4 }
 
 }  // namespace
 
-TEST_CASE("the next run removes what a killed run left unfinished; an unfinished checkpoint is refused",
+TEST_CASE("the next run removes what a killed run left unfinished, and an unfinished checkpoint is refused",
           "[reliability]") {
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("short.lua", kShortDeck);
@@ -332,7 +332,7 @@ TEST_CASE("the next run removes what a killed run left unfinished; an unfinished
                                            folder.path("short.ckpt.h5") + "'"));
 }
 
-TEST_CASE("a full disk stops the run with one line naming the file; the file keeps its last flush",
+TEST_CASE("a full disk stops the run with one line naming the file, which keeps its last flush",
           "[reliability]") {
   tirefe::testing::TempDir folder;
   const fs::path disk = folder.path("disk");
