@@ -69,8 +69,8 @@ Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_
   if (output) {
     checkpoint.has_output = true;
     checkpoint.steps_recorded = output->steps_recorded();
+    output->flush();  // the rows still in memory
     Hdf5File& file = output->file();
-    file.flush();  // the rows still in memory
     for (const ExtendibleDataset& dataset : file.extendible_datasets()) {
       SavedRows rows;
       rows.path = dataset.path();
@@ -131,6 +131,12 @@ void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, Result
   output->index_restored_frames();
 }
 
+namespace {
+const char* const kUnfinished = ".partial";  // a checkpoint being written
+}  // namespace
+
+void remove_unfinished_checkpoint(const std::string& path) { std::remove((path + kUnfinished).c_str()); }
+
 void check_parameters(const Checkpoint& checkpoint,
                       const std::vector<std::pair<std::string, std::string>>& parameters) {
   std::map<std::string, std::string> saved(checkpoint.parameters.begin(), checkpoint.parameters.end());
@@ -151,7 +157,7 @@ void check_parameters(const Checkpoint& checkpoint,
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
-  const std::string partial = path + ".partial";
+  const std::string partial = path + kUnfinished;
   {
     Hdf5File file = Hdf5File::create(partial);
     const AnalysisSnapshot& analysis = checkpoint.analysis;
@@ -207,6 +213,10 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
+  const std::string unfinished = kUnfinished;
+  if (path.size() > unfinished.size() && path.compare(path.size() - unfinished.size(), unfinished.size(), unfinished) == 0)
+    throw IoError("restart file '" + path + "' is a checkpoint a run did not finish writing; restart from '" +
+                  path.substr(0, path.size() - unfinished.size()) + "'");
   if (!std::filesystem::exists(path)) throw IoError("restart file '" + path + "' does not exist");
   try {
     const Hdf5File file = Hdf5File::open_read_only(path);

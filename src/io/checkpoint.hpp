@@ -60,6 +60,8 @@ void check_parameters(const Checkpoint& checkpoint,
 
 /// Writes beside 'path' first and renames, so a run killed meanwhile keeps the last checkpoint whole.
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
+/// Removes what a run killed while writing the checkpoint 'path' left beside it.
+void remove_unfinished_checkpoint(const std::string& path);
 /// Throws IoError for a missing, unreadable or incomplete checkpoint file.
 Checkpoint read_checkpoint(const std::string& path);
 

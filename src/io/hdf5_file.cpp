@@ -2,7 +2,13 @@
 // IoError carrying the innermost HDF5 error description; automatic stack printing is off.
 #include "io/hdf5_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <numeric>
@@ -11,7 +17,9 @@
 namespace tirefe::io {
 namespace {
 
-// The innermost entry of the HDF5 error stack is the most specific one (e.g. errno text).
+// The innermost entry of the HDF5 error stack is the most specific one, reduced to one
+// line: a failed read or write describes itself over lines (a time stamp, buffers,
+// offsets) around the system's message, and that message alone says what to do.
 std::string hdf5_error_detail() {
   std::string detail;
   H5Ewalk2(
@@ -22,7 +30,49 @@ std::string hdf5_error_detail() {
       },
       &detail);
   H5Eclear2(H5E_DEFAULT);
+  const std::string system_marker = "error message = '";
+  const size_t system_message = detail.find(system_marker);
+  if (system_message != std::string::npos) {
+    const size_t start = system_message + system_marker.size();
+    detail = detail.substr(start, detail.find('\'', start) - start);
+  }
+  std::replace_if(detail.begin(), detail.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   return detail.empty() ? "HDF5 error" : detail;
+}
+
+std::string system_error(const std::string& action) { return action + ": " + std::strerror(errno); }
+
+// Copies the file 'from' to 'to' whole, in the kernel where it can (no pass through this
+// process; a reflink on file systems that share blocks).
+void copy_file(const std::string& from, const std::string& to) {
+  const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) throw IoError(system_error("cannot read '" + from + "'"));
+  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (out < 0) {
+    const IoError error(system_error("cannot write '" + to + "'"));
+    ::close(in);
+    throw error;
+  }
+  struct stat status {};
+  bool copied = ::fstat(in, &status) == 0;
+  for (off_t left = status.st_size; copied && left > 0;) {
+    ssize_t moved = ::copy_file_range(in, nullptr, out, nullptr, static_cast<size_t>(left), 0);
+    if (moved < 0 && (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP)) {
+      char buffer[1 << 16];  // no kernel copy between these files: through a buffer
+      moved = ::read(in, buffer, sizeof buffer);
+      for (ssize_t written = 0; moved > 0 && written < moved;) {
+        const ssize_t n = ::write(out, buffer + written, static_cast<size_t>(moved - written));
+        if (n < 0) moved = -1;
+        written += n;
+      }
+    }
+    copied = moved > 0;
+    left -= moved;
+  }
+  const std::string failure = copied ? "" : system_error("cannot write '" + to + "'");
+  ::close(in);
+  if (::close(out) != 0 && copied) throw IoError(system_error("cannot write '" + to + "'"));
+  if (!copied) throw IoError(failure);
 }
 
 std::string describe(const std::string& action, const std::string& object, const std::string& file) {
@@ -37,6 +87,11 @@ T check(T rc, Message&& message) {
 }
 
 void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+// HDF5 closes what is still open when the process exits, and crashes on a file whose
+// flush failed (HDF5 1.10.8, a full disk): every file here is closed by its owner, so the
+// library is left to the exit. Set before the library starts (static initialization).
+[[maybe_unused]] const bool kNoCloseAtExit = H5dont_atexit() >= 0;
 
 Hdf5Handle make_fapl(const std::string& path) {
   auto message = [&] { return "cannot set up file access for '" + path + "'"; };
@@ -129,6 +184,8 @@ Hdf5Handle& Hdf5Handle::operator=(Hdf5Handle&& other) noexcept {
   return *this;
 }
 
+hid_t Hdf5Handle::release() noexcept { return std::exchange(id_, H5I_INVALID_HID); }
+
 void Hdf5Handle::reset() noexcept {
   if (id_ >= 0 && closer_ != nullptr) closer_(id_);  // failure is ignored: destructors must not throw
   id_ = H5I_INVALID_HID;
@@ -203,6 +260,18 @@ Hdf5File Hdf5File::create(const std::string& path) {
   return Hdf5File(path, Hdf5Handle(id, H5Fclose));
 }
 
+Hdf5File Hdf5File::create_published(const std::string& path) {
+  silence_hdf5_errors();
+  const std::string working = path + ".partial";
+  std::remove((working + ".copy").c_str());  // a copy a killed run left unfinished
+  Hdf5Handle fapl = make_fapl(path);
+  const hid_t id = H5Fcreate(working.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  check(id, [&] { return "cannot create output file '" + path + "' (written as '" + working + "')"; });
+  Hdf5File file(path, Hdf5Handle(id, H5Fclose));
+  file.working_path_ = working;
+  return file;
+}
+
 Hdf5File Hdf5File::create_in_memory(const std::string& name) {
   silence_hdf5_errors();
   Hdf5Handle fapl = make_fapl(name);
@@ -223,28 +292,59 @@ Hdf5File Hdf5File::open_read_only(const std::string& path) {
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
     : path_(std::move(other.path_)),
+      working_path_(std::move(other.working_path_)),
       file_(std::move(other.file_)),
+      failed_(other.failed_),
       lcpl_(std::move(other.lcpl_)),
       datasets_(std::move(other.datasets_)) {}
 
 Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   // Swap, so our old datasets and file are closed (datasets first) when `other` dies.
   std::swap(path_, other.path_);
+  std::swap(working_path_, other.working_path_);
   std::swap(file_, other.file_);
+  std::swap(failed_, other.failed_);
   std::swap(lcpl_, other.lcpl_);
   std::swap(datasets_, other.datasets_);
   return *this;
 }
 
 Hdf5File::~Hdf5File() {
-  for (ExtendibleDataset& dataset : datasets_) {
-    try {
-      dataset.write_pending();
-    } catch (const std::exception&) {  // a full disk: the rows already written stay readable
-    }
+  try {
+    close();
+  } catch (const std::exception&) {  // a full disk: the rows already written stay readable
+  }
+}
+
+void Hdf5File::close() {
+  if (file_.get() < 0) return;
+  std::string failure;
+  try {
+    if (!failed_)
+      for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
+  } catch (const IoError& error) {
+    failure = error.what();
   }
   datasets_.clear();
-  file_.reset();
+  lcpl_.reset();
+  if (H5Fclose(file_.release()) < 0 && failure.empty())
+    failure = "cannot close '" + path_ + "': " + hdf5_error_detail();
+  if (failed_) {  // reported when the flush failed
+    H5Eclear2(H5E_DEFAULT);
+    if (!working_path_.empty()) std::remove(working_path_.c_str());
+    return;
+  }
+  if (working_path_.empty()) {
+    if (!failure.empty()) throw IoError(failure);
+    return;
+  }
+  // A published file that could not be completed keeps its last whole copy.
+  if (failure.empty() && std::rename(working_path_.c_str(), path_.c_str()) != 0)
+    failure = system_error("cannot rename '" + working_path_ + "' to '" + path_ + "'");
+  if (!failure.empty()) {
+    std::remove(working_path_.c_str());
+    throw IoError(failure);
+  }
 }
 
 void Hdf5File::write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type,
@@ -480,8 +580,31 @@ bool Hdf5File::exists(const std::string& object_path) const {
 }
 
 void Hdf5File::flush() {
-  for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
-  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), [&] { return "cannot flush '" + path_ + "'"; });
+  if (failed_) throw IoError("cannot flush '" + path_ + "': an earlier flush failed");
+  try {
+    for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
+    check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), [&] { return "cannot flush '" + path_ + "'"; });
+    if (!working_path_.empty()) publish_copy();
+  } catch (const IoError&) {
+    failed_ = true;
+    throw;
+  }
+}
+
+void Hdf5File::publish_copy() const {
+  // Renamed into place: a reader, or a run killed meanwhile, finds the previous copy whole.
+  const std::string copy = working_path_ + ".copy";
+  try {
+    copy_file(working_path_, copy);
+  } catch (const IoError&) {
+    std::remove(copy.c_str());
+    throw;
+  }
+  if (std::rename(copy.c_str(), path_.c_str()) != 0) {
+    const IoError error(system_error("cannot rename '" + copy + "' to '" + path_ + "'"));
+    std::remove(copy.c_str());
+    throw error;
+  }
 }
 
 }  // namespace tirefe::io

@@ -34,6 +34,7 @@ class Hdf5Handle {
 
   hid_t get() const { return id_; }
   void reset() noexcept;
+  hid_t release() noexcept;  // the id, no longer owned
 
  private:
   hid_t id_ = H5I_INVALID_HID;
@@ -79,6 +80,11 @@ class Hdf5File {
  public:
   // Create (truncate) a file. Parent folders must exist.
   static Hdf5File create(const std::string& path);
+  // Create a file that is whole at every instant, even for a reader while it is written or
+  // after the process is killed: it is written as '<path>.partial', copied whole to 'path'
+  // (under a temporary name, then renamed) at every flush() and renamed to 'path' at close().
+  // Leftovers of a killed run ('<path>.partial', '<path>.partial.copy') are removed here.
+  static Hdf5File create_published(const std::string& path);
   // A file held in memory only and dropped when closed ('name' for messages).
   static Hdf5File create_in_memory(const std::string& name);
   // Open an existing file read-only (tests, restart, post-processing).
@@ -142,11 +148,17 @@ class Hdf5File {
   bool exists(const std::string& object_path) const;
 
   // Writes the appended rows and flushes everything, so that a process killed afterwards
-  // leaves a file readable up to here.
+  // leaves a file readable up to here (a published file: copies it to its path).
   void flush();
+  // Writes the appended rows and closes the file (a published file: renames it to its path).
+  // Throws IoError; afterwards the object holds no file. The destructor closes quietly.
+  // After a failed flush the file is dropped instead (a published one keeps its last copy).
+  void close();
+  bool failed() const { return failed_; }
 
  private:
   Hdf5File(std::string path, Hdf5Handle file);
+  void publish_copy() const;
   void write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type,
                      hid_t mem_type, const void* data);
   ExtendibleDataset& create_chunked(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
@@ -157,7 +169,9 @@ class Hdf5File {
   std::vector<T> read_numeric(const std::string& dataset_path, hid_t mem_type, std::vector<hsize_t>* shape) const;
 
   std::string path_;
+  std::string working_path_;  // where a published file is written; empty: written at path_
   Hdf5Handle file_;
+  bool failed_ = false;  // a flush failed (a full disk): HDF5 can no longer close the file cleanly
   Hdf5Handle lcpl_;  // link creation: intermediate groups on
   // Declared after file_ so the datasets are closed before the file.
   std::deque<ExtendibleDataset> datasets_;

@@ -24,7 +24,7 @@ std::string utc_now() {
 }  // namespace
 
 ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage)
-    : file_(storage == ResultStorage::File ? Hdf5File::create(path) : Hdf5File::create_in_memory(path)),
+    : file_(storage == ResultStorage::File ? Hdf5File::create_published(path) : Hdf5File::create_in_memory(path)),
       discarded_(storage == ResultStorage::Discarded),
       index_(std::filesystem::path(path).filename().string()) {
   file_.write_attribute("/", "tirefe_version", std::string(kVersion));
@@ -63,9 +63,11 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
 }
 
 ResultFile::~ResultFile() {
-  if (frames_indexed_ == index_.frames()) return;
+  if (file_.failed()) return;  // reported; the file on disk keeps its last flush
   try {
-    write_index();
+    file_.close();
+    index_flushed_frames();
+    if (frames_indexed_ != index_.frames()) write_index();
   } catch (const std::exception& error) {
     std::fprintf(stderr, "tirefe: warning: %s\n", error.what());
   }
@@ -78,6 +80,15 @@ void ResultFile::write_index() {
   index_.write(index.string());
   frames_indexed_ = index_.frames();
   last_index_write_ = std::chrono::steady_clock::now();
+}
+
+void ResultFile::index_flushed_frames() {
+  for (double time : unflushed_frames_) index_.add_frame(time);
+  unflushed_frames_.clear();
+}
+
+double ResultFile::frame_time(size_t frame) const {
+  return frame < index_.frames() ? index_.times()[frame] : unflushed_frames_[frame - index_.frames()];
 }
 
 void ResultFile::write_index_if_due() {
@@ -247,9 +258,9 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   XdmfGrid grid{name, "Polyline", segment_count, 2, {group + "/segments", {segment_count, 2}, true},
                 {group + "/frames/{frame}", {count, 2}}, {}};
   // The frames written before the surface existed show it where its motion put it then.
-  const size_t earlier = index_.frames();
+  const size_t earlier = frames_written();
   for (size_t frame = 0; frame < earlier; ++frame) {
-    append_outline(surface, index_.times()[frame]);
+    append_outline(surface, frame_time(frame));
     file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
   }
   index_.add_grid(grid);
@@ -308,9 +319,9 @@ void ResultFile::write_views(size_t frame) {
 void ResultFile::index_restored_frames() {
   if (discarded_ || !mesh_written_) return;
   const std::vector<double> times = file_.read_doubles("/fields/time");
-  for (size_t frame = index_.frames(); frame < times.size(); ++frame) {
+  for (size_t frame = frames_written(); frame < times.size(); ++frame) {
     write_views(frame);
-    index_.add_frame(times[frame]);
+    unflushed_frames_.push_back(times[frame]);
   }
   // The frames go on where the interrupted run's would have, not at the first step.
   if (!times.empty()) schedule_next_frame(times.back());
@@ -377,7 +388,7 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
     view_centre_ = 0.5 * (low + high);
     view_reach_ = std::max((high - low).norm(), 1.0);
   }
-  const size_t frame = index_.frames();
+  const size_t frame = frames_written();
   field_time_->append(state.time);
   field_step_->append(static_cast<double>(step));
   field_displacement_->append(state.displacement.data());
@@ -385,10 +396,8 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   if (field_deformation_) append_deformation(model, state);
   for (Surface& surface : surfaces_) append_outline(surface, state.time);
   write_views(frame);
-  flush();
-  // After the flush: the index names only what the file holds.
-  index_.add_frame(state.time);
-  write_index_if_due();
+  unflushed_frames_.push_back(state.time);
+  flush_if_due(true);
 }
 
 void ResultFile::start(const Analysis& analysis) {
@@ -412,7 +421,7 @@ void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
     schedule_next_frame(record.time);
   }
   else
-    flush_if_due();
+    flush_if_due(false);
 }
 
 void ResultFile::schedule_next_frame(double frame_time) {
@@ -422,18 +431,24 @@ void ResultFile::schedule_next_frame(double frame_time) {
   next_field_time_ = (std::floor((frame_time + margin) / field_time_interval_) + 1.0) * field_time_interval_ - margin;
 }
 
-void ResultFile::flush_if_due() {
-  // Flushing costs tens of microseconds; a quarter second of wall time between flushes
-  // bounds what a killed run can lose without slowing short steps down.
-  const auto now = std::chrono::steady_clock::now();
-  if (now - last_flush_ < std::chrono::milliseconds(250)) return;
-  file_.flush();
-  last_flush_ = now;
+void ResultFile::flush_if_due(bool frame) {
+  // A flush copies the whole file (a millisecond per few MB). A field frame is flushed at
+  // once, other rows after a quarter second of wall time, but never before twenty times
+  // the last flush's own time has passed: flushing takes at most some 5% of the run.
+  const auto since = std::chrono::steady_clock::now() - last_flush_;
+  if ((!frame && since < std::chrono::milliseconds(250)) || since < 20 * last_flush_cost_) return;
+  flush();
 }
 
 void ResultFile::flush() {
+  const auto start = std::chrono::steady_clock::now();
   file_.flush();
   last_flush_ = std::chrono::steady_clock::now();
+  last_flush_cost_ = last_flush_ - start;
+  if (unflushed_frames_.empty()) return;
+  // After the flush: the index names only what the file holds.
+  index_flushed_frames();
+  write_index_if_due();
 }
 
 }  // namespace tirefe::io

@@ -21,11 +21,12 @@
 //   /fields/frames/<k>/..., /surfaces/<name>/frames/<k>   frame k of the above as whole
 //                                 datasets (virtual: no copies), for the XDMF index
 // Field rows are compressed. <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
-// Rows are flushed at field frames and at least every quarter second of wall time, and
-// when the file closes, so a run that fails leaves a file readable up to its last step
-// and a killed run one readable up to its last flush. The index is rewritten (whole, by a
-// rename) after a frame's flush: after every frame while it is small, at most once a
-// second beyond 1 MB, and when the file closes.
+// The file is published (Hdf5File::create_published): whole at every instant. Rows are
+// flushed at field frames and at least every quarter second of wall time (less often for
+// a big file, whose flush copies it whole) and when the file closes, so a run that fails leaves a file
+// readable up to its last step and a killed run one readable up to its last flush. The
+// index is rewritten (whole, by a rename) after a flush that brought frames: at every
+// such flush while it is small, at most once a second beyond 1 MB, and at the close.
 //
 // Deformation: a tire's displacement with the rigid motion of its rim taken out. With X
 // the reference position of a node, x = X + u, s the spindle and R = R(theta_s),
@@ -136,6 +137,10 @@ class ResultFile {
   void write_views(size_t frame);
   void write_index();
   void write_index_if_due();
+  /// Adds the frames the last flush put in the file to the index.
+  void index_flushed_frames();
+  size_t frames_written() const { return index_.frames() + unflushed_frames_.size(); }
+  double frame_time(size_t frame) const;
   /// The common part of write_modes: time, frequencies, flags and the shapes' real part.
   std::string write_mode_group(const std::string& label, const Analysis& analysis,
                                const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
@@ -143,7 +148,7 @@ class ResultFile {
   /// Shapes as modes x (3 nodes), like the displacement fields.
   void write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes);
   void start_history();
-  void flush_if_due();
+  void flush_if_due(bool frame);
   /// With frames by time: the first step at or after the next multiple of the interval.
   void schedule_next_frame(double frame_time);
 
@@ -158,6 +163,7 @@ class ResultFile {
   double next_field_time_ = -std::numeric_limits<double>::infinity();
   int steps_recorded_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::duration last_flush_cost_{};
   ExtendibleDataset* field_time_ = nullptr;
   ExtendibleDataset* field_step_ = nullptr;
   ExtendibleDataset* field_displacement_ = nullptr;
@@ -169,7 +175,8 @@ class ResultFile {
   std::vector<double> row_;        // one frame's deformation
   Eigen::Vector2d view_centre_ = Eigen::Vector2d::Zero();  // where the last frame's structure is
   double view_reach_ = 1.0;
-  XdmfIndex index_;
+  XdmfIndex index_;                   // the frames the file on disk holds
+  std::vector<double> unflushed_frames_;  // the times of frames written since the last flush
   size_t frames_indexed_ = 0;  // in the index file
   std::chrono::steady_clock::time_point last_index_write_ = std::chrono::steady_clock::now();
 };

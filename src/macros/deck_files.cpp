@@ -56,6 +56,23 @@ void refuse_foreign_file(const fs::path& real, const std::string& shown, const O
                      "; tirefe replaces only files of the kind it writes: remove it or choose another name");
 }
 
+// Creates the folder of the output 'file' with its missing parents, naming the one that
+// cannot be made and why (a read-only parent, a file in the way) rather than leaving the
+// file's creation to fail with "No such file or directory".
+void create_output_folder(const fs::path& file) {
+  auto failure = [&](const fs::path& folder, const std::string& reason) {
+    return ModelError("cannot create the output folder '" + folder.string() + "' for '" + file.string() + "': " + reason);
+  };
+  fs::path made;
+  for (const fs::path& part : file.parent_path()) {
+    made /= part;
+    std::error_code error;
+    if (fs::is_directory(made, error)) continue;
+    if (fs::exists(made, error)) throw failure(made, "a file of that name is in the way");
+    if (!fs::create_directory(made, error) && error) throw failure(made, error.message());
+  }
+}
+
 }  // namespace
 
 fs::path resolved_path(const fs::path& path) {
@@ -96,8 +113,7 @@ std::string deck_output_path(DeckSession& session, const std::string& file, cons
   if (!added && claimed->second != kind.purpose)
     throw ModelError("'" + path.string() + "' is already " + claimed->second + " in this run; give " + kind.purpose +
                      " another name");
-  std::error_code ignored;
-  if (path.has_parent_path()) fs::create_directories(path.parent_path(), ignored);
+  if (path.has_parent_path()) create_output_folder(path);
   return path.string();
 }
 

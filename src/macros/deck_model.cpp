@@ -67,8 +67,10 @@ void DeckModel::write_checkpoint(const std::string& file) {
 }
 
 void DeckModel::schedule_checkpoints(const std::string& file, int steps, double minutes) {
-  checkpoint_path(file);  // refused at the macro's line, not at the first step that writes it
+  // Refused at the macro's line, not at the first step that writes it.
+  const std::string path = checkpoint_path(file);
   checkpoint_file_ = file;
+  if (owned()) io::remove_unfinished_checkpoint(path);  // a killed run's
   checkpoint_steps_ = steps;
   checkpoint_minutes_ = minutes;
   last_checkpoint_ = std::chrono::steady_clock::now();
