@@ -9,10 +9,10 @@
 
 #include "io/checkpoint.hpp"
 #include "macros/interrupt.hpp"
+#include "macros/lua_module_dir.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/version.hpp"
-#include "tirefe/source_paths.hpp"
 
 namespace tirefe::macros {
 
@@ -85,7 +85,13 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
     }
   }
   if (configure) configure(session);
-  LuaSandbox sandbox(TIREFE_LUA_DIR);
+  std::string lua_dir;
+  try {
+    lua_dir = lua_module_dir();
+  } catch (const std::exception& error) {
+    return {1, "tirefe: " + std::string(error.what()) + "\n"};
+  }
+  LuaSandbox sandbox(lua_dir);
   install_stop_handlers();
   try {
     install_macros(sandbox, session);

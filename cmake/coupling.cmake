@@ -1,0 +1,59 @@
+# The tire as a component (docs/coupling.md): the shared library libtirefe.so with the C
+# API of include/tirefe.h, and the install rules: executables, library, header, Lua
+# modules, tire property files, a CMake package and a pkg-config file.
+include(CMakePackageConfigHelpers)
+
+add_library(tirefe_shared SHARED $<TARGET_OBJECTS:tirefe_objects>)
+target_link_libraries(tirefe_shared PRIVATE ${TIREFE_DEPENDENCIES})
+target_include_directories(tirefe_shared INTERFACE
+  $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+set_target_properties(tirefe_shared PROPERTIES
+  OUTPUT_NAME tirefe VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}
+  EXPORT_NAME tirefe)
+add_library(tirefe::tirefe ALIAS tirefe_shared)
+
+# The C example host of docs/coupling.md: a quarter car dropped onto the tire.
+add_executable(quarter_car_drop examples/quarter_car_drop.c)
+target_link_libraries(quarter_car_drop PRIVATE tirefe::tirefe m)
+
+install(TARGETS tirefe RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET tirefe-mpi)
+  install(TARGETS tirefe-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+install(TARGETS tirefe_shared EXPORT tirefeTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(FILES include/tirefe.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY lua/ DESTINATION ${TIREFE_INSTALL_LUA_DIR} FILES_MATCHING PATTERN "*.lua")
+install(DIRECTORY inputs/tires/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe/tires FILES_MATCHING PATTERN "*.tir")
+install(FILES examples/quarter_car_drop.c DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe/examples)
+
+set(TIREFE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/tirefe)
+install(EXPORT tirefeTargets NAMESPACE tirefe:: DESTINATION ${TIREFE_CMAKE_DIR})
+file(WRITE ${CMAKE_BINARY_DIR}/package/tirefeConfig.cmake
+  "# find_package(tirefe): the imported target tirefe::tirefe (libtirefe.so and tirefe.h).\n"
+  "include(\"\${CMAKE_CURRENT_LIST_DIR}/tirefeTargets.cmake\")\n")
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/tirefeConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/package/tirefeConfig.cmake ${CMAKE_BINARY_DIR}/package/tirefeConfigVersion.cmake
+  DESTINATION ${TIREFE_CMAKE_DIR})
+
+# pkg-config: the prefix is taken from the .pc file's own place, so a moved prefix works.
+file(RELATIVE_PATH TIREFE_PC_TO_PREFIX ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig ${CMAKE_INSTALL_PREFIX})
+string(REGEX REPLACE "/$" "" TIREFE_PC_TO_PREFIX "${TIREFE_PC_TO_PREFIX}")
+file(WRITE ${CMAKE_BINARY_DIR}/package/tirefe.pc
+  "prefix=\${pcfiledir}/${TIREFE_PC_TO_PREFIX}\n"
+  "libdir=\${prefix}/${CMAKE_INSTALL_LIBDIR}\n"
+  "includedir=\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}\n"
+  "luadir=\${prefix}/${TIREFE_INSTALL_LUA_DIR}\n\n"
+  "Name: tirefe\n"
+  "Description: 2D finite-element tire behind its spindle (C API)\n"
+  "Version: ${PROJECT_VERSION}\n"
+  "Libs: -L\${libdir} -ltirefe\n"
+  "Cflags: -I\${includedir}\n")
+install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# The C API's cost over the C++ interface (docs/coupling.md): both through libtirefe.so.
+add_executable(bench_capi_step bench/capi/bench_capi_step.cpp)
+target_include_directories(bench_capi_step PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
+target_link_libraries(bench_capi_step PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA)

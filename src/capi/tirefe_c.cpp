@@ -1,0 +1,252 @@
+// The C API of include/tirefe.h over TireOnRoad and TireSpindle (docs/coupling.md).
+// Every entry point catches whatever the C++ side throws and turns it into a status and
+// a message kept in the handle: nothing unwinds into the C caller.
+#include "tirefe.h"
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "macros/macro_table.hpp"
+#include "tirefe/version.hpp"
+#include "vehicle/tire_on_road.hpp"
+
+struct tirefe_tire {
+  std::mutex mutex;  // one caller at a time per tire
+  std::unique_ptr<tirefe::TireOnRoad> tire;
+  tirefe::TireSpindle* spindle = nullptr;
+  bool has_trial = false;  // a solved step waits for commit or revert
+  std::string message;
+};
+
+namespace {
+
+using namespace tirefe;
+using macros::ParameterValue;
+
+/// The status of an exception thrown by the C++ side, its text in 'message'.
+tirefe_status status_of_current_exception(std::string& message) {
+  try {
+    throw;
+  } catch (const StepFailure& failure) {
+    message = failure.what();
+    return TIREFE_STEP_FAILED;
+  } catch (const ModelError& error) {
+    message = error.what();
+    return TIREFE_MODEL_ERROR;
+  } catch (const std::bad_alloc&) {
+    message = "out of memory";
+    return TIREFE_OUT_OF_MEMORY;
+  } catch (const std::exception& error) {
+    message = error.what();
+    return TIREFE_INTERNAL_ERROR;
+  } catch (...) {
+    message = "unknown failure";
+    return TIREFE_INTERNAL_ERROR;
+  }
+}
+
+/// Runs 'body' on the locked tire; every exception becomes a status and the message.
+template <class Body>
+tirefe_status guarded(tirefe_tire* tire, Body&& body) {
+  if (!tire) return TIREFE_INVALID_ARGUMENT;
+  std::lock_guard<std::mutex> lock(tire->mutex);
+  tire->message.clear();
+  try {
+    return body(*tire);
+  } catch (...) {
+    return status_of_current_exception(tire->message);
+  }
+}
+
+tirefe_status refuse(tirefe_tire& tire, tirefe_status status, std::string message) {
+  tire.message = std::move(message);
+  return status;
+}
+
+void copy_message(const std::string& message, char* error, size_t error_size) {
+  if (error && error_size > 0) std::snprintf(error, error_size, "%s", message.c_str());
+}
+
+std::vector<ParameterValue> parameter_values(const tirefe_parameter* overrides, size_t count) {
+  std::vector<ParameterValue> values;
+  for (size_t i = 0; i < count; ++i) {
+    if (!overrides[i].name) throw std::invalid_argument("override " + std::to_string(i) + " has no name");
+    if (!std::isfinite(overrides[i].value))
+      throw std::invalid_argument(std::string("override '") + overrides[i].name + "' is not a finite number");
+    values.emplace_back(overrides[i].name, overrides[i].value);
+  }
+  return values;
+}
+
+std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
+                                       const tirefe_options& options) {
+  if (!(options.friction >= 0.0 && std::isfinite(options.friction)))
+    throw std::invalid_argument("options.friction must be a finite number >= 0");
+  const TireParameters parameters = macros::load_tire_parameters(source, overrides);
+  auto handle = std::make_unique<tirefe_tire>();
+  handle->tire = std::make_unique<TireOnRoad>(
+      parameters, [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); },
+      RoadContact{options.friction});
+  const Integrator integrator = options.hht_alpha == 0.0 ? Integrator::newmark() : Integrator::hht(options.hht_alpha);
+  handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
+  return handle;
+}
+
+void copy_reply(const SpindleReply& reply, double jacobian_scale, tirefe_spindle_force& out) {
+  for (int i = 0; i < 3; ++i) {
+    out.force[i] = reply.force[i];
+    for (int j = 0; j < 3; ++j) out.jacobian[i][j] = reply.jacobian[i][j] * jacobian_scale;
+  }
+  out.time = reply.time;
+  out.newton_iterations = reply.newton_iterations;
+}
+
+bool finite(const double* values, int count) {
+  for (int i = 0; i < count; ++i)
+    if (!std::isfinite(values[i])) return false;
+  return true;
+}
+
+/// Solves the trial step to 'input'; the handle then holds a trial until commit or revert.
+tirefe_status solve(tirefe_tire& tire, const SpindleInput& input, double jacobian_scale, tirefe_spindle_force& out) {
+  if (!(input.time_step > 0.0 && std::isfinite(input.time_step)))
+    return refuse(tire, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
+  tire.has_trial = false;
+  copy_reply(tire.spindle->solve_step(input), jacobian_scale, out);
+  tire.has_trial = true;
+  return TIREFE_OK;
+}
+
+/// Committed displacement, velocity and acceleration of the spindle's DOF c.
+struct DofState {
+  double u, v, a;
+};
+DofState committed_dof(const tirefe_tire& tire, int c) {
+  const State& state = tire.tire->analysis().state();
+  const int dof = dof_index(tire.tire->tire().spindle, c);
+  return {state.displacement[dof], state.velocity[dof], state.acceleration[dof]};
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* tirefe_version(void) {
+  static const std::string version = std::string(kVersion) + " (" + kGitCommit + ")";
+  return version.c_str();
+}
+
+void tirefe_default_options(tirefe_options* options) {
+  if (!options) return;
+  options->friction = 0.8;
+  options->hht_alpha = 0.0;
+  options->free_spin = 1;
+}
+
+tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,
+                          const tirefe_options* options, tirefe_tire** tire, char* error, size_t error_size) {
+  if (tire) *tire = nullptr;
+  if (!source || !tire || (count > 0 && !overrides)) {
+    copy_message("tirefe_open: source and tire must not be NULL, nor overrides when count > 0", error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
+  tirefe_options chosen;
+  tirefe_default_options(&chosen);
+  if (options) chosen = *options;
+  std::string message;
+  try {
+    *tire = open_tire(source, parameter_values(overrides, count), chosen).release();
+    copy_message("", error, error_size);
+    return TIREFE_OK;
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    // Building the tire is not a step: a failure to inflate it is the parameters' fault.
+    copy_message(message, error, error_size);
+    return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
+  }
+}
+
+void tirefe_close(tirefe_tire* tire) { delete tire; }
+
+const char* tirefe_message(const tirefe_tire* tire) { return tire ? tire->message.c_str() : "no tire (NULL handle)"; }
+
+tirefe_status tirefe_road_level(tirefe_tire* tire, double* level) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!level) return refuse(t, TIREFE_INVALID_ARGUMENT, "level must not be NULL");
+    *level = t.tire->road_level();
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motion, tirefe_spindle_force* out) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!motion || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "motion and out must not be NULL");
+    const double values[] = {motion->x, motion->y, motion->spin};
+    if (!finite(values, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle motion must be finite");
+    return solve(t, SpindleInput{motion->time_step, motion->x, motion->y, motion->spin}, 1.0, *out);
+  });
+}
+
+tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
+                                    tirefe_spindle_force* out) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!velocity || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "velocity and out must not be NULL");
+    if (!finite(velocity, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle velocity must be finite");
+    if (!(time_step > 0.0 && std::isfinite(time_step)))
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
+    // Newmark: the end-of-step velocity fixes the acceleration, which fixes the position.
+    const Integrator& integrator = t.tire->analysis().integrator();
+    const double h = time_step, beta = integrator.beta(), gamma = integrator.gamma();
+    const Eigen::Vector2d& reference = t.tire->model().mesh().position(t.tire->tire().spindle);
+    double position[3];
+    for (int c = 0; c < 3; ++c) {
+      const DofState now = committed_dof(t, c);
+      const double a = (velocity[c] - now.v - h * (1.0 - gamma) * now.a) / (gamma * h);
+      position[c] = now.u + h * now.v + h * h * ((0.5 - beta) * now.a + beta * a);
+    }
+    const SpindleInput input{h, reference.x() + position[0], reference.y() + position[1], position[2]};
+    return solve(t, input, beta * h / gamma, *out);
+  });
+}
+
+tirefe_status tirefe_commit(tirefe_tire* tire) {
+  return guarded(tire, [](tirefe_tire& t) {
+    if (!t.has_trial) return refuse(t, TIREFE_INVALID_CALL, "tirefe_commit: no solved trial step to accept");
+    t.has_trial = false;
+    t.spindle->commit();
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_revert(tirefe_tire* tire) {
+  return guarded(tire, [](tirefe_tire& t) {
+    t.has_trial = false;
+    t.spindle->revert();
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!state) return refuse(t, TIREFE_INVALID_ARGUMENT, "state must not be NULL");
+    const Eigen::Vector3d position = t.spindle->committed_position();
+    const Eigen::Vector3d force = t.spindle->committed_force();
+    state->time = t.spindle->time();
+    for (int c = 0; c < 3; ++c) {
+      state->position[c] = position[c];
+      state->velocity[c] = committed_dof(t, c).v;
+      state->force[c] = force[c];
+    }
+    return TIREFE_OK;
+  });
+}
+
+}  // extern "C"
