@@ -57,3 +57,31 @@ install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_
 add_executable(bench_capi_step bench/capi/bench_capi_step.cpp)
 target_include_directories(bench_capi_step PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
 target_link_libraries(bench_capi_step PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA)
+
+# tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/coupling.md), self-
+# contained: the model description, the binary (the library's objects and the FMI
+# functions, nothing else exported) and resources/ with the tire property file and the
+# Lua modules. Its GUID is fixed by the version.
+string(UUID TIREFE_FMU_GUID NAMESPACE 6ba7b811-9dad-11d1-80b4-00c04fd430c8 NAME "tirefe_tire ${PROJECT_VERSION}" TYPE SHA1)
+set(TIREFE_FMU_GUID "{${TIREFE_FMU_GUID}}")
+set(TIREFE_FMU_DIR ${CMAKE_BINARY_DIR}/fmu/tirefe_tire)
+configure_file(cmake/modelDescription.xml.in ${TIREFE_FMU_DIR}/modelDescription.xml @ONLY)
+add_library(tirefe_fmu MODULE src/fmu/tirefe_fmu.cpp $<TARGET_OBJECTS:tirefe_objects>)
+target_include_directories(tirefe_fmu PRIVATE src include)
+target_compile_definitions(tirefe_fmu PRIVATE TIREFE_FMU_GUID="${TIREFE_FMU_GUID}")
+target_link_libraries(tirefe_fmu PRIVATE ${TIREFE_DEPENDENCIES})
+# Only the fmi2 functions are the FMU's interface: no C++ symbol may clash with a host's.
+target_link_options(tirefe_fmu PRIVATE -Wl,--exclude-libs,ALL
+  -Wl,--version-script=${CMAKE_SOURCE_DIR}/src/fmu/fmi2_exports.map)
+set_target_properties(tirefe_fmu PROPERTIES OUTPUT_NAME tirefe_tire PREFIX ""
+  LIBRARY_OUTPUT_DIRECTORY ${TIREFE_FMU_DIR}/binaries/linux64)
+add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/tirefe_tire.fmu
+  COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/lua ${TIREFE_FMU_DIR}/resources/lua
+  COMMAND ${CMAKE_COMMAND} -E copy ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir ${TIREFE_FMU_DIR}/resources/145SR12.tir
+  COMMAND ${CMAKE_COMMAND} -E tar cf ${CMAKE_BINARY_DIR}/tirefe_tire.fmu --format=zip
+          modelDescription.xml binaries resources
+  WORKING_DIRECTORY ${TIREFE_FMU_DIR}
+  DEPENDS tirefe_fmu ${TIREFE_FMU_DIR}/modelDescription.xml ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir
+  COMMENT "Packing tirefe_tire.fmu")
+add_custom_target(tirefe_tire_fmu ALL DEPENDS ${CMAKE_BINARY_DIR}/tirefe_tire.fmu)
+install(FILES ${CMAKE_BINARY_DIR}/tirefe_tire.fmu DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe)

@@ -131,6 +131,15 @@ tirefe_status tirefe_revert(tirefe_tire* tire);
 /* The committed time and spindle state. */
 tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state);
 
+/* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
+ * a host that steps back in time (a co-simulation master repeating a macro step)
+ * saves the tire and restores it later. A pending trial step is discarded by a restore.
+ * Free the copy with tirefe_free_state. */
+typedef struct tirefe_saved_state tirefe_saved_state;
+tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved);
+tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* saved);
+void tirefe_free_state(tirefe_saved_state* saved);
+
 #ifdef __cplusplus
 }
 #endif

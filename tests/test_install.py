@@ -51,7 +51,8 @@ def test_install_layout(folder):
     run(["cmake", "--install", os.path.dirname(TIREFE), "--prefix", prefix])
     for path in ["bin/tirefe", "include/tirefe.h", "lib/libtirefe.so", "lib/pkgconfig/tirefe.pc",
                  "lib/cmake/tirefe/tirefeConfig.cmake", "share/tirefe/lua/tire_on_road.lua",
-                 "share/tirefe/lua/tires/145SR12.lua", "share/tirefe/tires/145SR12.tir"]:
+                 "share/tirefe/lua/tires/145SR12.lua", "share/tirefe/tires/145SR12.tir",
+                 "share/tirefe/tirefe_tire.fmu"]:
         assert os.path.exists(os.path.join(prefix, path)), path
     soname = run(["objdump", "-p", os.path.join(prefix, "lib/libtirefe.so")]).stdout
     assert "SONAME               libtirefe.so.0" in soname, soname

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/checkpoint.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/version.hpp"
 #include "vehicle/tire_on_road.hpp"
@@ -21,6 +22,10 @@ struct tirefe_tire {
   tirefe::TireSpindle* spindle = nullptr;
   bool has_trial = false;  // a solved step waits for commit or revert
   std::string message;
+};
+
+struct tirefe_saved_state {
+  tirefe::io::Checkpoint checkpoint;
 };
 
 namespace {
@@ -248,5 +253,25 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
     return TIREFE_OK;
   });
 }
+
+tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
+    *saved = new tirefe_saved_state{io::capture_checkpoint(t.tire->analysis(), nullptr, 1, "tirefe C API")};
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* saved) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
+    if (t.has_trial) t.spindle->revert();
+    t.has_trial = false;
+    io::restore_checkpoint(saved->checkpoint, t.tire->analysis(), nullptr);
+    return TIREFE_OK;
+  });
+}
+
+void tirefe_free_state(tirefe_saved_state* saved) { delete saved; }
 
 }  // extern "C"

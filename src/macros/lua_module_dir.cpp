@@ -47,6 +47,9 @@ std::string find_module_dir() {
       (file.parent_path() / (is_shared_library(file) ? TIREFE_LUA_FROM_LIBDIR : TIREFE_LUA_FROM_BINDIR))
           .lexically_normal();
   if (holds_modules(installed)) return installed.string();
+  // An FMU's binary (binaries/<platform>/) carries its modules in the FMU's resources/.
+  const fs::path fmu_resources = (file.parent_path() / "../../resources/lua").lexically_normal();
+  if (is_shared_library(file) && holds_modules(fmu_resources)) return fmu_resources.string();
   std::error_code error;
   const fs::path build_tree = fs::weakly_canonical(TIREFE_BINARY_DIR, error);
   if (!error && inside(file, build_tree) && holds_modules(TIREFE_LUA_DIR)) return TIREFE_LUA_DIR;

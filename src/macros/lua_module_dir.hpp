@@ -7,9 +7,9 @@
 namespace tirefe::macros {
 
 /// TIREFE_LUA_PATH if set; else the installed folder next to the library or executable
-/// holding this code (found from where it was loaded, so a moved installation works);
-/// else, for a binary of the build tree only, the source tree's lua/. Throws ModelError
-/// when none holds the modules.
+/// holding this code (found from where it was loaded, so a moved installation works), or
+/// the resources/lua of the FMU whose binary it is; else, for a binary of the build tree
+/// only, the source tree's lua/. Throws ModelError when none holds the modules.
 std::string lua_module_dir();
 
 }  // namespace tirefe::macros
