@@ -85,3 +85,19 @@ add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/tirefe_tire.fmu
   COMMENT "Packing tirefe_tire.fmu")
 add_custom_target(tirefe_tire_fmu ALL DEPENDS ${CMAKE_BINARY_DIR}/tirefe_tire.fmu)
 install(FILES ${CMAKE_BINARY_DIR}/tirefe_tire.fmu DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe)
+
+# The Python module `import tirefe` (pybind11, Debian's pybind11-dev), over libtirefe.so;
+# built when pybind11 is found. Installed next to the library, found from there.
+if(NOT PYTHON_EXECUTABLE AND EXISTS /usr/bin/python3)
+  set(PYTHON_EXECUTABLE /usr/bin/python3)  # Debian's, with numpy (the Python tests name it too)
+endif()
+find_package(pybind11 2.6 CONFIG QUIET)
+if(pybind11_FOUND)
+  pybind11_add_module(tirefe_python MODULE NO_EXTRAS src/python/tirefe_module.cpp)
+  target_include_directories(tirefe_python PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
+  target_link_libraries(tirefe_python PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA)
+  set_target_properties(tirefe_python PROPERTIES OUTPUT_NAME tirefe
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/python INSTALL_RPATH "$ORIGIN/../..")
+  set(TIREFE_INSTALL_PYTHON_DIR ${CMAKE_INSTALL_LIBDIR}/python3/dist-packages)
+  install(TARGETS tirefe_python LIBRARY DESTINATION ${TIREFE_INSTALL_PYTHON_DIR})
+endif()

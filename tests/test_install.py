@@ -86,6 +86,24 @@ def test_moved_prefix(folder):
     assert installed.stdout.startswith("tirefe "), installed.stdout
 
 
+def test_python_module(folder):
+    """The installed module imports from the moved prefix and finds its library and modules."""
+    moved = os.path.join(folder, "moved")
+    packages = os.path.join(moved, "lib/python3/dist-packages")
+    if not os.path.isdir(os.path.join(os.path.dirname(TIREFE), "python")):
+        return  # built without pybind11
+    env = dict(os.environ, PYTHONPATH=packages)
+    env.pop("TIREFE_LUA_PATH", None)
+    script = ("import tirefe\n"
+              "t = tirefe.Tire('tires.145SR12', {'pressure': 180e3})\n"
+              "for k in range(1, 121):\n"
+              "    s = min(k / 100.0, 1.0)\n"
+              "    f, j = t.solve(1e-3, 0.0, -0.005 * s * s * (3 - 2 * s))\n"
+              "    t.commit()\n"
+              "print(f'Fy {f[1]!r}\\nH_yy {j[1, 1]!r}')\n")
+    check_same(run(["/usr/bin/python3", "-c", script], env=env).stdout, reference())
+
+
 def test_lua_path(folder):
     moved = os.path.join(folder, "moved")
     modules = os.path.join(folder, "modules")
