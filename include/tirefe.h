@@ -131,6 +131,15 @@ tirefe_status tirefe_revert(tirefe_tire* tire);
 /* The committed time and spindle state. */
 tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state);
 
+/* The tire's static vertical force-deflection curve on a flat frictionless road: the
+ * tire of 'source' and 'overrides' (as for tirefe_open) inflated on its held hub, then
+ * its spindle pressed quasi-statically to each of 'deflections' [m] (below first touch,
+ * in this order) in turn. forces[i] is the vertical spindle force Fy applied to the tire
+ * there [N] (negative: the road pushes the tire up). No handle: nothing is kept. */
+tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
+                                   const double* deflections, size_t n, double* forces, char* error,
+                                   size_t error_size);
+
 /* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
  * a host that steps back in time (a co-simulation master repeating a macro step)
  * saves the tire and restores it later. A pending trial step is discarded by a restore.

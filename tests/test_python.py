@@ -1,8 +1,9 @@
 """The Python module (import tirefe): the quarter car of examples/quarter_car_drop.py gives
 the C host's numbers digit for digit; tirefe.Tire's arrays, revert and errors; a deck
-run with parameters from Python, its /results read back with h5py.
+run with parameters from Python, its /results read back with h5py; the k_sw fit of
+examples/fit_ksw.py (scipy) against the deck's own fit.
 
-    test_python.py MODULE_DIR    (QUARTER_CAR_DROP names the C host)
+    test_python.py MODULE_DIR    (QUARTER_CAR_DROP names the C host, TIREFE_BINARY tirefe)
 """
 import os
 import shutil
@@ -81,6 +82,24 @@ def test_run_deck(folder):
         assert results["/history/time"][-1] > 1.5
     bad = tirefe.run_deck(deck, {"no_such_parameter": 1}, os.path.join(folder, "out"))
     assert bad["status"] == 1 and "no_such_parameter" in bad["error"], bad
+
+
+def test_ksw_fit_as_in_cpp(folder):
+    """examples/fit_ksw.py (scipy.optimize on tirefe.static_forces) against the deck's own
+    fit (inputs/fit_ksw_145SR12.lua, tirefe.fit): the same k_sw to 0.1 N m. The minimum is
+    sharp numerically, though not statistically (standard error 12 N m, docs/fitting.md)."""
+    import re
+    env = dict(os.environ, PYTHONPATH=TIREFE)
+    python = subprocess.run([sys.executable, os.path.join(SOURCE, "examples/fit_ksw.py")], env=env,
+                            capture_output=True, text=True, timeout=100, cwd=folder)
+    assert python.returncode == 0, python.stderr
+    k_python = float(re.search(r"k_sw = (\S+) N m", python.stdout).group(1))
+    deck = subprocess.run([os.environ["TIREFE_BINARY"], os.path.join(SOURCE, "inputs/fit_ksw_145SR12.lua"),
+                           "--output-dir", os.path.join(folder, "fit"), "--quiet"],
+                          capture_output=True, text=True, timeout=100)
+    assert deck.returncode == 0, deck.stderr
+    k_cpp = float(re.search(r"k_sw_sign \+1: converged .* k_sw = (\S+) N m", deck.stdout).group(1))
+    assert abs(k_python - k_cpp) < 0.1, (k_python, k_cpp)
 
 
 if __name__ == "__main__":

@@ -88,15 +88,17 @@ std::vector<ParameterValue> parameter_values(const tirefe_parameter* overrides, 
   return values;
 }
 
+TireOnRoad::RoadMaker flat_road() {
+  return [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); };
+}
+
 std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
                                        const tirefe_options& options) {
   if (!(options.friction >= 0.0 && std::isfinite(options.friction)))
     throw std::invalid_argument("options.friction must be a finite number >= 0");
   const TireParameters parameters = macros::load_tire_parameters(source, overrides);
   auto handle = std::make_unique<tirefe_tire>();
-  handle->tire = std::make_unique<TireOnRoad>(
-      parameters, [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); },
-      RoadContact{options.friction});
+  handle->tire = std::make_unique<TireOnRoad>(parameters, flat_road(), RoadContact{options.friction});
   const Integrator integrator = options.hht_alpha == 0.0 ? Integrator::newmark() : Integrator::hht(options.hht_alpha);
   handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
   return handle;
@@ -176,6 +178,33 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
     // Building the tire is not a step: a failure to inflate it is the parameters' fault.
     copy_message(message, error, error_size);
     return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
+  }
+}
+
+tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
+                                   const double* deflections, size_t n, double* forces, char* error,
+                                   size_t error_size) {
+  if (!source || (count > 0 && !overrides) || (n > 0 && (!deflections || !forces))) {
+    copy_message("tirefe_static_forces: source, overrides, deflections and forces must not be NULL", error,
+                 error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
+  std::string message;
+  try {
+    for (size_t i = 0; i < n; ++i)
+      if (!std::isfinite(deflections[i])) throw std::invalid_argument("the deflections must be finite");
+    TireOnRoad tire(macros::load_tire_parameters(source, parameter_values(overrides, count)), flat_road(),
+                    RoadContact{0.0});
+    for (size_t i = 0; i < n; ++i) forces[i] = tire.press(deflections[i]);
+    copy_message("", error, error_size);
+    return TIREFE_OK;
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    copy_message(message, error, error_size);
+    return status;
   }
 }
 

@@ -107,6 +107,23 @@ class Tire {
   tirefe_tire* tire_ = nullptr;
 };
 
+/// tirefe_static_forces: Fy [N] at each deflection [m] of a quasi-static press.
+py::array_t<double> static_forces(const std::string& source, const std::map<std::string, double>& parameters,
+                                  const std::vector<double>& deflections) {
+  std::vector<tirefe_parameter> overrides;
+  for (const auto& [name, value] : parameters) overrides.push_back({name.c_str(), value});
+  py::array_t<double> forces(static_cast<py::ssize_t>(deflections.size()));
+  char error[512] = "";
+  tirefe_status status;
+  {
+    py::gil_scoped_release unlocked;
+    status = tirefe_static_forces(source.c_str(), overrides.data(), overrides.size(), deflections.data(),
+                                  deflections.size(), forces.mutable_data(), error, sizeof error);
+  }
+  raise_on_failure(status, error);
+  return forces;
+}
+
 /// Runs a deck as `tirefe DECK key=value ... --output-dir DIR --quiet` would, in this
 /// process; the result files are the .h5 files the run wrote in the output folder.
 py::dict run_deck(const std::string& deck, const std::map<std::string, py::object>& parameters,
@@ -146,6 +163,10 @@ PYBIND11_MODULE(tirefe, module) {
              py::arg("output_dir") = "results",
              "Runs a deck with parameters (overriding tirefe.parameters{...}); returns {status, error, files}: "
              "the exit status of `tirefe`, its error text, and the result files (.h5) written.");
+
+  module.def("static_forces", &static_forces, py::arg("source"), py::arg("parameters"), py::arg("deflections"),
+             "The tire's static vertical curve on a flat frictionless road: Fy [N] applied to the tire at each "
+             "spindle deflection [m] below first touch (negative when pressed).");
 
   py::class_<Tire>(module, "Tire",
                    "A tire on a flat road driven through its spindle (the C API's tirefe_open). Forces are applied "
