@@ -53,10 +53,6 @@ file(WRITE ${CMAKE_BINARY_DIR}/package/tirefe.pc
   "Cflags: -I\${includedir}\n")
 install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
-# The C API's cost over the C++ interface (docs/coupling.md): both through libtirefe.so.
-add_executable(bench_capi_step bench/capi/bench_capi_step.cpp)
-target_include_directories(bench_capi_step PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
-target_link_libraries(bench_capi_step PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA)
 
 # tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/coupling.md), self-
 # contained: the model description, the binary (the library's objects and the FMI
@@ -101,3 +97,11 @@ if(pybind11_FOUND)
   set(TIREFE_INSTALL_PYTHON_DIR ${CMAKE_INSTALL_LIBDIR}/python3/dist-packages)
   install(TARGETS tirefe_python LIBRARY DESTINATION ${TIREFE_INSTALL_PYTHON_DIR})
 endif()
+
+# The cost of the C API and the FMU over the C++ interface (docs/coupling.md).
+add_executable(bench_capi_step bench/capi/bench_capi_step.cpp)
+target_include_directories(bench_capi_step PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
+target_link_libraries(bench_capi_step PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA ${CMAKE_DL_LIBS})
+target_compile_definitions(bench_capi_step PRIVATE TIREFE_FMU_BINARY="$<TARGET_FILE:tirefe_fmu>"
+  TIREFE_FMU_GUID="${TIREFE_FMU_GUID}" TIREFE_FMU_RESOURCES="${TIREFE_FMU_DIR}/resources")
+add_dependencies(bench_capi_step tirefe_tire_fmu)
