@@ -101,6 +101,18 @@ void tirefe_default_options(tirefe_options* options);
 tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,
                           const tirefe_options* options, tirefe_tire** tire, char* error, size_t error_size);
 
+/* Opens the tire a deck built (docs/decks.md): runs the deck with its parameters
+ * overridden by 'overrides' ("key=value" strings as on tirefe's command line; may be NULL
+ * when count is 0), its result files going to 'output_dir' (NULL: "results"). The deck
+ * makes its model dynamic (Newmark or HHT) and names the tire for the host at its end:
+ *     host_tire = { model = model, spindle = tire.spindle }       -- free_spin = false: driven
+ * The deck's model then stays alive with the handle, and every committed step is written
+ * to its result file like a deck's own step. tirefe_road_level is not available (the
+ * deck's surfaces are its own). Errors as for tirefe_open, the deck's messages naming its
+ * file and line. */
+tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
+                               tirefe_tire** tire, char* error, size_t error_size);
+
 /* Closes the tire and frees it; NULL is ignored. */
 void tirefe_close(tirefe_tire* tire);
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <new>
@@ -12,13 +13,27 @@
 #include <vector>
 
 #include "io/checkpoint.hpp"
+#include "macros/deck_model.hpp"
+#include "macros/lua_module_dir.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/version.hpp"
 #include "vehicle/tire_on_road.hpp"
 
+/// A deck's Lua state and session, which own the model of a tire opened from a deck.
+struct DeckHold {
+  tirefe::macros::DeckSession session;
+  std::unique_ptr<tirefe::macros::LuaSandbox> sandbox;
+};
+
 struct tirefe_tire {
   std::mutex mutex;  // one caller at a time per tire
+  // Opened from parameters: the tire on its flat road; from a deck: the deck and a spindle
+  // of its model (destroyed before the deck).
   std::unique_ptr<tirefe::TireOnRoad> tire;
+  std::unique_ptr<DeckHold> deck;
+  std::unique_ptr<tirefe::TireSpindle> deck_spindle;
+  tirefe::Analysis* analysis = nullptr;
+  int spindle_node = -1;
   tirefe::TireSpindle* spindle = nullptr;
   bool has_trial = false;  // a solved step waits for commit or revert
   std::string message;
@@ -101,6 +116,58 @@ std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<Par
   handle->tire = std::make_unique<TireOnRoad>(parameters, flat_road(), RoadContact{options.friction});
   const Integrator integrator = options.hht_alpha == 0.0 ? Integrator::newmark() : Integrator::hht(options.hht_alpha);
   handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
+  handle->analysis = &handle->tire->analysis();
+  handle->spindle_node = handle->tire->tire().spindle;
+  return handle;
+}
+
+/// The tire a deck names in its global host_tire (read in a protected call).
+struct HostTire {
+  macros::DeckModel* deck = nullptr;
+  int node = -1;
+  bool free_spin = true;
+};
+
+int read_host_tire(lua_State* L) {
+  auto* host = static_cast<HostTire*>(lua_touserdata(L, 1));
+  if (lua_getglobal(L, "host_tire") != LUA_TTABLE)
+    throw ModelError("the deck names no tire for the host: end it with host_tire = { model = model, spindle = tire.spindle }");
+  lua_getfield(L, -1, "model");
+  host->deck = &macros::check_model(L, -1);
+  lua_getfield(L, -2, "spindle");
+  if (!lua_isinteger(L, -1)) throw ModelError("host_tire.spindle must be the tire's spindle node (tire.spindle)");
+  host->node = macros::deck_node(*host->deck, lua_tointeger(L, -1));
+  lua_getfield(L, -3, "free_spin");
+  host->free_spin = lua_isnil(L, -1) || lua_toboolean(L, -1);
+  return 0;
+}
+
+std::unique_ptr<tirefe_tire> open_deck(const std::string& deck, const std::map<std::string, std::string>& overrides,
+                                       const std::string& output_dir) {
+  auto handle = std::make_unique<tirefe_tire>();
+  handle->deck = std::make_unique<DeckHold>();
+  macros::DeckSession& session = handle->deck->session;
+  session.output_dir = output_dir;
+  session.quiet = true;
+  session.deck_path = deck;
+  handle->deck->sandbox = std::make_unique<macros::LuaSandbox>(macros::lua_module_dir());
+  macros::LuaSandbox& sandbox = *handle->deck->sandbox;
+  macros::install_macros(sandbox, session);
+  sandbox.run_file(deck, overrides);
+  HostTire host;
+  lua_State* L = sandbox.state();
+  lua_pushcfunction(L, macros::protected_call<read_host_tire>);
+  lua_pushlightuserdata(L, &host);
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+    const std::string message = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    throw ModelError(deck + ": " + message);
+  }
+  handle->analysis = &host.deck->analysis();
+  handle->spindle_node = host.node;
+  handle->deck_spindle =
+      std::make_unique<TireSpindle>(*handle->analysis, host.node, host.free_spin ? SpinMode::Free : SpinMode::Driven);
+  handle->spindle = handle->deck_spindle.get();
   return handle;
 }
 
@@ -134,8 +201,8 @@ struct DofState {
   double u, v, a;
 };
 DofState committed_dof(const tirefe_tire& tire, int c) {
-  const State& state = tire.tire->analysis().state();
-  const int dof = dof_index(tire.tire->tire().spindle, c);
+  const State& state = tire.analysis->state();
+  const int dof = dof_index(tire.spindle_node, c);
   return {state.displacement[dof], state.velocity[dof], state.acceleration[dof]};
 }
 
@@ -208,6 +275,39 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
   }
 }
 
+tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
+                               tirefe_tire** tire, char* error, size_t error_size) {
+  if (tire) *tire = nullptr;
+  if (!deck || !tire || (count > 0 && !overrides)) {
+    copy_message("tirefe_open_deck: deck and tire must not be NULL, nor overrides when count > 0", error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
+  std::string message;
+  try {
+    std::map<std::string, std::string> values;
+    for (size_t i = 0; i < count; ++i) {
+      const std::string pair = overrides[i] ? overrides[i] : "";
+      const size_t equals = pair.find('=');
+      if (equals == std::string::npos || equals == 0)
+        throw std::invalid_argument("override '" + pair + "' is not key=value");
+      values[pair.substr(0, equals)] = pair.substr(equals + 1);
+    }
+    *tire = open_deck(deck, values, output_dir ? output_dir : "results").release();
+    copy_message("", error, error_size);
+    return TIREFE_OK;
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (const macros::DeckError& deck_error) {  // already "deck.lua:LINE: ..."
+    copy_message(deck_error.what(), error, error_size);
+    return TIREFE_MODEL_ERROR;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    copy_message(message, error, error_size);
+    return status == TIREFE_STEP_FAILED || status == TIREFE_INTERNAL_ERROR ? TIREFE_MODEL_ERROR : status;
+  }
+}
+
 void tirefe_close(tirefe_tire* tire) { delete tire; }
 
 const char* tirefe_message(const tirefe_tire* tire) { return tire ? tire->message.c_str() : "no tire (NULL handle)"; }
@@ -215,6 +315,7 @@ const char* tirefe_message(const tirefe_tire* tire) { return tire ? tire->messag
 tirefe_status tirefe_road_level(tirefe_tire* tire, double* level) {
   return guarded(tire, [&](tirefe_tire& t) {
     if (!level) return refuse(t, TIREFE_INVALID_ARGUMENT, "level must not be NULL");
+    if (!t.tire) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire: its roads are the deck's own");
     *level = t.tire->road_level();
     return TIREFE_OK;
   });
@@ -237,9 +338,9 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
     if (!(time_step > 0.0 && std::isfinite(time_step)))
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
     // Newmark: the end-of-step velocity fixes the acceleration, which fixes the position.
-    const Integrator& integrator = t.tire->analysis().integrator();
+    const Integrator& integrator = t.analysis->integrator();
     const double h = time_step, beta = integrator.beta(), gamma = integrator.gamma();
-    const Eigen::Vector2d& reference = t.tire->model().mesh().position(t.tire->tire().spindle);
+    const Eigen::Vector2d& reference = t.analysis->model().mesh().position(t.spindle_node);
     double position[3];
     for (int c = 0; c < 3; ++c) {
       const DofState now = committed_dof(t, c);
@@ -286,7 +387,8 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
 tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved) {
   return guarded(tire, [&](tirefe_tire& t) {
     if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
-    *saved = new tirefe_saved_state{io::capture_checkpoint(t.tire->analysis(), nullptr, 1, "tirefe C API")};
+    if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is saved with the deck's model:checkpoint");
+    *saved = new tirefe_saved_state{io::capture_checkpoint(*t.analysis, nullptr, 1, "tirefe C API")};
     return TIREFE_OK;
   });
 }
@@ -296,7 +398,8 @@ tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* 
     if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
     if (t.has_trial) t.spindle->revert();
     t.has_trial = false;
-    io::restore_checkpoint(saved->checkpoint, t.tire->analysis(), nullptr);
+    if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is restored with tirefe --restart");
+    io::restore_checkpoint(saved->checkpoint, *t.analysis, nullptr);
     return TIREFE_OK;
   });
 }
