@@ -17,7 +17,8 @@
  * Errors: every call returns a status; TIREFE_OK is 0. On any other status
  * tirefe_message() says why in one line. No call throws, exits or aborts.
  * Threads: calls on one handle are serialized by the handle (a lock); different
- * handles run in parallel.
+ * handles run in parallel, except tires opened from decks, which write result files:
+ * their calls share one lock (the HDF5 library is not thread-safe).
  * C99; no C++ types cross this interface.
  */
 #ifndef TIREFE_H

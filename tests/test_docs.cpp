@@ -41,5 +41,5 @@ TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs
       ++quoted;
     }
   }
-  CHECK(quoted == 3);  // the C and the Python quarter car, the Python k_sw fit
+  CHECK(quoted == 4);  // the consumer project, the C and Python quarter cars, the k_sw fit
 }

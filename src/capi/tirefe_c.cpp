@@ -70,10 +70,16 @@ tirefe_status status_of_current_exception(std::string& message) {
   }
 }
 
+/// Held by every call on a tire opened from a deck: such tires write result files, and
+/// the HDF5 library is not thread-safe.
+std::mutex deck_tires_mutex;
+
 /// Runs 'body' on the locked tire; every exception becomes a status and the message.
 template <class Body>
 tirefe_status guarded(tirefe_tire* tire, Body&& body) {
   if (!tire) return TIREFE_INVALID_ARGUMENT;
+  std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
+  if (tire->deck) deck_lock.lock();
   std::lock_guard<std::mutex> lock(tire->mutex);
   tire->message.clear();
   try {
@@ -292,6 +298,7 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
         throw std::invalid_argument("override '" + pair + "' is not key=value");
       values[pair.substr(0, equals)] = pair.substr(equals + 1);
     }
+    const std::lock_guard<std::mutex> lock(deck_tires_mutex);
     *tire = open_deck(deck, values, output_dir ? output_dir : "results").release();
     copy_message("", error, error_size);
     return TIREFE_OK;
@@ -308,7 +315,12 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
   }
 }
 
-void tirefe_close(tirefe_tire* tire) { delete tire; }
+void tirefe_close(tirefe_tire* tire) {
+  if (!tire) return;
+  std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
+  if (tire->deck) deck_lock.lock();  // its result file is closed here
+  delete tire;
+}
 
 const char* tirefe_message(const tirefe_tire* tire) { return tire ? tire->message.c_str() : "no tire (NULL handle)"; }
 

@@ -135,11 +135,9 @@ py::dict run_deck(const std::string& deck, const std::map<std::string, py::objec
   std::vector<char*> argv;
   for (std::string& argument : arguments) argv.push_back(argument.data());
   const auto started = fs::file_time_type::clock::now() - std::chrono::seconds(1);
-  tirefe::macros::DeckOutcome outcome;
-  {
-    py::gil_scoped_release unlocked;
-    outcome = tirefe::macros::run_deck_command(static_cast<int>(argv.size()), argv.data(), {});
-  }
+  // The GIL stays held: no two decks write HDF5 files at once (the library is not thread-safe).
+  const tirefe::macros::DeckOutcome outcome =
+      tirefe::macros::run_deck_command(static_cast<int>(argv.size()), argv.data(), {});
   std::vector<std::string> files;
   std::error_code error;
   for (const auto& entry : fs::directory_iterator(output_dir, error))
