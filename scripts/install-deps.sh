@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev liblua5.4-dev libhdf5-dev catch2
   hdf5-tools python3-h5py python3-matplotlib python3-numpy python3-meshio
   libopenmpi-dev openmpi-bin
+  pybind11-dev python3-pybind11 python3-scipy
 )
 
 missing=()

@@ -6,7 +6,7 @@
 
 #include "core/mesh.hpp"
 #include "macros/deck_session.hpp"
-#include "tirefe/source_paths.hpp"
+#include "macros/lua_module_dir.hpp"
 
 namespace tirefe::macros {
 
@@ -26,8 +26,10 @@ std::vector<fs::path> write_folders(const DeckSession& session) {
 /// what the command line allows.
 std::vector<fs::path> read_folders(const DeckSession& session) {
   const fs::path deck_folder = fs::path(session.deck_path).parent_path();
-  std::vector<fs::path> folders{deck_folder.empty() ? fs::path(".") : deck_folder, TIREFE_LUA_DIR,
-                                fs::path(TIREFE_SOURCE_DIR) / "inputs"};
+  // The shipped data sits beside the Lua modules: inputs/ in the sources, tires/ installed.
+  const fs::path lua = lua_module_dir();
+  std::vector<fs::path> folders{deck_folder.empty() ? fs::path(".") : deck_folder, lua, lua.parent_path() / "inputs",
+                                lua.parent_path() / "tires"};
   folders.insert(folders.end(), session.read_folders.begin(), session.read_folders.end());
   for (const fs::path& folder : write_folders(session)) folders.push_back(folder);
   return folders;

@@ -12,11 +12,12 @@
 
 #include "io/checkpoint.hpp"
 #include "macros/interrupt.hpp"
+#include "macros/lua_module_dir.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "macros/parameter_list.hpp"
-#include "tirefe/version.hpp"
 #include "tirefe/source_paths.hpp"
+#include "tirefe/version.hpp"
 
 namespace tirefe::macros {
 
@@ -76,7 +77,7 @@ DeckOutcome list_parameters(int argc, char** argv) {
     return {2, std::string("tirefe: --list-parameters takes one deck and nothing else\n") + kUsage};
   try {
     std::cout << parameter_table(deck, declared_parameters(deck));
-  } catch (const DeckError& error) {
+  } catch (const std::exception& error) {
     return {1, "tirefe: " + std::string(error.what()) + "\n"};
   }
   return {};
@@ -182,7 +183,13 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
     ProgressLine& line;
     ~ClearProgress() { line.clear(); }
   } clear_progress{session.progress};
-  LuaSandbox sandbox(TIREFE_LUA_DIR);
+  std::string lua_dir;
+  try {
+    lua_dir = lua_module_dir();
+  } catch (const std::exception& error) {
+    return {1, "tirefe: " + std::string(error.what()) + "\n"};
+  }
+  LuaSandbox sandbox(lua_dir);
   sandbox.set_memory_limit_mib(line.lua_memory_mib);
   install_stop_handlers();
   try {

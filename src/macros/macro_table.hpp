@@ -66,7 +66,9 @@ const MacroSpec& model_macro_spec(const std::string& name);
 /// The tire parameters of a Lua module in lua/ (e.g. "tires.145SR12") or of a tire property
 /// file (a path ending in .tir), read with the tire macro's own spec: one source of truth for
 /// decks, tests and benchmarks.
-TireParameters load_tire_parameters(const std::string& source);
+/// 'overrides' replace parameters by model:tire key (a misspelt key is refused as in a deck).
+using ParameterValue = std::pair<std::string, double>;
+TireParameters load_tire_parameters(const std::string& source, const std::vector<ParameterValue>& overrides = {});
 /// Pushes the model:tire parameter table of a tire property file (docs/tire.md); throws a
 /// std::exception naming the file, line and key for a bad file.
 int push_tire_property_file(lua_State* L, const std::string& path);

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 
-#include "tirefe/source_paths.hpp"
+#include "macros/lua_module_dir.hpp"
 
 namespace tirefe::macros {
 
 std::vector<ParameterDeclaration> declared_parameters(const std::string& deck_path) {
-  LuaSandbox sandbox(TIREFE_LUA_DIR);
+  LuaSandbox sandbox(lua_module_dir());
   sandbox.stop_at_parameters();
   sandbox.run_file(deck_path);
   return sandbox.declared_parameters();

@@ -1,10 +1,12 @@
 // model:tire{...}: builds a ring tire from named physical parameters (src/tire/).
 // Tire parameter sets live in lua/tires/*.lua: model:tire(require("tires.145SR12")), or in
 // tire property files (tire_file_macros.cpp).
+#include <cmath>
+
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
-#include "tirefe/source_paths.hpp"
+#include "macros/lua_module_dir.hpp"
 
 namespace tirefe::macros {
 
@@ -111,8 +113,8 @@ int read_tire_property_file(lua_State* L) { return push_tire_property_file(L, lu
 
 }  // namespace
 
-TireParameters load_tire_parameters(const std::string& source) {
-  LuaSandbox sandbox(TIREFE_LUA_DIR);
+TireParameters load_tire_parameters(const std::string& source, const std::vector<ParameterValue>& overrides) {
+  LuaSandbox sandbox(lua_module_dir());
   lua_State* L = sandbox.state();
   TireParameters parameters;
   lua_pushcfunction(L, parse_tire_table);
@@ -123,8 +125,20 @@ TireParameters load_tire_parameters(const std::string& source) {
   else
     lua_getglobal(L, "require");
   lua_pushstring(L, source.c_str());
-  if (lua_pcall(L, 1, 1, 0) != LUA_OK || lua_pcall(L, 2, 0, 0) != LUA_OK)
-    throw ModelError("tire parameters '" + source + "': " + lua_tostring(L, -1));
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK || !lua_istable(L, -1)) {
+    const std::string what = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "is not a parameter table";
+    throw ModelError("tire parameters '" + source + "': " + what);
+  }
+  for (const ParameterValue& value : overrides) {
+    // Whole numbers as Lua integers, so that integer keys (elements) take them.
+    const double whole = std::nearbyint(value.second);
+    if (whole == value.second && std::abs(whole) < 1e15)
+      lua_pushinteger(L, static_cast<lua_Integer>(whole));
+    else
+      lua_pushnumber(L, value.second);
+    lua_setfield(L, -2, value.first.c_str());
+  }
+  if (lua_pcall(L, 2, 0, 0) != LUA_OK) throw ModelError("tire parameters '" + source + "': " + lua_tostring(L, -1));
   return parameters;
 }
 

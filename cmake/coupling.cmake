@@ -1,0 +1,107 @@
+# The tire as a component (docs/coupling.md): the shared library libtirefe.so with the C
+# API of include/tirefe.h, and the install rules: executables, library, header, Lua
+# modules, tire property files, a CMake package and a pkg-config file.
+include(CMakePackageConfigHelpers)
+
+add_library(tirefe_shared SHARED $<TARGET_OBJECTS:tirefe_objects>)
+target_link_libraries(tirefe_shared PRIVATE ${TIREFE_DEPENDENCIES})
+target_include_directories(tirefe_shared INTERFACE
+  $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+set_target_properties(tirefe_shared PROPERTIES
+  OUTPUT_NAME tirefe VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}
+  EXPORT_NAME tirefe)
+add_library(tirefe::tirefe ALIAS tirefe_shared)
+
+# The C example host of docs/coupling.md: a quarter car dropped onto the tire.
+add_executable(quarter_car_drop examples/quarter_car_drop.c)
+target_link_libraries(quarter_car_drop PRIVATE tirefe::tirefe m)
+
+install(TARGETS tirefe RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET tirefe-mpi)
+  install(TARGETS tirefe-mpi RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+install(TARGETS tirefe_shared EXPORT tirefeTargets
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(FILES include/tirefe.h DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY lua/ DESTINATION ${TIREFE_INSTALL_LUA_DIR} FILES_MATCHING PATTERN "*.lua")
+install(DIRECTORY inputs/tires/ DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe/tires FILES_MATCHING PATTERN "*.tir")
+install(FILES examples/quarter_car_drop.c DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe/examples)
+
+set(TIREFE_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/tirefe)
+install(EXPORT tirefeTargets NAMESPACE tirefe:: DESTINATION ${TIREFE_CMAKE_DIR})
+file(WRITE ${CMAKE_BINARY_DIR}/package/tirefeConfig.cmake
+  "# find_package(tirefe): the imported target tirefe::tirefe (libtirefe.so and tirefe.h).\n"
+  "include(\"\${CMAKE_CURRENT_LIST_DIR}/tirefeTargets.cmake\")\n")
+write_basic_package_version_file(${CMAKE_BINARY_DIR}/package/tirefeConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
+install(FILES ${CMAKE_BINARY_DIR}/package/tirefeConfig.cmake ${CMAKE_BINARY_DIR}/package/tirefeConfigVersion.cmake
+  DESTINATION ${TIREFE_CMAKE_DIR})
+
+# pkg-config: the prefix is taken from the .pc file's own place, so a moved prefix works.
+file(RELATIVE_PATH TIREFE_PC_TO_PREFIX ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig ${CMAKE_INSTALL_PREFIX})
+string(REGEX REPLACE "/$" "" TIREFE_PC_TO_PREFIX "${TIREFE_PC_TO_PREFIX}")
+file(WRITE ${CMAKE_BINARY_DIR}/package/tirefe.pc
+  "prefix=\${pcfiledir}/${TIREFE_PC_TO_PREFIX}\n"
+  "libdir=\${prefix}/${CMAKE_INSTALL_LIBDIR}\n"
+  "includedir=\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}\n"
+  "luadir=\${prefix}/${TIREFE_INSTALL_LUA_DIR}\n\n"
+  "Name: tirefe\n"
+  "Description: 2D finite-element tire behind its spindle (C API)\n"
+  "Version: ${PROJECT_VERSION}\n"
+  "Libs: -L\${libdir} -ltirefe\n"
+  "Cflags: -I\${includedir}\n")
+install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+
+# tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/coupling.md), self-
+# contained: the model description, the binary (the library's objects and the FMI
+# functions, nothing else exported) and resources/ with the tire property file and the
+# Lua modules. Its GUID is fixed by the version.
+string(UUID TIREFE_FMU_GUID NAMESPACE 6ba7b811-9dad-11d1-80b4-00c04fd430c8 NAME "tirefe_tire ${PROJECT_VERSION}" TYPE SHA1)
+set(TIREFE_FMU_GUID "{${TIREFE_FMU_GUID}}")
+set(TIREFE_FMU_DIR ${CMAKE_BINARY_DIR}/fmu/tirefe_tire)
+configure_file(cmake/modelDescription.xml.in ${TIREFE_FMU_DIR}/modelDescription.xml @ONLY)
+add_library(tirefe_fmu MODULE src/fmu/tirefe_fmu.cpp $<TARGET_OBJECTS:tirefe_objects>)
+target_include_directories(tirefe_fmu PRIVATE src include)
+target_compile_definitions(tirefe_fmu PRIVATE TIREFE_FMU_GUID="${TIREFE_FMU_GUID}")
+target_link_libraries(tirefe_fmu PRIVATE ${TIREFE_DEPENDENCIES})
+# Only the fmi2 functions are the FMU's interface: no C++ symbol may clash with a host's.
+target_link_options(tirefe_fmu PRIVATE -Wl,--exclude-libs,ALL
+  -Wl,--version-script=${CMAKE_SOURCE_DIR}/src/fmu/fmi2_exports.map)
+set_target_properties(tirefe_fmu PROPERTIES OUTPUT_NAME tirefe_tire PREFIX ""
+  LIBRARY_OUTPUT_DIRECTORY ${TIREFE_FMU_DIR}/binaries/linux64)
+add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/tirefe_tire.fmu
+  COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/lua ${TIREFE_FMU_DIR}/resources/lua
+  COMMAND ${CMAKE_COMMAND} -E copy ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir ${TIREFE_FMU_DIR}/resources/145SR12.tir
+  COMMAND ${CMAKE_COMMAND} -E tar cf ${CMAKE_BINARY_DIR}/tirefe_tire.fmu --format=zip
+          modelDescription.xml binaries resources
+  WORKING_DIRECTORY ${TIREFE_FMU_DIR}
+  DEPENDS tirefe_fmu ${TIREFE_FMU_DIR}/modelDescription.xml ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir
+  COMMENT "Packing tirefe_tire.fmu")
+add_custom_target(tirefe_tire_fmu ALL DEPENDS ${CMAKE_BINARY_DIR}/tirefe_tire.fmu)
+install(FILES ${CMAKE_BINARY_DIR}/tirefe_tire.fmu DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe)
+
+# The Python module `import tirefe` (pybind11, Debian's pybind11-dev), over libtirefe.so;
+# built when pybind11 is found. Installed next to the library, found from there.
+if(NOT PYTHON_EXECUTABLE AND EXISTS /usr/bin/python3)
+  set(PYTHON_EXECUTABLE /usr/bin/python3)  # Debian's, with numpy (the Python tests name it too)
+endif()
+find_package(pybind11 2.6 CONFIG QUIET)
+if(pybind11_FOUND)
+  pybind11_add_module(tirefe_python MODULE NO_EXTRAS src/python/tirefe_module.cpp)
+  target_include_directories(tirefe_python PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
+  target_link_libraries(tirefe_python PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA)
+  set_target_properties(tirefe_python PROPERTIES OUTPUT_NAME tirefe
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/python INSTALL_RPATH "$ORIGIN/../..")
+  set(TIREFE_INSTALL_PYTHON_DIR ${CMAKE_INSTALL_LIBDIR}/python3/dist-packages)
+  install(TARGETS tirefe_python LIBRARY DESTINATION ${TIREFE_INSTALL_PYTHON_DIR})
+endif()
+
+# The cost of the C API and the FMU over the C++ interface (docs/coupling.md).
+add_executable(bench_capi_step bench/capi/bench_capi_step.cpp)
+target_include_directories(bench_capi_step PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
+target_link_libraries(bench_capi_step PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA ${CMAKE_DL_LIBS})
+target_compile_definitions(bench_capi_step PRIVATE TIREFE_FMU_BINARY="$<TARGET_FILE:tirefe_fmu>"
+  TIREFE_FMU_GUID="${TIREFE_FMU_GUID}" TIREFE_FMU_RESOURCES="${TIREFE_FMU_DIR}/resources")
+add_dependencies(bench_capi_step tirefe_tire_fmu)

@@ -1,0 +1,169 @@
+/* tirefe.h: the C API of libtirefe, a 2D finite-element tire behind its spindle.
+ *
+ * A host (a multibody vehicle code, a co-simulation master, a script) drives the tire
+ * through its spindle, as docs/spindle.md describes for C++: in every corrector
+ * iteration of a host step it puts the spindle somewhere at the end of the step
+ * (tirefe_solve), gets the spindle force and its consistent 3x3 Jacobian back, and ends
+ * the step with tirefe_commit (accepted) or tirefe_revert (rejected). docs/coupling.md
+ * has a complete host and what each call costs.
+ *
+ * Frame, units and signs: the tire's wheel plane, x horizontal, y up, the spin angle and
+ * the moment counter-clockwise (about the axis pointing out of the plane towards the
+ * viewer); SI units (m, rad, s, N, N m). force = (Fx, Fy, Mz) is the force the host
+ * APPLIES TO THE TIRE to hold the spindle where it put it: the tire pushes the host's
+ * wheel carrier with minus this force (a tire carrying a load pushes the carrier up, so
+ * Fy < 0 then). This is the spindle force of tirefe's C++ TireSpindle, unchanged.
+ *
+ * Errors: every call returns a status; TIREFE_OK is 0. On any other status
+ * tirefe_message() says why in one line. No call throws, exits or aborts.
+ * Threads: calls on one handle are serialized by the handle (a lock); different
+ * handles run in parallel, except tires opened from decks, which write result files:
+ * their calls share one lock (the HDF5 library is not thread-safe).
+ * C99; no C++ types cross this interface.
+ */
+#ifndef TIREFE_H
+#define TIREFE_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum tirefe_status {
+  TIREFE_OK = 0,
+  TIREFE_INVALID_ARGUMENT = 1, /* a null pointer, a non-finite number, an unknown parameter */
+  TIREFE_MODEL_ERROR = 2,      /* the tire could not be built: bad parameter values or files */
+  TIREFE_STEP_FAILED = 3,      /* the step did not converge; the tire stays at its committed state */
+  TIREFE_INVALID_CALL = 4,     /* a call out of order: commit without a solved trial step */
+  TIREFE_OUT_OF_MEMORY = 5,
+  TIREFE_INTERNAL_ERROR = 6
+} tirefe_status;
+
+/* An opened tire. Not copyable; close it with tirefe_close. */
+typedef struct tirefe_tire tirefe_tire;
+
+/* One tire parameter overridden by name (a key of model:tire, docs/tire.md): e.g.
+ * {"pressure", 180e3} or {"k_sw", 1200}. */
+typedef struct tirefe_parameter {
+  const char* name;
+  double value;
+} tirefe_parameter;
+
+/* How the tire is set up. Fill with tirefe_default_options, then change fields. */
+typedef struct tirefe_options {
+  double friction;  /* Coulomb friction coefficient between tread and road (default 0.8) */
+  double hht_alpha; /* the tire's time integrator: 0 Newmark average acceleration (default),
+                       in [-1/3, 0) HHT-alpha; the host should integrate with the same scheme */
+  int free_spin;    /* 1 (default): the wheel turns freely on its bearing (the tire solves the
+                       spin, Mz = 0); 0: the host gives the spin angle and gets the drive torque */
+} tirefe_options;
+
+/* The spindle at the end of the step to solve: the step h from the committed time and
+ * the spindle centre's position and spin angle (absolute, in the tire's frame; the
+ * design position of the spindle is (0, 0), its spin 0). spin is ignored when free. */
+typedef struct tirefe_spindle_motion {
+  double time_step; /* h [s] */
+  double x, y;      /* [m] */
+  double spin;      /* [rad] */
+} tirefe_spindle_motion;
+
+/* The answer to a solved step. */
+typedef struct tirefe_spindle_force {
+  double force[3];       /* (Fx [N], Fy [N], Mz [N m]): see the sign convention above. With
+                            HHT the trial force is weighted like the tire's equations (docs/spindle.md) */
+  double jacobian[3][3]; /* jacobian[i][j] = d force[i] / d (x, y, spin)[j]; for tirefe_solve_velocity
+                            d force[i] / d (vx, vy, spin rate)[j]. Row and column 2 are zero when free */
+  double time;           /* at the end of the solved step [s] */
+  int newton_iterations; /* of the tire, this call */
+} tirefe_spindle_force;
+
+/* The committed state of the spindle. */
+typedef struct tirefe_spindle_state {
+  double time;        /* [s] */
+  double position[3]; /* x [m], y [m], spin [rad] */
+  double velocity[3]; /* [m/s, m/s, rad/s] */
+  double force[3];    /* the physical spindle force at the committed time [N, N, N m] */
+} tirefe_spindle_state;
+
+/* "0.1.0 (commit)": the library's version. */
+const char* tirefe_version(void);
+
+void tirefe_default_options(tirefe_options* options);
+
+/* Opens a tire from its parameters: 'source' is a tire property file (a path ending in
+ * .tir, docs/tire.md) or the name of a shipped parameter module ("tires.145SR12",
+ * "tires.145SR12_tread_layer"); 'overrides' (may be NULL when count is 0) change
+ * parameters by name; 'options' may be NULL for the defaults. The tire is built with its
+ * spindle at (0, 0), inflated quasi-statically on its held hub (1 s of model time), and
+ * put on a flat road touching its lowest tread node (tirefe_road_level); the spindle is
+ * then the host's. On failure *tire is NULL and, when error is not NULL, the reason is
+ * written there (at most error_size bytes, NUL-terminated). */
+tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,
+                          const tirefe_options* options, tirefe_tire** tire, char* error, size_t error_size);
+
+/* Opens the tire a deck built (docs/decks.md): runs the deck with its parameters
+ * overridden by 'overrides' ("key=value" strings as on tirefe's command line; may be NULL
+ * when count is 0), its result files going to 'output_dir' (NULL: "results"). The deck
+ * makes its model dynamic (Newmark or HHT) and names the tire for the host at its end:
+ *     host_tire = { model = model, spindle = tire.spindle }       -- free_spin = false: driven
+ * The deck's model then stays alive with the handle, and every committed step is written
+ * to its result file like a deck's own step. tirefe_road_level is not available (the
+ * deck's surfaces are its own). Errors as for tirefe_open, the deck's messages naming its
+ * file and line. */
+tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
+                               tirefe_tire** tire, char* error, size_t error_size);
+
+/* Closes the tire and frees it; NULL is ignored. */
+void tirefe_close(tirefe_tire* tire);
+
+/* Why the last call on this handle failed (one line); "" after a success. The text
+ * stays valid until the next call on the handle. */
+const char* tirefe_message(const tirefe_tire* tire);
+
+/* Height of the road below the spindle's design position [m] (negative). */
+tirefe_status tirefe_road_level(tirefe_tire* tire, double* level);
+
+/* Solves the trial step with the spindle held at 'motion' and answers with the spindle
+ * force and its consistent Jacobian. Every solve starts from the committed state: call
+ * it as often as the host's corrector needs within one step. */
+tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motion, tirefe_spindle_force* out);
+
+/* The same with the spindle's velocities at the end of the step given (vx, vy [m/s],
+ * spin rate [rad/s]); the positions follow from the tire's Newmark formulas, and the
+ * Jacobian is with respect to the velocities (H beta h / gamma). */
+tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
+                                    tirefe_spindle_force* out);
+
+/* Accepts the last solved trial step: the tire advances to it. */
+tirefe_status tirefe_commit(tirefe_tire* tire);
+
+/* Forgets the last trial step (the host rejected its step); the tire is unchanged. */
+tirefe_status tirefe_revert(tirefe_tire* tire);
+
+/* The committed time and spindle state. */
+tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state);
+
+/* The tire's static vertical force-deflection curve on a flat frictionless road: the
+ * tire of 'source' and 'overrides' (as for tirefe_open) inflated on its held hub, then
+ * its spindle pressed quasi-statically to each of 'deflections' [m] (below first touch,
+ * in this order) in turn. forces[i] is the vertical spindle force Fy applied to the tire
+ * there [N] (negative: the road pushes the tire up). No handle: nothing is kept. */
+tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
+                                   const double* deflections, size_t n, double* forces, char* error,
+                                   size_t error_size);
+
+/* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
+ * a host that steps back in time (a co-simulation master repeating a macro step)
+ * saves the tire and restores it later. A pending trial step is discarded by a restore.
+ * Free the copy with tirefe_free_state. */
+typedef struct tirefe_saved_state tirefe_saved_state;
+tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved);
+tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* saved);
+void tirefe_free_state(tirefe_saved_state* saved);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TIREFE_H */

@@ -1,0 +1,421 @@
+// The C API of include/tirefe.h over TireOnRoad and TireSpindle (docs/coupling.md).
+// Every entry point catches whatever the C++ side throws and turns it into a status and
+// a message kept in the handle: nothing unwinds into the C caller.
+#include "tirefe.h"
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "io/checkpoint.hpp"
+#include "macros/deck_model.hpp"
+#include "macros/lua_module_dir.hpp"
+#include "macros/macro_table.hpp"
+#include "tirefe/version.hpp"
+#include "vehicle/tire_on_road.hpp"
+
+/// A deck's Lua state and session, which own the model of a tire opened from a deck.
+struct DeckHold {
+  tirefe::macros::DeckSession session;
+  std::unique_ptr<tirefe::macros::LuaSandbox> sandbox;
+};
+
+struct tirefe_tire {
+  std::mutex mutex;  // one caller at a time per tire
+  // Opened from parameters: the tire on its flat road; from a deck: the deck and a spindle
+  // of its model (destroyed before the deck).
+  std::unique_ptr<tirefe::TireOnRoad> tire;
+  std::unique_ptr<DeckHold> deck;
+  std::unique_ptr<tirefe::TireSpindle> deck_spindle;
+  tirefe::Analysis* analysis = nullptr;
+  int spindle_node = -1;
+  tirefe::TireSpindle* spindle = nullptr;
+  bool has_trial = false;  // a solved step waits for commit or revert
+  std::string message;
+};
+
+struct tirefe_saved_state {
+  tirefe::io::Checkpoint checkpoint;
+};
+
+namespace {
+
+using namespace tirefe;
+using macros::ParameterValue;
+
+/// The status of an exception thrown by the C++ side, its text in 'message'.
+tirefe_status status_of_current_exception(std::string& message) {
+  try {
+    throw;
+  } catch (const StepFailure& failure) {
+    message = failure.what();
+    return TIREFE_STEP_FAILED;
+  } catch (const ModelError& error) {
+    message = error.what();
+    return TIREFE_MODEL_ERROR;
+  } catch (const std::bad_alloc&) {
+    message = "out of memory";
+    return TIREFE_OUT_OF_MEMORY;
+  } catch (const std::exception& error) {
+    message = error.what();
+    return TIREFE_INTERNAL_ERROR;
+  } catch (...) {
+    message = "unknown failure";
+    return TIREFE_INTERNAL_ERROR;
+  }
+}
+
+/// Held by every call on a tire opened from a deck: such tires write result files, and
+/// the HDF5 library is not thread-safe.
+std::mutex deck_tires_mutex;
+
+/// Runs 'body' on the locked tire; every exception becomes a status and the message.
+template <class Body>
+tirefe_status guarded(tirefe_tire* tire, Body&& body) {
+  if (!tire) return TIREFE_INVALID_ARGUMENT;
+  std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
+  if (tire->deck) deck_lock.lock();
+  std::lock_guard<std::mutex> lock(tire->mutex);
+  tire->message.clear();
+  try {
+    return body(*tire);
+  } catch (...) {
+    return status_of_current_exception(tire->message);
+  }
+}
+
+tirefe_status refuse(tirefe_tire& tire, tirefe_status status, std::string message) {
+  tire.message = std::move(message);
+  return status;
+}
+
+void copy_message(const std::string& message, char* error, size_t error_size) {
+  if (error && error_size > 0) std::snprintf(error, error_size, "%s", message.c_str());
+}
+
+std::vector<ParameterValue> parameter_values(const tirefe_parameter* overrides, size_t count) {
+  std::vector<ParameterValue> values;
+  for (size_t i = 0; i < count; ++i) {
+    if (!overrides[i].name) throw std::invalid_argument("override " + std::to_string(i) + " has no name");
+    if (!std::isfinite(overrides[i].value))
+      throw std::invalid_argument(std::string("override '") + overrides[i].name + "' is not a finite number");
+    values.emplace_back(overrides[i].name, overrides[i].value);
+  }
+  return values;
+}
+
+TireOnRoad::RoadMaker flat_road() {
+  return [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); };
+}
+
+std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
+                                       const tirefe_options& options) {
+  if (!(options.friction >= 0.0 && std::isfinite(options.friction)))
+    throw std::invalid_argument("options.friction must be a finite number >= 0");
+  const TireParameters parameters = macros::load_tire_parameters(source, overrides);
+  auto handle = std::make_unique<tirefe_tire>();
+  handle->tire = std::make_unique<TireOnRoad>(parameters, flat_road(), RoadContact{options.friction});
+  const Integrator integrator = options.hht_alpha == 0.0 ? Integrator::newmark() : Integrator::hht(options.hht_alpha);
+  handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
+  handle->analysis = &handle->tire->analysis();
+  handle->spindle_node = handle->tire->tire().spindle;
+  return handle;
+}
+
+/// The tire a deck names in its global host_tire (read in a protected call).
+struct HostTire {
+  macros::DeckModel* deck = nullptr;
+  int node = -1;
+  bool free_spin = true;
+};
+
+int read_host_tire(lua_State* L) {
+  auto* host = static_cast<HostTire*>(lua_touserdata(L, 1));
+  if (lua_getglobal(L, "host_tire") != LUA_TTABLE)
+    throw ModelError("the deck names no tire for the host: end it with host_tire = { model = model, spindle = tire.spindle }");
+  lua_getfield(L, -1, "model");
+  host->deck = &macros::check_model(L, -1);
+  lua_getfield(L, -2, "spindle");
+  if (!lua_isinteger(L, -1)) throw ModelError("host_tire.spindle must be the tire's spindle node (tire.spindle)");
+  host->node = macros::deck_node(*host->deck, lua_tointeger(L, -1));
+  lua_getfield(L, -3, "free_spin");
+  host->free_spin = lua_isnil(L, -1) || lua_toboolean(L, -1);
+  return 0;
+}
+
+std::unique_ptr<tirefe_tire> open_deck(const std::string& deck, const std::map<std::string, std::string>& overrides,
+                                       const std::string& output_dir) {
+  auto handle = std::make_unique<tirefe_tire>();
+  handle->deck = std::make_unique<DeckHold>();
+  macros::DeckSession& session = handle->deck->session;
+  session.output_dir = output_dir;
+  session.quiet = true;
+  session.deck_path = deck;
+  handle->deck->sandbox = std::make_unique<macros::LuaSandbox>(macros::lua_module_dir());
+  macros::LuaSandbox& sandbox = *handle->deck->sandbox;
+  macros::install_macros(sandbox, session);
+  sandbox.run_file(deck, overrides);
+  HostTire host;
+  lua_State* L = sandbox.state();
+  lua_pushcfunction(L, macros::protected_call<read_host_tire>);
+  lua_pushlightuserdata(L, &host);
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+    const std::string message = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    throw ModelError(deck + ": " + message);
+  }
+  handle->analysis = &host.deck->analysis();
+  handle->spindle_node = host.node;
+  handle->deck_spindle =
+      std::make_unique<TireSpindle>(*handle->analysis, host.node, host.free_spin ? SpinMode::Free : SpinMode::Driven);
+  handle->spindle = handle->deck_spindle.get();
+  return handle;
+}
+
+void copy_reply(const SpindleReply& reply, double jacobian_scale, tirefe_spindle_force& out) {
+  for (int i = 0; i < 3; ++i) {
+    out.force[i] = reply.force[i];
+    for (int j = 0; j < 3; ++j) out.jacobian[i][j] = reply.jacobian[i][j] * jacobian_scale;
+  }
+  out.time = reply.time;
+  out.newton_iterations = reply.newton_iterations;
+}
+
+bool finite(const double* values, int count) {
+  for (int i = 0; i < count; ++i)
+    if (!std::isfinite(values[i])) return false;
+  return true;
+}
+
+/// Solves the trial step to 'input'; the handle then holds a trial until commit or revert.
+tirefe_status solve(tirefe_tire& tire, const SpindleInput& input, double jacobian_scale, tirefe_spindle_force& out) {
+  if (!(input.time_step > 0.0 && std::isfinite(input.time_step)))
+    return refuse(tire, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
+  tire.has_trial = false;
+  copy_reply(tire.spindle->solve_step(input), jacobian_scale, out);
+  tire.has_trial = true;
+  return TIREFE_OK;
+}
+
+/// Committed displacement, velocity and acceleration of the spindle's DOF c.
+struct DofState {
+  double u, v, a;
+};
+DofState committed_dof(const tirefe_tire& tire, int c) {
+  const State& state = tire.analysis->state();
+  const int dof = dof_index(tire.spindle_node, c);
+  return {state.displacement[dof], state.velocity[dof], state.acceleration[dof]};
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* tirefe_version(void) {
+  static const std::string version = std::string(kVersion) + " (" + kGitCommit + ")";
+  return version.c_str();
+}
+
+void tirefe_default_options(tirefe_options* options) {
+  if (!options) return;
+  options->friction = 0.8;
+  options->hht_alpha = 0.0;
+  options->free_spin = 1;
+}
+
+tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,
+                          const tirefe_options* options, tirefe_tire** tire, char* error, size_t error_size) {
+  if (tire) *tire = nullptr;
+  if (!source || !tire || (count > 0 && !overrides)) {
+    copy_message("tirefe_open: source and tire must not be NULL, nor overrides when count > 0", error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
+  tirefe_options chosen;
+  tirefe_default_options(&chosen);
+  if (options) chosen = *options;
+  std::string message;
+  try {
+    *tire = open_tire(source, parameter_values(overrides, count), chosen).release();
+    copy_message("", error, error_size);
+    return TIREFE_OK;
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    // Building the tire is not a step: a failure to inflate it is the parameters' fault.
+    copy_message(message, error, error_size);
+    return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
+  }
+}
+
+tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
+                                   const double* deflections, size_t n, double* forces, char* error,
+                                   size_t error_size) {
+  if (!source || (count > 0 && !overrides) || (n > 0 && (!deflections || !forces))) {
+    copy_message("tirefe_static_forces: source, overrides, deflections and forces must not be NULL", error,
+                 error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
+  std::string message;
+  try {
+    for (size_t i = 0; i < n; ++i)
+      if (!std::isfinite(deflections[i])) throw std::invalid_argument("the deflections must be finite");
+    TireOnRoad tire(macros::load_tire_parameters(source, parameter_values(overrides, count)), flat_road(),
+                    RoadContact{0.0});
+    for (size_t i = 0; i < n; ++i) forces[i] = tire.press(deflections[i]);
+    copy_message("", error, error_size);
+    return TIREFE_OK;
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    copy_message(message, error, error_size);
+    return status;
+  }
+}
+
+tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
+                               tirefe_tire** tire, char* error, size_t error_size) {
+  if (tire) *tire = nullptr;
+  if (!deck || !tire || (count > 0 && !overrides)) {
+    copy_message("tirefe_open_deck: deck and tire must not be NULL, nor overrides when count > 0", error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
+  std::string message;
+  try {
+    std::map<std::string, std::string> values;
+    for (size_t i = 0; i < count; ++i) {
+      const std::string pair = overrides[i] ? overrides[i] : "";
+      const size_t equals = pair.find('=');
+      if (equals == std::string::npos || equals == 0)
+        throw std::invalid_argument("override '" + pair + "' is not key=value");
+      values[pair.substr(0, equals)] = pair.substr(equals + 1);
+    }
+    const std::lock_guard<std::mutex> lock(deck_tires_mutex);
+    *tire = open_deck(deck, values, output_dir ? output_dir : "results").release();
+    copy_message("", error, error_size);
+    return TIREFE_OK;
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (const macros::DeckError& deck_error) {  // already "deck.lua:LINE: ..."
+    copy_message(deck_error.what(), error, error_size);
+    return TIREFE_MODEL_ERROR;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    copy_message(message, error, error_size);
+    return status == TIREFE_STEP_FAILED || status == TIREFE_INTERNAL_ERROR ? TIREFE_MODEL_ERROR : status;
+  }
+}
+
+void tirefe_close(tirefe_tire* tire) {
+  if (!tire) return;
+  std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
+  if (tire->deck) deck_lock.lock();  // its result file is closed here
+  delete tire;
+}
+
+const char* tirefe_message(const tirefe_tire* tire) { return tire ? tire->message.c_str() : "no tire (NULL handle)"; }
+
+tirefe_status tirefe_road_level(tirefe_tire* tire, double* level) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!level) return refuse(t, TIREFE_INVALID_ARGUMENT, "level must not be NULL");
+    if (!t.tire) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire: its roads are the deck's own");
+    *level = t.tire->road_level();
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motion, tirefe_spindle_force* out) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!motion || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "motion and out must not be NULL");
+    const double values[] = {motion->x, motion->y, motion->spin};
+    if (!finite(values, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle motion must be finite");
+    return solve(t, SpindleInput{motion->time_step, motion->x, motion->y, motion->spin}, 1.0, *out);
+  });
+}
+
+tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
+                                    tirefe_spindle_force* out) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!velocity || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "velocity and out must not be NULL");
+    if (!finite(velocity, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle velocity must be finite");
+    if (!(time_step > 0.0 && std::isfinite(time_step)))
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
+    // Newmark: the end-of-step velocity fixes the acceleration, which fixes the position.
+    const Integrator& integrator = t.analysis->integrator();
+    const double h = time_step, beta = integrator.beta(), gamma = integrator.gamma();
+    const Eigen::Vector2d& reference = t.analysis->model().mesh().position(t.spindle_node);
+    double position[3];
+    for (int c = 0; c < 3; ++c) {
+      const DofState now = committed_dof(t, c);
+      const double a = (velocity[c] - now.v - h * (1.0 - gamma) * now.a) / (gamma * h);
+      position[c] = now.u + h * now.v + h * h * ((0.5 - beta) * now.a + beta * a);
+    }
+    const SpindleInput input{h, reference.x() + position[0], reference.y() + position[1], position[2]};
+    return solve(t, input, beta * h / gamma, *out);
+  });
+}
+
+tirefe_status tirefe_commit(tirefe_tire* tire) {
+  return guarded(tire, [](tirefe_tire& t) {
+    if (!t.has_trial) return refuse(t, TIREFE_INVALID_CALL, "tirefe_commit: no solved trial step to accept");
+    t.has_trial = false;
+    t.spindle->commit();
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_revert(tirefe_tire* tire) {
+  return guarded(tire, [](tirefe_tire& t) {
+    t.has_trial = false;
+    t.spindle->revert();
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!state) return refuse(t, TIREFE_INVALID_ARGUMENT, "state must not be NULL");
+    const Eigen::Vector3d position = t.spindle->committed_position();
+    const Eigen::Vector3d force = t.spindle->committed_force();
+    state->time = t.spindle->time();
+    for (int c = 0; c < 3; ++c) {
+      state->position[c] = position[c];
+      state->velocity[c] = committed_dof(t, c).v;
+      state->force[c] = force[c];
+    }
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
+    if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is saved with the deck's model:checkpoint");
+    *saved = new tirefe_saved_state{io::capture_checkpoint(*t.analysis, nullptr, 1, "tirefe C API")};
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* saved) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
+    if (t.has_trial) t.spindle->revert();
+    t.has_trial = false;
+    if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is restored with tirefe --restart");
+    io::restore_checkpoint(saved->checkpoint, *t.analysis, nullptr);
+    return TIREFE_OK;
+  });
+}
+
+void tirefe_free_state(tirefe_saved_state* saved) { delete saved; }
+
+}  // extern "C"

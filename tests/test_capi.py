@@ -1,0 +1,42 @@
+"""The C example host of docs/coupling.md (examples/quarter_car_drop.c): a 300 kg quarter
+car dropped onto the tire through the C API settles where the tire carries its weight,
+and a bad tire source ends it with the library's message and status 1.
+
+    test_capi.py QUARTER_CAR_DROP
+"""
+import re
+import subprocess
+import sys
+
+import script_tests
+
+WEIGHT = 300.0 * 9.81  # N
+
+
+def run(*arguments):
+    return subprocess.run([TIREFE, *arguments], capture_output=True, text=True, timeout=100)
+
+
+def test_settles_on_the_tire(folder):
+    result = run("tires.145SR12", "1000")
+    assert result.returncode == 0, result.stderr
+    match = re.search(r"y = (\S+) m  Fy = (\S+) N  carried (\S+) N", result.stdout)
+    assert match, result.stdout
+    y, fy, carried = (float(match.group(i)) for i in (1, 2, 3))
+    # At rest the tire pushes the carrier up with the weight (-Fy = m g), up to Newmark's
+    # step-to-step ringing of a few percent that the mean over 20 steps removes.
+    assert abs(carried - WEIGHT) < 0.005 * WEIGHT, (carried, WEIGHT)
+    assert abs(-fy - WEIGHT) < 0.05 * WEIGHT, (fy, WEIGHT)
+    # The 145 SR-12 deflects about 17 mm under 2.9 kN.
+    assert -0.02 < y < -0.015, y
+
+
+def test_bad_source(folder):
+    result = run("no_such_tire.tir", "10")
+    assert result.returncode == 1, result
+    assert result.stderr.startswith("quarter_car_drop: ") and "no_such_tire.tir" in result.stderr, result.stderr
+    assert result.stderr.count("\n") == 1, result.stderr
+
+
+if __name__ == "__main__":
+    script_tests.run(globals(), "tirefe_capi_")
