@@ -11,16 +11,16 @@
 --   tirefe inputs/tire_restart.lua [speed=8] [end_time=2.6] [every_steps=100]
 
 local p = tirefe.parameters{
-  elements = 100,
-  pressure_kpa = 208,     -- inflation pressure [kPa]
-  press = 0.025,          -- spindle travel toward the road after inflation [m]
-  gap = 0.004,            -- road below the unloaded tire before inflation [m]
-  speed = 8.0,            -- road speed after the ramp [m/s]
-  ramp_time = 0.2,        -- [s], from t = 2 s
-  dt = 1e-3,              -- dynamic time step [s]
-  rolling_time = 2.3,     -- the tire rolls at full speed: the named checkpoint [s]
-  end_time = 2.6,         -- [s]
-  every_steps = 100,      -- automatic checkpoints
+  elements = { 100, "wedges around the tire" },
+  pressure_kpa = { 208, "inflation pressure", unit = "kPa" },
+  press = { 0.025, "spindle travel toward the road after inflation", unit = "m" },
+  gap = { 0.004, "road below the unloaded tire before inflation", unit = "m" },
+  speed = { 8.0, "road speed after the ramp", unit = "m/s" },
+  ramp_time = { 0.2, "time the road takes to reach its speed, from t = 2 s", unit = "s" },
+  dt = { 1e-3, "dynamic time step", unit = "s" },
+  rolling_time = { 2.3, "time of the named checkpoint, the tire rolling at full speed", unit = "s" },
+  end_time = { 2.6, "end of the run", unit = "s" },
+  every_steps = { 100, "dynamic steps between automatic checkpoints" },
 }
 
 local model = tirefe.model{ title = "145 SR-12 rolling on a flat road (restartable)" }

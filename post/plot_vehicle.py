@@ -58,13 +58,8 @@ def main(arguments):
             label = os.path.splitext(os.path.basename(path))[0].split("_")[-1]
             heading = result.attrs.get("heading", "+x")
             for row, channel in enumerate(("spindle_fx", "spindle_fz")):
-<<<<<<< HEAD
                 force = history[channel][:][window]  # ISO 8855 wheel axes: the tire's force on the wheel
-                axes[row, 0].plot(time[window], force, label=label)
-=======
-                force = -history[channel][:][window]  # the force the tire applies to the car
                 axes[row, 0].plot((time[window] - impact) * 1e3, force, label=label)
->>>>>>> docs16
                 frequency, amplitude = spectrum(time[window], force)
                 axes[row, 1].semilogy(frequency, amplitude, label=label)
     figure.suptitle(f"spindle forces, ISO 8855 wheel axes (heading {heading})")
