@@ -116,7 +116,7 @@ TireParameters load_tire_parameters(const std::string& source) {
     lua_getglobal(L, "require");
   lua_pushstring(L, source.c_str());
   if (lua_pcall(L, 1, 1, 0) != LUA_OK || lua_pcall(L, 2, 0, 0) != LUA_OK)
-    throw ModelError("tire parameters '" + source + "': " + lua_tostring(L, -1));
+    throw ModelError("tire parameters '" + source + "': " + error_text(L, -1));
   return parameters;
 }
 
