@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
 
 namespace tirefe::fuzz {
 
@@ -21,6 +22,12 @@ class FuzzFailure : public std::logic_error {
 /// The first byte picks a deck macro; the rest is its argument table, called on a small
 /// model through the Lua sandbox and the macro layer (argument validation).
 void deck_macro(const uint8_t* data, size_t size);
+/// A short sequence of macro calls on a small beam model, solving ones included (bounded
+/// steps and step counts), with Lua load functions that call back into macros while the
+/// model assembles: each byte pair picks a call and its argument (fuzz_entries.cpp).
+void deck_sequence(const uint8_t* data, size_t size);
+/// The deck deck_sequence() runs for these bytes (to read a finding as a deck).
+std::string sequence_deck(const uint8_t* data, size_t size);
 /// A road-profile text file (two columns x y), then the profile built from it and a few projections.
 void road_profile(const uint8_t* data, size_t size);
 /// A CSV data file (header with unit suffixes, rows of numbers).

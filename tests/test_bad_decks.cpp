@@ -137,6 +137,18 @@ TEST_CASE("the self-checking decks in inputs/ pass their checks", "[decks]") {
   }
 }
 
+TEST_CASE("a vehicle step that fails names the corner whose tire failed", "[decks][vehicle]") {
+  // The quarter car at 300 km/h in 50 ms steps: the tire's Newton fails after every cut.
+  const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "quarter_car.lua").string();
+  const RunResult result = run_tirefe(deck + " dt=0.05 speed_kmh=300");
+  INFO("errors: " << result.errors);
+  CHECK(result.exit_status == 1);
+  CHECK(std::count(result.errors.begin(), result.errors.end(), '\n') == 1);
+  CHECK(result.errors.find("quarter_car.lua:77: macro 'vehicle': vehicle step from t = ") != std::string::npos);
+  CHECK(result.errors.find("failed after 4 cuts: the tire of corner 'quarter' failed: the step from t = ") !=
+        std::string::npos);
+}
+
 TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF index and plots", "[decks][drum]") {
   // A 0.5 s spin-up instead of 4 s: the passage at full speed that follows is the same
   // impact as in the full run (docs/drum_cleat.md).

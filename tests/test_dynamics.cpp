@@ -297,6 +297,31 @@ TEST_CASE("predictors keep a_n, zero a_{n+1} or u_n with Newmark-consistent rate
   }
 }
 
+TEST_CASE("Newmark and HHT accept exactly their unconditionally stable parameters, refusing others with the range",
+          "[dynamics][integrator]") {
+  // Accepted corners and edges of 1/2 <= gamma <= 1, gamma/2 <= beta <= 1: no root of
+  // the amplification matrix leaves the unit circle, however stiff the mode.
+  const std::vector<std::pair<double, double>> accepted{{0.25, 0.5}, {0.5, 1.0}, {1.0, 0.5}, {0.3025, 0.6}, {0.3, 0.6}};
+  for (const auto& [beta, gamma] : accepted)
+    for (double omega_h : {0.1, 1.0, 1e2, 1e4}) {
+      INFO("beta = " << beta << ", gamma = " << gamma << ", omega h = " << omega_h);
+      CHECK(spectral_radius(amplification_matrix(Integrator::newmark(beta, gamma), 1.0, 0.0, 1.0, omega_h)) <=
+            1.0 + 1e-12);
+    }
+  using Catch::Matchers::Contains;
+  const std::string range = "1/2 <= gamma <= 1 and gamma/2 <= beta <= 1";
+  CHECK_THROWS_WITH(Integrator::newmark(1e-300, 0.5), Contains(range) && Contains("got beta = 1e-300, gamma = 0.5"));
+  CHECK_THROWS_WITH(Integrator::newmark(1.0 / 6.0, 0.5), Contains(range));  // linear acceleration: conditional
+  CHECK_THROWS_WITH(Integrator::newmark(0.29, 0.6), Contains(range));        // beta < gamma/2
+  CHECK_THROWS_WITH(Integrator::newmark(0.25, 0.45), Contains(range));       // gamma < 1/2: amplitudes grow
+  CHECK_THROWS_WITH(Integrator::newmark(0.6, 1.1), Contains(range));
+  CHECK_THROWS_WITH(Integrator::newmark(1.5, 0.5), Contains(range));
+  CHECK_THROWS_WITH(Integrator::newmark(std::nan(""), 0.5), Contains(range));
+  for (double alpha : {-1.0 / 3.0, -0.1, 0.0}) CHECK_NOTHROW(Integrator::hht(alpha));
+  for (double alpha : {-0.34, 0.01, std::nan("")})
+    CHECK_THROWS_WITH(Integrator::hht(alpha), Contains("alpha in [-1/3, 0]"));
+}
+
 TEST_CASE("HHT: spectral radius (1+alpha)/(1-alpha) at omega h = 1e4", "[dynamics]") {
   for (double alpha : {-0.1, -0.3}) {
     const Integrator hht = Integrator::hht(alpha);

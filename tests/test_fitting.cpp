@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -403,6 +404,44 @@ TEST_CASE("the CSV reader converts unit suffixes to SI and names bad rows by fil
   CHECK_THROWS_WITH(CurveData::read_csv(short_row),
                     Contains(short_row + ":3: expected 2 values (deflection_mm, force_N), found 1"));
   CHECK_THROWS_WITH(CurveData::read_csv(folder.path("missing.csv")), Contains("cannot open"));
+}
+
+TEST_CASE("the CSV reader skips a byte order mark, refuses hex, NUL and overflow, reads underflow as 0", "[fitting]") {
+  TempDir folder;
+  const CurveData marked = CurveData::read_csv(folder.write("bom.csv", "\xEF\xBB\xBF" "deflection_mm, force_N\n1, 10\n"));
+  CHECK(marked.columns().front().name == "deflection");
+  CHECK(marked.column("deflection").values[0] == Approx(1e-3).epsilon(1e-15));
+
+  const CurveData tiny = CurveData::read_csv(folder.write("tiny.csv", "x, y\n1e-400, -1e-400\n2.5e-310, 1\n"));
+  CHECK(tiny.column("x").values[0] == 0.0);
+  CHECK(tiny.column("y").values[0] == 0.0);
+  CHECK(tiny.column("x").values[1] == Approx(2.5e-310).epsilon(1e-6));  // subnormal, kept
+
+  const std::pair<std::string, std::string> refused[] = {
+      {"hex.csv", "x, y\n0x10, 1\n"},          {"hex_float.csv", "x, y\n1, 0x1p3\n"},
+      {"inf.csv", "x, y\ninf, 1\n"},           {"overflow.csv", "x, y\n1e400, 1\n"},
+      {"nan.csv", "x, y\n1, nan\n"},           {"nul.csv", std::string("x, y\n1, 12", 10) + std::string("\0" "5\n", 3)}};
+  for (const auto& [name, text] : refused) {
+    INFO(name);
+    CHECK_THROWS_WITH(CurveData::read_csv(folder.write(name, text)),
+                      Contains(name + ":2: column") && Contains("is not a finite number"));
+  }
+  CHECK_THROWS_WITH(CurveData::read_csv(folder.write("nul_name.csv", std::string("x, y\0z\n1, 2\n", 12))),
+                    Contains("nul_name.csv:1: column name 'y?z' holds a control character or NUL byte"));
+
+  // 100 000 columns: the duplicate check is linear (it was quadratic: 33 s).
+  std::string header, row;
+  for (int c = 0; c < 100000; ++c) {
+    header += (c ? ",c" : "c") + std::to_string(c);
+    row += c ? ",1" : "1";
+  }
+  const auto started = std::chrono::steady_clock::now();
+  const CurveData wide = CurveData::read_csv(folder.write("wide.csv", header + "\n" + row + "\n"));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  CHECK(wide.columns().size() == 100000);
+  CHECK(seconds < 2.0);
+  CHECK_THROWS_WITH(CurveData::read_csv(folder.write("twice.csv", header + ",c99999\n" + row + ",1\n")),
+                    Contains("two columns named 'c99999'"));
 }
 
 TEST_CASE("tirefe.fit works end to end in a deck: CSV data, a Lua model, the HDF5 output", "[fitting]") {

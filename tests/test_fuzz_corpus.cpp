@@ -30,6 +30,7 @@ int replay(const std::string& target, void (*entry)(const uint8_t*, size_t)) {
 
 TEST_CASE("the fuzz corpus replays cleanly through every parser", "[reliability][fuzz]") {
   CHECK(replay("deck_macro", tirefe::fuzz::deck_macro) >= 20);
+  CHECK(replay("deck_sequence", tirefe::fuzz::deck_sequence) >= 8);
   CHECK(replay("road_profile", tirefe::fuzz::road_profile) >= 3);
   CHECK(replay("curve_data", tirefe::fuzz::curve_data) >= 3);
   CHECK(replay("property_file", tirefe::fuzz::property_file) >= 4);

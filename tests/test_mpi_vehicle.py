@@ -77,7 +77,7 @@ def failures(tirefe, tirefe_mpi, mpirun, work):
     deck = os.path.join(ROOT, "inputs", "vehicle_pothole.lua")
     failing = [*SHORT, "dt=0.02", "speed_kmh=300", "--quiet"]
     threads, _ = run([tirefe, deck, *failing, "--output-dir", os.path.join(work, "failing_threads")])
-    assert threads.returncode == 1 and "failed after 4 cuts: a tire failed" in threads.stderr, threads.stderr
+    assert threads.returncode == 1 and "failed after 4 cuts: the tire of corner 'L" in threads.stderr, threads.stderr
     done, _ = run([mpirun, *MPI_OPTIONS, "-np", "2", tirefe_mpi, deck, *failing, "--output-dir",
                    os.path.join(work, "failing_ranks")])
     assert done.returncode == 1 and done.stderr.count(threads.stderr) == 1, done.stderr

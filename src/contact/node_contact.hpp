@@ -33,6 +33,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -75,14 +76,18 @@ struct ContactHistory {
   double normal_multiplier = 0.0;      // lambda_N [N]
   double tangential_multiplier = 0.0;  // lambda_T [N]
   ContactState state = ContactState::Open;
+  std::int32_t unused_after_state = 0;  // explicit padding: checkpoints copy every byte
   double coordinate = std::numeric_limits<double>::quiet_NaN();  // s at the last evaluation [m]
   // Results of the last evaluation (output).
   double gap = std::numeric_limits<double>::infinity();  // [m]
   double normal_force = 0.0;                             // t_N [N]
   double tangential_force = 0.0;                         // t_T [N], along tau
   double sliding_velocity = 0.0;                         // (v_node - v_surface).tau [m/s]
+  double unused_before_force = 0.0;                      // explicit padding: 'force' is 16-byte aligned
   Eigen::Vector2d force = Eigen::Vector2d::Zero();       // t_N nu + t_T tau, on the node [N]
 };
+// No implicit padding, whose bytes would be uninitialised in a checkpoint.
+static_assert(sizeof(ContactHistory) == 12 * sizeof(double), "ContactHistory must have no implicit padding");
 
 class NodeSurfaceContact : public KernelShape<1, ContactHistory> {
  public:

@@ -209,8 +209,11 @@ class ElementBlockOf final : public ElementBlock {
     // Plain data owns nothing: numbers and fixed-size Eigen vectors (bitwise copyable,
     // though Eigen does not declare them trivially copyable); no pointers, no containers.
     static_assert(std::is_trivially_destructible_v<History>, "element history must be plain data (checkpoints copy bytes)");
-    std::vector<unsigned char> bytes(committed_.size() * sizeof(History));
-    if (!bytes.empty()) std::memcpy(bytes.data(), static_cast<const void*>(committed_.data()), bytes.size());
+    std::vector<unsigned char> bytes(committed_.size() * sizeof(History), 0);
+    // An empty history's one byte is padding, never written: leave it 0 so that two
+    // checkpoints of one state are the same bytes (histories with data have no padding).
+    if constexpr (!std::is_empty_v<History>)
+      if (!bytes.empty()) std::memcpy(bytes.data(), static_cast<const void*>(committed_.data()), bytes.size());
     return bytes;
   }
   void set_history_bytes(const std::vector<unsigned char>& bytes) override {

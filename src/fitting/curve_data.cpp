@@ -1,13 +1,17 @@
 #include "fitting/curve_data.hpp"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <fstream>
+#include <unordered_map>
 
 namespace tirefe::fitting {
 
 namespace {
+
+// Spreadsheet programs start a CSV file saved as UTF-8 with it; it is no part of the first name.
+const std::string kUtf8ByteOrderMark = "\xEF\xBB\xBF";
 
 std::string trimmed(const std::string& text) {
   const auto first = text.find_first_not_of(" \t\r");
@@ -61,6 +65,24 @@ DataColumn column_from_header(const std::string& header, const std::string& wher
   return column;
 }
 
+/// A decimal number filling the whole field: digits, sign, point and exponent only (no hex,
+/// inf, nan, and no NUL cutting the field short). A value too small for a double
+/// (1e-400) underflows to the nearest double, 0 or subnormal; one too large is refused.
+std::optional<double> decimal_number(const std::string& field) {
+  if (field.empty() || field.find_first_not_of("0123456789+-.eE") != std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(field.c_str(), &end);
+  if (end != field.c_str() + field.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+/// Printable text of a field for a message (a NUL or a control byte shown as '?').
+std::string shown(std::string field) {
+  for (char& c : field)
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  return field;
+}
+
 double to_si(const std::string& unit) {
   const UnitSuffix* known = known_unit(unit);
   return known ? known->to_si : 1.0;
@@ -94,18 +116,22 @@ CurveData CurveData::read_csv(const std::string& path) {
   data.path_ = path;
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
+    if (number == 1 && line.rfind(kUtf8ByteOrderMark, 0) == 0) line.erase(0, kUtf8ByteOrderMark.size());
     const std::string content = trimmed(line.substr(0, line.find('#')));
     if (content.empty()) continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
     const std::vector<std::string> fields = split_fields(content);
     if (data.columns_.empty()) {  // the header
+      std::unordered_map<std::string, const std::string*> names;  // name -> header: linear in the columns
       for (const std::string& header : fields) {
         if (header.empty()) throw CurveDataError(where + "empty column name in the header");
+        if (shown(header) != header)
+          throw CurveDataError(where + "column name '" + shown(header) + "' holds a control character or NUL byte");
         DataColumn column = column_from_header(header, where);
-        for (const auto& existing : data.columns_)
-          if (existing.name == column.name)
-            throw CurveDataError(where + "two columns named '" + column.name + "' ('" + existing.header + "', '" +
-                                 header + "')");
+        const auto [named, added] = names.emplace(column.name, &header);
+        if (!added)
+          throw CurveDataError(where + "two columns named '" + column.name + "' ('" + *named->second + "', '" +
+                               header + "')");
         data.columns_.push_back(column);
       }
       continue;
@@ -115,12 +141,11 @@ CurveData CurveData::read_csv(const std::string& path) {
                            header_list(data.columns_) + "), found " + std::to_string(fields.size()));
     for (size_t c = 0; c < fields.size(); ++c) {
       DataColumn& column = data.columns_[c];
-      char* end = nullptr;
-      errno = 0;
-      const double value = std::strtod(fields[c].c_str(), &end);
-      if (fields[c].empty() || *end != '\0' || errno == ERANGE || !std::isfinite(value))
-        throw CurveDataError(where + "column '" + column.header + "': '" + fields[c] + "' is not a finite number");
-      column.values.push_back(value * to_si(column.unit));
+      const std::optional<double> value = decimal_number(fields[c]);
+      if (!value)
+        throw CurveDataError(where + "column '" + column.header + "': '" + shown(fields[c]) +
+                             "' is not a finite number (write decimals like 12.5 or -3e-4)");
+      column.values.push_back(*value * to_si(column.unit));
     }
     data.row_lines_.push_back(number);
   }

@@ -10,7 +10,10 @@
 // and the column is known by its name without the unit (deflection_mm -> "deflection" in
 // m); a header without a known suffix is taken as is, without conversion, while a unit in
 // brackets must be a known one. A row with the wrong number of values or a value that is
-// not a finite number is an error naming the file and the line.
+// not a finite decimal number (hex, inf, nan, a NUL byte in it, an overflow like 1e400)
+// is an error naming the file and the line; a value too small for a double (1e-400)
+// underflows to 0 (or the nearest subnormal) like any rounding. A UTF-8 byte order mark
+// at the start of the file (spreadsheets write one) is skipped.
 #pragma once
 
 #include <stdexcept>

@@ -101,6 +101,10 @@ void ResultFile::write_index_if_due() {
 }
 
 void ResultFile::add_channel(const std::string& name, const std::string& unit, Channel channel) {
+  // Checked here, at the macro that names the channel: HDF5 would take a '/' for a group
+  // path and fail (or nest the channel) only when the first step writes it.
+  if (name.empty() || name == "." || name.find('/') != std::string::npos)
+    throw IoError("history channel name '" + name + "' must be a non-empty name without '/' (use '_', e.g. 'tip_x')");
   for (const auto& existing : channel_names_)
     if (existing.first == name) throw IoError("history channel '" + name + "' is defined twice");
   channel_names_.emplace_back(name, unit);

@@ -152,8 +152,7 @@ fitting::PredictionModel lua_model(lua_State* L, const RegistryReference& functi
       ~Collect() { lua_gc(L, LUA_GCCOLLECT); }
     } collect{L};
     if (failed) {
-      const std::string message =
-          lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(error object is not a string)";
+      const std::string message = error_text(L, -1);
       lua_pop(L, 1);
       // A run asked to stop (SIGINT, SIGTERM) stops the fit too, not just this evaluation.
       if (stop_signal().load()) throw std::runtime_error(message);

@@ -67,16 +67,6 @@ std::optional<std::pair<std::string, bool>> chunk_on_stack(lua_State* L, const s
   return std::nullopt;
 }
 
-std::string error_text(lua_State* L, int index) {
-  if (lua_type(L, index) == LUA_TSTRING || lua_type(L, index) == LUA_TNUMBER) return lua_tostring(L, index);
-  if (luaL_callmeta(L, index, "__tostring") && lua_type(L, -1) == LUA_TSTRING) {
-    std::string text = lua_tostring(L, -1);
-    lua_pop(L, 1);
-    return text;
-  }
-  return std::string("(error object is a ") + luaL_typename(L, index) + " value)";
-}
-
 // load() with the mode forced to text: precompiled chunks bypass the parser's checks.
 int text_only_load(lua_State* L) {
   if (lua_gettop(L) < 3) lua_settop(L, 3);  // pads chunkname/mode; an absent 'env' must stay absent
@@ -183,6 +173,19 @@ ParameterDeclaration read_declaration(lua_State* L, const std::string& name) {
 }
 
 }  // namespace
+
+std::string error_text(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TSTRING || lua_type(L, index) == LUA_TNUMBER) return lua_tostring(L, index);
+  if (luaL_callmeta(L, index, "__tostring")) {
+    const bool is_text = lua_type(L, -1) == LUA_TSTRING;
+    std::string text = is_text ? lua_tostring(L, -1) : "";
+    lua_pop(L, 1);
+    if (is_text) return text;
+  }
+  // error({...}) or error(nil): nothing to print but the kind, and what a deck should do.
+  return std::string("error called with a ") + luaL_typename(L, index) +
+         " value instead of a message (write error(\"what is wrong\"), or give the value a __tostring)";
+}
 
 // Instructions between two looks at the stop flag: a few microseconds of Lua.
 constexpr int kStopHookInstructions = 10000;

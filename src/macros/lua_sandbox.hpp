@@ -121,6 +121,10 @@ std::string deck_location(lua_State* L);
 // Lua memory), so the allocator may call it.
 std::string deck_location(lua_State* L, const std::string& deck_path);
 
+// The text of an error value: a string or number as is, else its __tostring, else what
+// it is ("error called with a table value instead of a message ...").
+std::string error_text(lua_State* L, int index);
+
 // Raises a Lua error carrying deck_location(L) + message. Never returns.
 [[noreturn]] void raise_deck_error(lua_State* L, const std::string& message);
 

@@ -125,10 +125,8 @@ TireParameters load_tire_parameters(const std::string& source, const std::vector
   else
     lua_getglobal(L, "require");
   lua_pushstring(L, source.c_str());
-  if (lua_pcall(L, 1, 1, 0) != LUA_OK || !lua_istable(L, -1)) {
-    const std::string what = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "is not a parameter table";
-    throw ModelError("tire parameters '" + source + "': " + what);
-  }
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK) throw ModelError("tire parameters '" + source + "': " + error_text(L, -1));
+  if (!lua_istable(L, -1)) throw ModelError("tire parameters '" + source + "': is not a parameter table");
   for (const ParameterValue& value : overrides) {
     // Whole numbers as Lua integers, so that integer keys (elements) take them.
     const double whole = std::nearbyint(value.second);
@@ -138,7 +136,7 @@ TireParameters load_tire_parameters(const std::string& source, const std::vector
       lua_pushnumber(L, value.second);
     lua_setfield(L, -2, value.first.c_str());
   }
-  if (lua_pcall(L, 2, 0, 0) != LUA_OK) throw ModelError("tire parameters '" + source + "': " + lua_tostring(L, -1));
+  if (lua_pcall(L, 2, 0, 0) != LUA_OK) throw ModelError("tire parameters '" + source + "': " + error_text(L, -1));
   return parameters;
 }
 

@@ -42,6 +42,7 @@ void Analysis::select_solver(LinearSolver& solver) {
 }
 
 void Analysis::analyze_pattern() {
+  require_equations();
   if (ring_use_ == RingUse::WhereItFits) {
     try {
       ring_->analyze(assembler_.tangent());
@@ -52,6 +53,16 @@ void Analysis::analyze_pattern() {
     }
   }
   linear_solver_->analyze(assembler_.tangent());
+}
+
+void Analysis::require_equations() const {
+  int elements = 0;
+  for (const auto& block : model_.blocks()) elements += block->size();
+  if (elements == 0)
+    throw ModelError("the model has no elements: there are no equations to solve (add beams, a tire or other "
+                     "elements before solving)");
+  if (model_.dof_map().equation_count() == 0)
+    throw ModelError("the model has no equations to solve: every DOF is fixed or prescribed (release some)");
 }
 
 void Analysis::set_integrator(const Integrator& integrator) {

@@ -202,6 +202,8 @@ class Analysis : private StepEquations {
   void notify_step(const StepRecord& record);
   LinearSolver& newton_linear_solver();
   void analyze_pattern();
+  /// ModelError when there is nothing to solve (no elements, or every DOF fixed).
+  void require_equations() const;
   void select_solver(LinearSolver& solver);
   bool try_step(double step, double end_time, StepRecord& record);
   void check_step_budget(int steps_taken, double nominal_steps, double step) const;

@@ -6,16 +6,33 @@
 
 namespace tirefe {
 
+namespace {
+
+std::string number_text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+// Unconditional stability of Newmark's family on linear systems: 1/2 <= gamma and
+// gamma/2 <= beta (Hughes 2000, 9.1). Below gamma/2 the scheme is stable only for
+// omega h < 1/sqrt(gamma/2 - beta), which a tire's unresolved stiff modes never meet, and
+// beta -> 0 sends the tangent factor 1/(beta h^2) to overflow. gamma > 1 and beta > 1 are
+// refused as input slips: they only add damping and period error.
 Integrator Integrator::newmark(double beta, double gamma) {
-  if (!(beta > 0.0 && beta <= 0.5) || !(gamma >= 0.5 && gamma <= 1.0))
-    throw ModelError("Newmark needs 0 < beta <= 1/2 and 1/2 <= gamma <= 1 (implicit, stable); got beta = " +
-                     std::to_string(beta) + ", gamma = " + std::to_string(gamma));
+  if (!(gamma >= 0.5 && gamma <= 1.0) || !(beta >= 0.5 * gamma && beta <= 1.0))
+    throw ModelError("Newmark needs 1/2 <= gamma <= 1 and gamma/2 <= beta <= 1 (unconditionally stable; "
+                     "average acceleration: beta = 1/4, gamma = 1/2); got beta = " +
+                     number_text(beta) + ", gamma = " + number_text(gamma));
   return Integrator(Kind::Newmark, beta, gamma, 0.0);
 }
 
 Integrator Integrator::hht(double alpha) {
   if (!(alpha >= -1.0 / 3.0 && alpha <= 0.0))
-    throw ModelError("HHT needs alpha in [-1/3, 0]; got " + std::to_string(alpha));
+    throw ModelError("HHT needs alpha in [-1/3, 0] (unconditionally stable and second-order accurate); got " +
+                     number_text(alpha));
   return Integrator(Kind::Hht, 0.25 * (1.0 - alpha) * (1.0 - alpha), 0.5 - alpha, alpha);
 }
 

@@ -30,9 +30,10 @@ class Integrator {
   enum class Predictor { SameAcceleration, ZeroAcceleration, SameDisplacement };
 
   static Integrator quasi_static() { return Integrator(Kind::QuasiStatic, 0.25, 0.5, 0.0); }
-  /// Newmark(beta, gamma); average acceleration by default.
+  /// Newmark(beta, gamma), 1/2 <= gamma <= 1, gamma/2 <= beta <= 1 (unconditionally
+  /// stable); average acceleration by default. ModelError with the ranges otherwise.
   static Integrator newmark(double beta = 0.25, double gamma = 0.5);
-  /// HHT-alpha with alpha in [-1/3, 0].
+  /// HHT-alpha with alpha in [-1/3, 0] (ModelError with the range otherwise).
   static Integrator hht(double alpha);
 
   Kind kind() const { return kind_; }

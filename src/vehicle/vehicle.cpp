@@ -115,11 +115,14 @@ void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement) {
   }
 }
 
+std::string Vehicle::tire_of(size_t corner) const { return "the tire of corner '" + corners_[corner].name + "'"; }
+
 void Vehicle::solve_tires(double h) {
   auto serve = [this]() {
     tires_.serve(requests_, replies_);
-    for (const SpindleReply& reply : replies_) {
-      if (reply.status == SpindleStatus::Failed) throw TireFailure{reply.message};
+    for (size_t i = 0; i < replies_.size(); ++i) {
+      const SpindleReply& reply = replies_[i];
+      if (reply.status == SpindleStatus::Failed) throw TireFailure{tire_of(i) + " failed: " + reply.message};
       ++statistics_.tire_solves;
       statistics_.tire_newton_iterations += reply.newton_iterations;
     }
@@ -175,7 +178,7 @@ bool Vehicle::try_step(double h) {
         break;
       } catch (const TireFailure& failure) {
         if (iteration == 0 || backtrack == kMaxBacktracks) {
-          last_failure_ = "a tire failed: " + failure.message;
+          last_failure_ = failure.message;
           return false;
         }
         increment_ *= 0.5;
@@ -220,8 +223,9 @@ void Vehicle::take_step(double h, int cuts) {
     std::swap(committed_, trial_);  // first: the tires' output may read the vehicle's new state
     suspension_forces(committed_, old_forces_);
     tires_.serve_all(SpindleCommand::Commit, replies_);
-    for (const SpindleReply& reply : replies_)
-      if (reply.status == SpindleStatus::Failed) throw StepFailure(std::string("a tire could not commit: ") + reply.message);
+    for (size_t i = 0; i < replies_.size(); ++i)
+      if (replies_[i].status == SpindleStatus::Failed)
+        throw StepFailure(tire_of(i) + " could not commit: " + replies_[i].message);
     ++statistics_.steps;
     for (const auto& observer : observers_) observer(*this);
     return;

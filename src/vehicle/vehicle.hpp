@@ -128,6 +128,8 @@ class Vehicle {
   void request_positions(double h, const Eigen::VectorXd& displacement);
 
   Body body_;
+  /// "the tire of corner 'LF'", for messages.
+  std::string tire_of(size_t corner) const;
   std::vector<Corner> corners_;
   TireExchange& tires_;
   VehicleSettings settings_;
