@@ -33,19 +33,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* kLongDeck = R"(
-local model = tirefe.model{ title = "a long run" }
-local chain = {}
+// A cantilever chain under a tip load, by Newmark, writing 'outputs' (Lua lines) until 'to'.
+std::string chain_deck(const std::string& title, const std::string& outputs, const std::string& to) {
+  return "local model = tirefe.model{ title = \"" + title + "\" }\n" + R"(local chain = {}
 for i = 0, 20 do chain[#chain + 1] = model:node{ x = i / 20, y = 0 } end
 model:section{ name = "s", EA = 1e4, GA = 1e4, EI = 1, rhoA = 1, rhoI = 1e-3 }
 model:beam{ section = "s", nodes = chain }
 model:fix{ node = chain[1] }
 model:load{ node = chain[#chain], fy = -1, load_function = "constant" }
 model:integrator{ type = "newmark" }
-model:output{ file = "long.h5", fields_every = 100 }
+)" + outputs + "model:solve{ to = " + to + ", dt = 1e-4 }\n";
+}
+
+const std::string kLongDeck = chain_deck("a long run", R"(model:output{ file = "long.h5", fields_every = 100 }
 model:history{ name = "tip_uy", node = chain[#chain], dof = "uy" }
-model:solve{ to = 1e4, dt = 1e-4 }
-)";
+)", "1e4");
 
 /// Starts 'binary' with 'arguments' (output and error to 'log' if given); returns its pid.
 pid_t start(const std::string& binary, std::vector<std::string> arguments, const fs::path& log = {}) {
@@ -295,19 +297,9 @@ TEST_CASE("runs killed at random instants leave whole, consistent result files a
 
 namespace {
 
-const char* kShortDeck = R"(
-local model = tirefe.model{ title = "a short run" }
-local chain = {}
-for i = 0, 20 do chain[#chain + 1] = model:node{ x = i / 20, y = 0 } end
-model:section{ name = "s", EA = 1e4, GA = 1e4, EI = 1, rhoA = 1, rhoI = 1e-3 }
-model:beam{ section = "s", nodes = chain }
-model:fix{ node = chain[1] }
-model:load{ node = chain[#chain], fy = -1, load_function = "constant" }
-model:integrator{ type = "newmark" }
-model:output{ file = "short.h5", fields_every = 10 }
+const std::string kShortDeck = chain_deck("a short run", R"(model:output{ file = "short.h5", fields_every = 10 }
 model:checkpoint{ file = "short.ckpt.h5", every_steps = 20 }
-model:solve{ to = 5e-3, dt = 1e-4 }
-)";
+)", "5e-3");
 
 }  // namespace
 
