@@ -1,9 +1,11 @@
 """The C example host of docs/coupling.md (examples/quarter_car_drop.c): a 300 kg quarter
 car dropped onto the tire through the C API settles where the tire carries its weight,
-and a bad tire source ends it with the library's message and status 1.
+and a bad tire source ends it with the library's message and status 1; its C++ twin
+(examples/spindle_host.cpp, SPINDLE_HOST) gets the same numbers in the plane.
 
     test_capi.py QUARTER_CAR_DROP
 """
+import os
 import re
 import subprocess
 import sys
@@ -36,6 +38,19 @@ def test_bad_source(folder):
     assert result.returncode == 1, result
     assert result.stderr.startswith("quarter_car_drop: ") and "no_such_tire.tir" in result.stderr, result.stderr
     assert result.stderr.count("\n") == 1, result.stderr
+
+
+def test_cpp_host_in_the_plane(folder):
+    """The C++ host of docs/spindle.md (examples/spindle_host.cpp) drops the same quarter
+    car through the internal exchange, in the plane: its height y is the C host's z and
+    the weight it carries (-R_y) the C host's Fz, digit for digit."""
+    cpp = subprocess.run([os.environ["SPINDLE_HOST"]], capture_output=True, text=True, timeout=100)
+    assert cpp.returncode == 0, cpp.stderr
+    plane = re.search(r"y = (\S+) m  carried (\S+) N", cpp.stdout)
+    wheel = re.search(r"z = (\S+) m  Fz = \S+ N  carried (\S+) N", run("tires.145SR12", "1000").stdout)
+    assert plane and wheel, (cpp.stdout, wheel)
+    assert plane.groups() == wheel.groups(), (plane.groups(), wheel.groups())
+    assert abs(float(plane.group(2)) - WEIGHT) < 0.005 * WEIGHT, plane.group(2)
 
 
 if __name__ == "__main__":
