@@ -1,6 +1,7 @@
 /* The contract of the C API (include/tirefe.h), checked from C: statuses and messages for
  * bad calls, the tire untouched by a failed or reverted step, the velocity form against
- * the position form, and two tires solved in two threads as they are in one.
+ * the position form, two tires solved in two threads as they are in one, and the
+ * Jacobian in ISO wheel axes against differences of the forces, for both headings.
  * Prints one line per failed check; exits 1 if any failed. */
 #include <math.h>
 #include <pthread.h>
@@ -71,6 +72,11 @@ static void check_open_errors(void) {
   check(tirefe_open("tires.145SR12", NULL, 0, &options, &tire, error, sizeof error) == TIREFE_MODEL_ERROR,
         "alpha = 0.5 is refused", error);
   check(strstr(error, "alpha") != NULL, "the message names alpha", error);
+  tirefe_default_options(&options);
+  options.heading = 0;
+  check(tirefe_open("tires.145SR12", NULL, 0, &options, &tire, error, sizeof error) == TIREFE_INVALID_ARGUMENT,
+        "a heading other than +1 or -1 is an invalid argument", error);
+  check(strstr(error, "options.heading must be +1") != NULL, "the message says what a heading is", error);
   check(tirefe_open(NULL, NULL, 0, NULL, &tire, error, sizeof error) == TIREFE_INVALID_ARGUMENT,
         "a NULL source is an invalid argument", error);
 }
