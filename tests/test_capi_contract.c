@@ -191,6 +191,22 @@ static tirefe_spindle_force check_jacobian_by_differences(int heading) {
       check_close(fd, at.jacobian[i][j], 1e-6 * scale, what);
     }
   }
+  /* The velocity form in the same axes: the end velocities that put the wheel at 'base'
+   * (Newmark: q_{n+1} - q_n = h (v_n + v_{n+1}) / 2) give its force, and the Jacobian
+   * times beta h / gamma. */
+  tirefe_spindle_state state;
+  tirefe_state(tire, &state);
+  double v_end[3];
+  for (int c = 0; c < 3; ++c) v_end[c] = 2.0 * (base[c] - state.position[c]) / h - state.velocity[c];
+  tirefe_spindle_force by_velocity;
+  check(tirefe_solve_velocity(tire, h, v_end, &by_velocity) == TIREFE_OK, "solve a driven wheel by velocity",
+        tirefe_message(tire));
+  for (int i = 0; i < 3; ++i) {
+    check_close(by_velocity.force[i], at.force[i], 1e-9 * fabs(at.force[1]), "the force by velocity, any heading");
+    for (int j = 0; j < 3; ++j)
+      check_close(by_velocity.jacobian[i][j], at.jacobian[i][j] * 0.25 * h / 0.5, 1e-9 * fabs(at.jacobian[1][1] * h),
+                  "the Jacobian by velocity, any heading");
+  }
   tirefe_close(tire);
   return at;
 }
