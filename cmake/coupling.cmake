@@ -15,6 +15,9 @@ add_library(tirefe::tirefe ALIAS tirefe_shared)
 # The C example host of docs/coupling.md: a quarter car dropped onto the tire.
 add_executable(quarter_car_drop examples/quarter_car_drop.c)
 target_link_libraries(quarter_car_drop PRIVATE tirefe::tirefe m)
+# Its C++ twin of docs/spindle.md, over the internal spindle exchange.
+add_executable(spindle_host examples/spindle_host.cpp)
+target_link_libraries(spindle_host PRIVATE tirefe_lib)
 
 install(TARGETS tirefe RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 if(TARGET tirefe-mpi)

@@ -31,7 +31,7 @@ def fit_ksw(elements=100):
 
     def misfit(q):
         parameters = {"k_sw": q[0], "k_sw_sign": 1, "pressure": 208e3, "elements": elements}
-        return -tirefe.static_forces("tires.145SR12", parameters, list(deflections)) - forces
+        return tirefe.static_forces("tires.145SR12", parameters, list(deflections)) - forces
 
     # Bounded trust region, forward differences of 1e-3 relative: the C++ fit's step.
     fit = least_squares(misfit, x0=[100.0], bounds=([0.0], [400.0]), diff_step=1e-3, xtol=1e-6)

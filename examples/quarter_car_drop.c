@@ -25,25 +25,25 @@ int main(int argc, char** argv) {
     fprintf(stderr, "quarter_car_drop: %s\n", error);
     return 1;
   }
-  double y = 0.0, v = 0.0, a = -g; /* the spindle: height [m], velocity, acceleration */
+  double z = 0.0, v = 0.0, a = -g; /* the spindle: height z [m], velocity, acceleration */
   tirefe_spindle_force reply;
-  double carried = 0.0; /* mean of -Fy over the last 20 steps (Newmark leaves a small step-to-step ringing) */
+  double carried = 0.0; /* mean of Fz over the last 20 steps (Newmark leaves a small step-to-step ringing) */
   for (int step = 0; step < steps; ++step) {
-    double y_new = y + h * v + 0.5 * h * h * a; /* predictor: the same acceleration */
+    double z_new = z + h * v + 0.5 * h * h * a; /* predictor: the same acceleration */
     double a_new = a, v_new = v;
     for (int iteration = 0; iteration < 20; ++iteration) { /* corrector */
-      a_new = 4.0 / (h * h) * (y_new - y - h * v) - a;
+      a_new = 4.0 / (h * h) * (z_new - z - h * v) - a;
       v_new = v + 0.5 * h * (a + a_new);
-      const tirefe_spindle_motion motion = {h, 0.0, y_new, 0.0};
+      const tirefe_spindle_motion motion = {h, 0.0, z_new, 0.0};
       if (tirefe_solve(tire, &motion, &reply) != TIREFE_OK) {
         fprintf(stderr, "quarter_car_drop: step %d: %s\n", step, tirefe_message(tire));
         tirefe_close(tire);
         return 1;
       }
-      /* The mass: m a = -c v - m g - Fy (the tire pushes the carrier with -force). */
-      const double residual = m * a_new + c * v_new + m * g + reply.force[1];
+      /* The mass: m a = -c v - m g + Fz (the force the tire exerts on the wheel). */
+      const double residual = m * a_new + c * v_new + m * g - reply.force[1];
       if (fabs(residual) < 1e-8 * m * g) break;
-      y_new -= residual / (4.0 * m / (h * h) + 2.0 * c / h + reply.jacobian[1][1]);
+      z_new -= residual / (4.0 * m / (h * h) + 2.0 * c / h - reply.jacobian[1][1]);
     }
     if (tirefe_commit(tire) != TIREFE_OK) {
       fprintf(stderr, "quarter_car_drop: step %d: %s\n", step, tirefe_message(tire));
@@ -51,13 +51,13 @@ int main(int argc, char** argv) {
       return 1;
     }
     v = v_new;
-    y = y_new;
+    z = z_new;
     a = a_new;
-    if (step >= steps - 20) carried -= reply.force[1] / 20.0;
+    if (step >= steps - 20) carried += reply.force[1] / 20.0;
   }
   tirefe_spindle_state state;
   tirefe_state(tire, &state);
-  printf("t = %.3f s  y = %.6e m  Fy = %.6e N  carried %.6e N (weight %.1f N)\n", state.time, y, state.force[1],
+  printf("t = %.3f s  z = %.6e m  Fz = %.6e N  carried %.6e N (weight %.1f N)\n", state.time, z, state.force[1],
          carried, m * g);
   tirefe_close(tire);
   return 0;

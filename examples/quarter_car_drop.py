@@ -12,27 +12,27 @@ import tirefe
 
 def drop(source="tires.145SR12", steps=1000, m=300.0, c=4000.0, g=9.81, h=1e-3):
     tire = tirefe.Tire(source)
-    y, v, a = 0.0, 0.0, -g  # the spindle: height [m], velocity, acceleration
-    carried = 0.0  # mean of -Fy over the last 20 steps
+    z, v, a = 0.0, 0.0, -g  # the spindle: height z [m], velocity, acceleration
+    carried = 0.0  # mean of Fz over the last 20 steps
     for step in range(steps):
-        y_new = y + h * v + 0.5 * h * h * a  # predictor: the same acceleration
+        z_new = z + h * v + 0.5 * h * h * a  # predictor: the same acceleration
         for _ in range(20):  # corrector
-            a_new = 4.0 / (h * h) * (y_new - y - h * v) - a
+            a_new = 4.0 / (h * h) * (z_new - z - h * v) - a
             v_new = v + 0.5 * h * (a + a_new)
-            force, jacobian = tire.solve(h, 0.0, y_new)
-            # The mass: m a = -c v - m g - Fy (the tire pushes the carrier with -force).
-            residual = m * a_new + c * v_new + m * g + force[1]
+            force, jacobian = tire.solve(h, 0.0, z_new)
+            # The mass: m a = -c v - m g + Fz (the force the tire exerts on the wheel).
+            residual = m * a_new + c * v_new + m * g - force[1]
             if abs(residual) < 1e-8 * m * g:
                 break
-            y_new -= residual / (4.0 * m / (h * h) + 2.0 * c / h + jacobian[1, 1])
+            z_new -= residual / (4.0 * m / (h * h) + 2.0 * c / h - jacobian[1, 1])
         tire.commit()
-        y, v, a = y_new, v_new, a_new
+        z, v, a = z_new, v_new, a_new
         if step >= steps - 20:
-            carried -= force[1] / 20.0
+            carried += force[1] / 20.0
     state = tire.state()
-    return state["time"], y, state["force"][1], carried, m * g
+    return state["time"], z, state["force"][1], carried, m * g
 
 
 if __name__ == "__main__":
-    t, y, fy, carried, weight = drop(*(sys.argv[1:2] or ["tires.145SR12"]), *[int(s) for s in sys.argv[2:3]])
-    print(f"t = {t:.3f} s  y = {y:.6e} m  Fy = {fy:.6e} N  carried {carried:.6e} N (weight {weight:.1f} N)")
+    t, z, fz, carried, weight = drop(*(sys.argv[1:2] or ["tires.145SR12"]), *[int(s) for s in sys.argv[2:3]])
+    print(f"t = {t:.3f} s  z = {z:.6e} m  Fz = {fz:.6e} N  carried {carried:.6e} N (weight {weight:.1f} N)")

@@ -7,12 +7,13 @@
  * the step with tirefe_commit (accepted) or tirefe_revert (rejected). docs/coupling.md
  * has a complete host and what each call costs.
  *
- * Frame, units and signs: the tire's wheel plane, x horizontal, y up, the spin angle and
- * the moment counter-clockwise (about the axis pointing out of the plane towards the
- * viewer); SI units (m, rad, s, N, N m). force = (Fx, Fy, Mz) is the force the host
- * APPLIES TO THE TIRE to hold the spindle where it put it: the tire pushes the host's
- * wheel carrier with minus this force (a tire carrying a load pushes the carrier up, so
- * Fy < 0 then). This is the spindle force of tirefe's C++ TireSpindle, unchanged.
+ * Axes, units and signs: ISO 8855 wheel axes at the wheel centre, as TYDEX and MF-Tyre
+ * use them (docs/output.md, "Axes and signs"): x along the wheel's heading, z up, y the
+ * spin axis (left of the heading); SI units (m, rad, s, N, N m). The motion is
+ * (x, z, spin), the spin angle about y (positive rolling forward); force = (Fx, Fz, My)
+ * is the force and moment THE TIRE EXERTS ON THE WHEEL: a loaded tire gives Fz = +load,
+ * a driving torque Fx > 0. The heading is +x of the tire's plane unless
+ * tirefe_options.heading says -x: a host rolling forward along its own x needs nothing.
  *
  * Errors: every call returns a status; TIREFE_OK is 0. On any other status
  * tirefe_message() says why in one line. No call throws, exits or aborts.
@@ -56,24 +57,26 @@ typedef struct tirefe_options {
   double hht_alpha; /* the tire's time integrator: 0 Newmark average acceleration (default),
                        in [-1/3, 0) HHT-alpha; the host should integrate with the same scheme */
   int free_spin;    /* 1 (default): the wheel turns freely on its bearing (the tire solves the
-                       spin, Mz = 0); 0: the host gives the spin angle and gets the drive torque */
+                       spin, My = 0); 0: the host gives the spin angle and gets the drive torque */
+  int heading;      /* +1 (default): the wheel heads along +x of the tire's plane; -1: along -x */
 } tirefe_options;
 
 /* The spindle at the end of the step to solve: the step h from the committed time and
- * the spindle centre's position and spin angle (absolute, in the tire's frame; the
- * design position of the spindle is (0, 0), its spin 0). spin is ignored when free. */
+ * the wheel centre's position and spin angle in wheel axes (absolute; the design
+ * position of the spindle is x = z = 0, its spin 0). spin is ignored when free. */
 typedef struct tirefe_spindle_motion {
   double time_step; /* h [s] */
-  double x, y;      /* [m] */
-  double spin;      /* [rad] */
+  double x;         /* along the heading [m] */
+  double z;         /* up [m] */
+  double spin;      /* about y, positive rolling forward [rad] */
 } tirefe_spindle_motion;
 
 /* The answer to a solved step. */
 typedef struct tirefe_spindle_force {
-  double force[3];       /* (Fx [N], Fy [N], Mz [N m]): see the sign convention above. With
+  double force[3];       /* {Fx [N], Fz [N], My [N m]} the tire exerts on the wheel (see above). With
                             HHT the trial force is weighted like the tire's equations (docs/spindle.md) */
-  double jacobian[3][3]; /* jacobian[i][j] = d force[i] / d (x, y, spin)[j]; for tirefe_solve_velocity
-                            d force[i] / d (vx, vy, spin rate)[j]. Row and column 2 are zero when free */
+  double jacobian[3][3]; /* jacobian[i][j] = d force[i] / d (x, z, spin)[j]; for tirefe_solve_velocity
+                            d force[i] / d (vx, vz, spin rate)[j]. Row and column 2 are zero when free */
   double time;           /* at the end of the solved step [s] */
   int newton_iterations; /* of the tire, this call */
 } tirefe_spindle_force;
@@ -81,9 +84,9 @@ typedef struct tirefe_spindle_force {
 /* The committed state of the spindle. */
 typedef struct tirefe_spindle_state {
   double time;        /* [s] */
-  double position[3]; /* x [m], y [m], spin [rad] */
-  double velocity[3]; /* [m/s, m/s, rad/s] */
-  double force[3];    /* the physical spindle force at the committed time [N, N, N m] */
+  double position[3]; /* x [m], z [m], spin [rad] in wheel axes */
+  double velocity[3]; /* their rates [m/s, m/s, rad/s] */
+  double force[3];    /* {Fx, Fz, My}: the physical force at the committed time [N, N, N m] */
 } tirefe_spindle_state;
 
 /* "0.1.0 (commit)": the library's version. */
@@ -109,7 +112,8 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
  *     host_tire = { model = model, spindle = tire.spindle }       -- free_spin = false: driven
  * The deck's model then stays alive with the handle, and every committed step is written
  * to its result file like a deck's own step. tirefe_road_level is not available (the
- * deck's surfaces are its own). Errors as for tirefe_open, the deck's messages naming its
+ * deck's surfaces are its own). The wheel axes head as the deck's tire does
+ * (model:tire{ heading }). Errors as for tirefe_open, the deck's messages naming its
  * file and line. */
 tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
                                tirefe_tire** tire, char* error, size_t error_size);
@@ -129,7 +133,7 @@ tirefe_status tirefe_road_level(tirefe_tire* tire, double* level);
  * it as often as the host's corrector needs within one step. */
 tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motion, tirefe_spindle_force* out);
 
-/* The same with the spindle's velocities at the end of the step given (vx, vy [m/s],
+/* The same with the spindle's velocities at the end of the step given (vx, vz [m/s],
  * spin rate [rad/s]); the positions follow from the tire's Newmark formulas, and the
  * Jacobian is with respect to the velocities (H beta h / gamma). */
 tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
@@ -147,8 +151,8 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state);
 /* The tire's static vertical force-deflection curve on a flat frictionless road: the
  * tire of 'source' and 'overrides' (as for tirefe_open) inflated on its held hub, then
  * its spindle pressed quasi-statically to each of 'deflections' [m] (below first touch,
- * in this order) in turn. forces[i] is the vertical spindle force Fy applied to the tire
- * there [N] (negative: the road pushes the tire up). No handle: nothing is kept. */
+ * in this order) in turn. forces[i] is the vertical force Fz the tire exerts on the wheel
+ * there [N] (positive: the tire carries the wheel). No handle: nothing is kept. */
 tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
                                    const double* deflections, size_t n, double* forces, char* error,
                                    size_t error_size);

@@ -20,9 +20,9 @@ int main(int argc, char** argv) {
     return 1;
   }
   tirefe_spindle_force reply;
-  const tirefe_spindle_motion trial = {1e-3, 0.0, -0.012 - 1e-4, 0.0};
+  const tirefe_spindle_motion trial = {1e-3, 0.0, -0.012 - 1e-4, 0.0}; /* x, z, spin */
   if (tirefe_solve(tire, &trial, &reply) != TIREFE_OK) return 1;
-  printf("host fy %.17g\n", reply.force[1]);
+  printf("host fz %.17g\n", reply.force[1]);
   for (int step = 0; step < 5; ++step)
     if (tirefe_solve(tire, &trial, &reply) != TIREFE_OK || tirefe_commit(tire) != TIREFE_OK) return 1;
   tirefe_spindle_state state;

@@ -2,7 +2,10 @@
  * drives it through the FMI 2.0 functions only. It presses the spindle 5 mm onto the
  * road as tests/install/press_tire.c does through the C API (pressure 180 kPa), saving
  * the FMU state half-way, and prints
- *   Fy, H_yy      the force and fmi2GetDirectionalDerivative dFy/dy after the press
+ *   Fz, H_zz      the vertical force the tire exerts on the wheel and
+ *                 fmi2GetDirectionalDerivative dFz/dz after the press (ISO wheel axes)
+ *   H_zz_fd       dFz/dz of the last step by central differences (the step repeated
+ *                 from a saved FMU state with z moved up and down 1e-7 m)
  *   repeat        1 if restoring the saved state and stepping again gives the same bits
  *   discard       1 if an impossible step is discarded and the FMU stays where it was
  * Exits 1 when a call fails unexpectedly.
@@ -96,7 +99,7 @@ int main(int argc, char** argv) {
   }
   const fmi2CallbackFunctions callbacks = {logger, calloc, free, NULL, NULL};
   fmi2Component tire = fmi2Instantiate("tire", fmi2CoSimulation, guid, resources, &callbacks, fmi2False, fmi2False);
-  const fmi2ValueReference x_y_spin[] = {0, 1, 2}, fx_fy_mz[] = {3, 4, 5}, pressure[] = {10};
+  const fmi2ValueReference x_z_spin[] = {0, 1, 2}, fx_fz_my[] = {3, 4, 5}, pressure[] = {10};
   const fmi2Real kilopascals_180[] = {180e3};
   if (!tire || fmi2SetupExperiment(tire, fmi2False, 0.0, 0.0, fmi2False, 0.0) != fmi2OK ||
       fmi2SetReal(tire, pressure, 1, kilopascals_180) != fmi2OK || fmi2EnterInitializationMode(tire) != fmi2OK ||
@@ -107,22 +110,35 @@ int main(int argc, char** argv) {
 
   const double h = 1e-3;
   double t = 0.0, force[3], saved_force[3] = {0};
-  fmi2FMUstate saved = NULL;
+  fmi2FMUstate saved = NULL, before_last = NULL;
   for (int step = 1; step <= 120; ++step) {
     const double s = step < 100 ? step / 100.0 : 1.0;
     const fmi2Real motion[3] = {0.0, -0.005 * s * s * (3.0 - 2.0 * s), 0.0};
     if (step == 61 && fmi2GetFMUstate(tire, &saved) != fmi2OK) return 1;
-    if (fmi2SetReal(tire, x_y_spin, 3, motion) != fmi2OK || fmi2DoStep(tire, t, h, fmi2True) != fmi2OK) {
+    if (step == 120 && fmi2GetFMUstate(tire, &before_last) != fmi2OK) return 1;
+    if (fmi2SetReal(tire, x_z_spin, 3, motion) != fmi2OK || fmi2DoStep(tire, t, h, fmi2True) != fmi2OK) {
       fprintf(stderr, "fmu_host: step %d failed\n", step);
       return 1;
     }
     t += h;
   }
-  fmi2GetReal(tire, fx_fy_mz, 3, force);
-  const fmi2ValueReference fy[] = {4}, y[] = {1};
+  fmi2GetReal(tire, fx_fz_my, 3, force);
+  const fmi2ValueReference fz[] = {4}, z[] = {1};
   const fmi2Real unit[] = {1.0};
-  fmi2Real h_yy = 0.0;
-  if (fmi2GetDirectionalDerivative(tire, fy, 1, y, 1, unit, &h_yy) != fmi2OK) return 1;
+  fmi2Real h_zz = 0.0;
+  if (fmi2GetDirectionalDerivative(tire, fz, 1, z, 1, unit, &h_zz) != fmi2OK) return 1;
+
+  /* The last step again from its start with z moved by +-dz: dFz/dz by differences. */
+  const double dz = 1e-7;
+  fmi2Real fz_moved[2];
+  for (int side = 0; side < 2; ++side) {
+    const fmi2Real moved[3] = {0.0, -0.005 + (side == 0 ? dz : -dz), 0.0};
+    if (fmi2SetFMUstate(tire, before_last) != fmi2OK || fmi2SetReal(tire, x_z_spin, 3, moved) != fmi2OK ||
+        fmi2DoStep(tire, t - h, h, fmi2True) != fmi2OK || fmi2GetReal(tire, fz, 1, &fz_moved[side]) != fmi2OK)
+      return 1;
+  }
+  fmi2FreeFMUstate(tire, &before_last);
+  const double h_zz_fd = (fz_moved[0] - fz_moved[1]) / (2.0 * dz);
 
   /* Back to step 61 and the same steps again. */
   if (fmi2SetFMUstate(tire, saved) != fmi2OK) return 1;
@@ -130,23 +146,24 @@ int main(int argc, char** argv) {
   for (int step = 61; step <= 120; ++step) {
     const double s = step < 100 ? step / 100.0 : 1.0;
     const fmi2Real motion[3] = {0.0, -0.005 * s * s * (3.0 - 2.0 * s), 0.0};
-    if (fmi2SetReal(tire, x_y_spin, 3, motion) != fmi2OK || fmi2DoStep(tire, t, h, fmi2True) != fmi2OK) return 1;
+    if (fmi2SetReal(tire, x_z_spin, 3, motion) != fmi2OK || fmi2DoStep(tire, t, h, fmi2True) != fmi2OK) return 1;
     t += h;
   }
-  fmi2GetReal(tire, fx_fy_mz, 3, saved_force);
+  fmi2GetReal(tire, fx_fz_my, 3, saved_force);
   fmi2FreeFMUstate(tire, &saved);
   const int repeat = memcmp(force, saved_force, sizeof force) == 0;
 
   /* Through the rim in one step: discarded, and the FMU stays at its last time and force. */
   const fmi2Real crush[3] = {0.0, -0.4, 0.0};
-  fmi2SetReal(tire, x_y_spin, 3, crush);
+  fmi2SetReal(tire, x_z_spin, 3, crush);
   const fmi2Status crushed = fmi2DoStep(tire, t, h, fmi2True);
   fmi2Real last_time = -1.0, after[3];
   fmi2GetRealStatus(tire, fmi2LastSuccessfulTime, &last_time);
-  fmi2GetReal(tire, fx_fy_mz, 3, after);
+  fmi2GetReal(tire, fx_fz_my, 3, after);
   const int discard = crushed == fmi2Discard && last_time == t && memcmp(after, force, sizeof force) == 0;
 
-  printf("Fy %.17g\nH_yy %.17g\nrepeat %d\ndiscard %d\n", force[1], h_yy, repeat, discard);
+  printf("Fz %.17g\nH_zz %.17g\nH_zz_fd %.17g\nrepeat %d\ndiscard %d\n", force[1], h_zz, h_zz_fd, repeat,
+         discard);
   fmi2Terminate(tire);
   fmi2FreeInstance(tire);
   dlclose(library);

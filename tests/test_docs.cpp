@@ -91,8 +91,9 @@ TEST_CASE("every repository path that the docs and the README name exists", "[do
 
 // A fenced block whose info string says "source=PATH" quotes a file of the repository
 // that the suite builds and runs (examples/): the quote must be that file, verbatim.
-TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs]") {
-  std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/docs/coupling.md");
+// Returns how many blocks 'doc' quotes.
+static int check_quoted_sources(const std::string& doc) {
+  std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/" + doc);
   REQUIRE(in.good());
   int quoted = 0;
   std::string line, source, text;
@@ -109,11 +110,19 @@ TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs
       text.clear();
     } else if (!source.empty()) {
       std::ifstream file(std::string(TIREFE_SOURCE_DIR) + "/" + source);
-      INFO("docs/coupling.md quotes " << source << " (block ending at line " << number << ")");
+      INFO(doc << " quotes " << source << " (block ending at line " << number << ")");
       REQUIRE(file.good());
       CHECK(text == std::string((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>()));
       ++quoted;
     }
   }
-  CHECK(quoted == 4);  // the consumer project, the C and Python quarter cars, the k_sw fit
+  return quoted;
+}
+
+TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs]") {
+  CHECK(check_quoted_sources("docs/coupling.md") == 4);  // the consumer project, the C and Python quarter cars, the k_sw fit
+}
+
+TEST_CASE("the C++ host quoted in docs/spindle.md is the built and tested file", "[docs]") {
+  CHECK(check_quoted_sources("docs/spindle.md") == 1);  // examples/spindle_host.cpp
 }

@@ -24,7 +24,7 @@ def run(command, env=None, check=True):
 
 
 def forces(output):
-    """{'Fy': ..., 'H_yy': ...} from press_tire's output."""
+    """{'Fz': ..., 'H_zz': ...} from press_tire's output."""
     return {key: float(value) for key, value in (line.split() for line in output.splitlines())}
 
 
@@ -100,7 +100,7 @@ def test_python_module(folder):
               "    s = min(k / 100.0, 1.0)\n"
               "    f, j = t.solve(1e-3, 0.0, -0.005 * s * s * (3 - 2 * s))\n"
               "    t.commit()\n"
-              "print(f'Fy {f[1]!r}\\nH_yy {j[1, 1]!r}')\n")
+              "print(f'Fz {f[1]!r}\\nH_zz {j[1, 1]!r}')\n")
     check_same(run(["/usr/bin/python3", "-c", script], env=env).stdout, reference())
 
 

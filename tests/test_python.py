@@ -41,7 +41,8 @@ def test_tire_class(folder):
         force, jacobian = tire.solve(1e-3, 0.0, -0.25e-3 * step)
         tire.commit()
     assert force.shape == (3,) and jacobian.shape == (3, 3)
-    assert jacobian[1, 1] > 0 and jacobian[2, 2] == 0.0  # free spin: no spin row or column
+    # ISO wheel axes: lifting the wheel unloads the tire (dFz/dz < 0); free spin: no spin row or column.
+    assert jacobian[1, 1] < 0 and jacobian[2, 2] == 0.0, jacobian
     before = tire.state()
     down, _ = tire.solve(1e-3, 0.0, -2.2e-3)
     tire.solve(1e-3, 0.0, -1.8e-3)
@@ -82,6 +83,31 @@ def test_run_deck(folder):
         assert results["/history/time"][-1] > 1.5
     bad = tirefe.run_deck(deck, {"no_such_parameter": 1}, os.path.join(folder, "out"))
     assert bad["status"] == 1 and "no_such_parameter" in bad["error"], bad
+
+
+def test_headings_alike(folder):
+    """A driven wheel heading -x of the tire's plane, pressed and pushed along its heading,
+    feels what one heading +x feels (the tire is mirror-symmetric): numpy arrays in ISO
+    wheel axes whatever the heading, to 1e-9."""
+    tirefe = module()
+    replies = []
+    for heading in ("+x", "-x"):
+        tire = tirefe.Tire("tires.145SR12", free_spin=False, heading=heading)
+        for step in range(1, 7):
+            tire.solve(0.05, 0.0, -0.5e-3 * min(step, 4))
+            tire.commit()
+        force, jacobian = tire.solve(0.05, 2e-4, -2.2e-3, 0.0)
+        assert force[0] < 0 and force[1] > 0, force  # pushed ahead against friction; carrying the wheel
+        replies.append((force, jacobian, tire.state()))
+    (plus, plus_jacobian, plus_state), (minus, minus_jacobian, minus_state) = replies
+    assert np.allclose(minus, plus, rtol=0, atol=1e-9 * plus[1]), (plus, minus)
+    assert np.allclose(minus_jacobian, plus_jacobian, rtol=0, atol=1e-9 * abs(plus_jacobian[1, 1]))
+    assert np.allclose(minus_state["position"], [0.0, -2e-3, 0.0], rtol=0, atol=1e-12), minus_state
+    try:
+        tirefe.Tire("tires.145SR12", heading="forward")
+        raise AssertionError("a heading other than +x or -x was taken")
+    except ValueError as error:
+        assert '"+x" or "-x"' in str(error), error
 
 
 def test_ksw_fit_as_in_cpp(folder):

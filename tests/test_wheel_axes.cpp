@@ -33,6 +33,26 @@ TEST_CASE("wheel axes: forces the tire exerts on the wheel from the spindle's re
   CHECK_FALSE(parse_heading("forward", parsed));
 }
 
+TEST_CASE("wheel axes: motions and the Jacobian of the force in wheel axes", "[wheel_axes]") {
+  for (const Heading heading : {Heading::PlusX, Heading::MinusX}) {
+    const double h = heading_sign(heading);
+    // Forward along the heading, up, and turned forward (clockwise seen heading +x).
+    const Eigen::Vector3d wheel(0.3, -0.02, 1.5);
+    CHECK(plane_motion(wheel, heading).isApprox(Eigen::Vector3d(h * 0.3, -0.02, -h * 1.5)));
+    CHECK(plane_motion(plane_motion(wheel, heading), heading) == wheel);  // its own inverse
+    // A reaction linear in the plane's motion, R = A q: the force in wheel axes is then
+    // linear in the wheel motion, and its matrix is wheel_load_jacobian(A), column by column.
+    Eigen::Matrix3d A;
+    A << 1.0, 2.0, 3.0, -4.0, 5.0, -6.0, 7.0, -8.0, 9.0;
+    const Eigen::Matrix3d J = wheel_load_jacobian(A, heading);
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Vector3d unit = Eigen::Vector3d::Unit(j);
+      const Eigen::Vector3d column = wheel_load_from_reaction(A * plane_motion(unit, heading), heading);
+      CHECK((J.col(j) - column).norm() == 0.0);
+    }
+  }
+}
+
 namespace {
 
 // Two small tires, one per heading, pressed 20 mm onto a flat road with friction and then

@@ -5,7 +5,7 @@
 // same machine load. Prints the time per step of each, the differences (median over the
 // steps and from the totals), and the cost of a C call that does no work (the lock and
 // the guard). The C++ and C tires are the same code in libtirefe.so and must agree bit
-// for bit; the FMU's (its own copy of the code, its tire read from its property file) is
+// for bit, the C++ reaction seen in the C API's ISO wheel axes (heading +x); the FMU's (its own copy of the code, its tire read from its property file) is
 // compared too.
 //
 //   bench_capi_step [STEPS]      (default 400)
@@ -21,6 +21,7 @@
 
 #include "fmu/fmi2.h"
 #include "macros/macro_table.hpp"
+#include "tire/wheel_axes.hpp"
 #include "tirefe.h"
 #include "vehicle/tire_on_road.hpp"
 
@@ -60,14 +61,14 @@ class FmuTire {
     free_(component_);
     dlclose(library_);
   }
-  /// One communication step to the spindle position; the force out.
-  void step(const tirefe::SpindleInput& input, double force[3]) {
+  /// One communication step to the wheel position (x, z, spin); the force (Fx, Fz, My) out.
+  void step(double time_step, const Eigen::Vector3d& wheel, double force[3]) {
     static const fmi2ValueReference inputs[] = {0, 1, 2}, outputs[] = {3, 4, 5};
-    const fmi2Real position[] = {input.x, input.y, input.spin};
-    if (set_real_(component_, inputs, 3, position) != fmi2OK || do_step_(component_, time_, input.time_step, fmi2True) != fmi2OK ||
+    const fmi2Real position[] = {wheel.x(), wheel.y(), wheel.z()};
+    if (set_real_(component_, inputs, 3, position) != fmi2OK || do_step_(component_, time_, time_step, fmi2True) != fmi2OK ||
         get_real_(component_, outputs, 3, force) != fmi2OK)
       throw std::runtime_error("an FMU step failed");
-    time_ += input.time_step;
+    time_ += time_step;
   }
 
  private:
@@ -114,6 +115,7 @@ int main(int argc, char** argv) {
   int mismatches = 0, fmu_mismatches = 0;
   for (int k = 1; k <= steps; ++k) {
     const SpindleInput input = motion(k, h);
+    const Eigen::Vector3d wheel = plane_motion(Eigen::Vector3d(input.x, input.y, input.spin), Heading::PlusX);
     SpindleReply reply;
     tirefe_spindle_force c_reply;
     double fmu_force[3];
@@ -123,11 +125,11 @@ int main(int argc, char** argv) {
       spindle.commit();
     };
     auto c_step = [&] {
-      const tirefe_spindle_motion c_motion{input.time_step, input.x, input.y, input.spin};
+      const tirefe_spindle_motion c_motion{input.time_step, wheel.x(), wheel.y(), wheel.z()};
       if (tirefe_solve(c_tire, &c_motion, &c_reply) != TIREFE_OK || tirefe_commit(c_tire) != TIREFE_OK)
         throw std::runtime_error(tirefe_message(c_tire));
     };
-    auto fmu_step = [&] { fmu_tire.step(input, fmu_force); };
+    auto fmu_step = [&] { fmu_tire.step(input.time_step, wheel, fmu_force); };
     // Each goes first, second and third in turn: the one after the others finds the caches cold.
     const std::function<void()> runs[3] = {cpp_step, c_step, fmu_step};
     for (int turn = 0; turn < 3; ++turn) {
@@ -136,9 +138,10 @@ int main(int argc, char** argv) {
       runs[which]();
       elapsed[which] = microseconds(Clock::now() - start);
     }
-    mismatches += reply.force[0] != c_reply.force[0] || reply.force[1] != c_reply.force[1] ||
-                  reply.jacobian[1][1] != c_reply.jacobian[1][1];
-    fmu_mismatches += reply.force[0] != fmu_force[0] || reply.force[1] != fmu_force[1];
+    const Eigen::Vector3d load = wheel_load_from_reaction(force_of(reply), Heading::PlusX);
+    const double stiffness = wheel_load_jacobian(jacobian_of(reply), Heading::PlusX)(1, 1);
+    mismatches += load[0] != c_reply.force[0] || load[1] != c_reply.force[1] || stiffness != c_reply.jacobian[1][1];
+    fmu_mismatches += load[0] != fmu_force[0] || load[1] != fmu_force[1];
     cpp_times.push_back(elapsed[0]);
     c_times.push_back(elapsed[1]);
     fmu_times.push_back(elapsed[2]);

@@ -16,6 +16,7 @@
 #include "macros/deck_model.hpp"
 #include "macros/lua_module_dir.hpp"
 #include "macros/macro_table.hpp"
+#include "tire/wheel_axes.hpp"
 #include "tirefe/version.hpp"
 #include "vehicle/tire_on_road.hpp"
 
@@ -35,6 +36,7 @@ struct tirefe_tire {
   tirefe::Analysis* analysis = nullptr;
   int spindle_node = -1;
   tirefe::TireSpindle* spindle = nullptr;
+  tirefe::Heading heading = tirefe::Heading::PlusX;  // of the wheel axes every value crosses the API in
   bool has_trial = false;  // a solved step waits for commit or revert
   std::string message;
 };
@@ -117,6 +119,8 @@ std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<Par
                                        const tirefe_options& options) {
   if (!(options.friction >= 0.0 && std::isfinite(options.friction)))
     throw std::invalid_argument("options.friction must be a finite number >= 0");
+  if (options.heading != 1 && options.heading != -1)
+    throw std::invalid_argument("options.heading must be +1 (along +x) or -1 (along -x)");
   const TireParameters parameters = macros::load_tire_parameters(source, overrides);
   auto handle = std::make_unique<tirefe_tire>();
   handle->tire = std::make_unique<TireOnRoad>(parameters, flat_road(), RoadContact{options.friction});
@@ -124,6 +128,7 @@ std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<Par
   handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
   handle->analysis = &handle->tire->analysis();
   handle->spindle_node = handle->tire->tire().spindle;
+  handle->heading = options.heading == 1 ? Heading::PlusX : Heading::MinusX;
   return handle;
 }
 
@@ -132,6 +137,7 @@ struct HostTire {
   macros::DeckModel* deck = nullptr;
   int node = -1;
   bool free_spin = true;
+  Heading heading = Heading::PlusX;
 };
 
 int read_host_tire(lua_State* L) {
@@ -143,6 +149,7 @@ int read_host_tire(lua_State* L) {
   lua_getfield(L, -2, "spindle");
   if (!lua_isinteger(L, -1)) throw ModelError("host_tire.spindle must be the tire's spindle node (tire.spindle)");
   host->node = macros::deck_node(*host->deck, lua_tointeger(L, -1));
+  host->heading = host->deck->wheel_heading(host->node);
   lua_getfield(L, -3, "free_spin");
   host->free_spin = lua_isnil(L, -1) || lua_toboolean(L, -1);
   return 0;
@@ -171,16 +178,20 @@ std::unique_ptr<tirefe_tire> open_deck(const std::string& deck, const std::map<s
   }
   handle->analysis = &host.deck->analysis();
   handle->spindle_node = host.node;
+  handle->heading = host.heading;
   handle->deck_spindle =
       std::make_unique<TireSpindle>(*handle->analysis, host.node, host.free_spin ? SpinMode::Free : SpinMode::Driven);
   handle->spindle = handle->deck_spindle.get();
   return handle;
 }
 
-void copy_reply(const SpindleReply& reply, double jacobian_scale, tirefe_spindle_force& out) {
+/// The reply in wheel axes: the force the tire exerts on the wheel and its Jacobian.
+void copy_reply(const SpindleReply& reply, Heading heading, double jacobian_scale, tirefe_spindle_force& out) {
+  const Eigen::Vector3d force = wheel_load_from_reaction(force_of(reply), heading);
+  const Eigen::Matrix3d jacobian = wheel_load_jacobian(jacobian_of(reply), heading) * jacobian_scale;
   for (int i = 0; i < 3; ++i) {
-    out.force[i] = reply.force[i];
-    for (int j = 0; j < 3; ++j) out.jacobian[i][j] = reply.jacobian[i][j] * jacobian_scale;
+    out.force[i] = force[i];
+    for (int j = 0; j < 3; ++j) out.jacobian[i][j] = jacobian(i, j);
   }
   out.time = reply.time;
   out.newton_iterations = reply.newton_iterations;
@@ -197,12 +208,12 @@ tirefe_status solve(tirefe_tire& tire, const SpindleInput& input, double jacobia
   if (!(input.time_step > 0.0 && std::isfinite(input.time_step)))
     return refuse(tire, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
   tire.has_trial = false;
-  copy_reply(tire.spindle->solve_step(input), jacobian_scale, out);
+  copy_reply(tire.spindle->solve_step(input), tire.heading, jacobian_scale, out);
   tire.has_trial = true;
   return TIREFE_OK;
 }
 
-/// Committed displacement, velocity and acceleration of the spindle's DOF c.
+/// Committed displacement, velocity and acceleration of the spindle's DOF c of the plane.
 struct DofState {
   double u, v, a;
 };
@@ -226,6 +237,7 @@ void tirefe_default_options(tirefe_options* options) {
   options->friction = 0.8;
   options->hht_alpha = 0.0;
   options->free_spin = 1;
+  options->heading = 1;
 }
 
 tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,
@@ -268,7 +280,10 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
       if (!std::isfinite(deflections[i])) throw std::invalid_argument("the deflections must be finite");
     TireOnRoad tire(macros::load_tire_parameters(source, parameter_values(overrides, count)), flat_road(),
                     RoadContact{0.0});
-    for (size_t i = 0; i < n; ++i) forces[i] = tire.press(deflections[i]);
+    for (size_t i = 0; i < n; ++i) {
+      const double reaction_y = tire.press(deflections[i]);
+      forces[i] = wheel_load_from_reaction(Eigen::Vector3d(0.0, reaction_y, 0.0), Heading::PlusX).y();
+    }
     copy_message("", error, error_size);
     return TIREFE_OK;
   } catch (const std::invalid_argument& invalid) {
@@ -336,9 +351,10 @@ tirefe_status tirefe_road_level(tirefe_tire* tire, double* level) {
 tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motion, tirefe_spindle_force* out) {
   return guarded(tire, [&](tirefe_tire& t) {
     if (!motion || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "motion and out must not be NULL");
-    const double values[] = {motion->x, motion->y, motion->spin};
+    const double values[] = {motion->x, motion->z, motion->spin};
     if (!finite(values, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle motion must be finite");
-    return solve(t, SpindleInput{motion->time_step, motion->x, motion->y, motion->spin}, 1.0, *out);
+    const Eigen::Vector3d plane = plane_motion(Eigen::Vector3d(values), t.heading);
+    return solve(t, SpindleInput{motion->time_step, plane.x(), plane.y(), plane.z()}, 1.0, *out);
   });
 }
 
@@ -353,10 +369,11 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
     const Integrator& integrator = t.analysis->integrator();
     const double h = time_step, beta = integrator.beta(), gamma = integrator.gamma();
     const Eigen::Vector2d& reference = t.analysis->model().mesh().position(t.spindle_node);
+    const Eigen::Vector3d plane_velocity = plane_motion(Eigen::Vector3d(velocity), t.heading);
     double position[3];
     for (int c = 0; c < 3; ++c) {
       const DofState now = committed_dof(t, c);
-      const double a = (velocity[c] - now.v - h * (1.0 - gamma) * now.a) / (gamma * h);
+      const double a = (plane_velocity[c] - now.v - h * (1.0 - gamma) * now.a) / (gamma * h);
       position[c] = now.u + h * now.v + h * h * ((0.5 - beta) * now.a + beta * a);
     }
     const SpindleInput input{h, reference.x() + position[0], reference.y() + position[1], position[2]};
@@ -384,12 +401,14 @@ tirefe_status tirefe_revert(tirefe_tire* tire) {
 tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
   return guarded(tire, [&](tirefe_tire& t) {
     if (!state) return refuse(t, TIREFE_INVALID_ARGUMENT, "state must not be NULL");
-    const Eigen::Vector3d position = t.spindle->committed_position();
-    const Eigen::Vector3d force = t.spindle->committed_force();
+    const Eigen::Vector3d position = plane_motion(t.spindle->committed_position(), t.heading);
+    const Eigen::Vector3d velocity(committed_dof(t, 0).v, committed_dof(t, 1).v, committed_dof(t, 2).v);
+    const Eigen::Vector3d wheel_velocity = plane_motion(velocity, t.heading);
+    const Eigen::Vector3d force = wheel_load_from_reaction(t.spindle->committed_force(), t.heading);
     state->time = t.spindle->time();
     for (int c = 0; c < 3; ++c) {
       state->position[c] = position[c];
-      state->velocity[c] = committed_dof(t, c).v;
+      state->velocity[c] = wheel_velocity[c];
       state->force[c] = force[c];
     }
     return TIREFE_OK;

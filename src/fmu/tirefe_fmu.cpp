@@ -1,6 +1,7 @@
 // tirefe_tire.fmu: the tire behind its spindle as an FMI 2.0 co-simulation FMU, over the
-// C API (include/tirefe.h). Inputs: the spindle's x, y and spin at the end of the step;
-// outputs: the spindle force; parameters: the tire's pressure and k_sw, the road
+// C API (include/tirefe.h). Inputs: the spindle's x, z and spin at the end of the step;
+// outputs: the force the tire exerts on the wheel (Fx, Fz, My), both in the C API's ISO
+// 8855 wheel axes heading +x; parameters: the tire's pressure and k_sw, the road
 // friction, the integrator's HHT alpha and whether the spin is free. fmi2DoStep is a solve
 // and a commit; a step that does not converge is discarded (the tire stays at the last
 // communication point); FMU states are tirefe_save_state copies; the directional
@@ -20,8 +21,8 @@ namespace {
 
 // Value references: as in modelDescription.xml (cmake/modelDescription.xml.in).
 enum Reference : fmi2ValueReference {
-  kX = 0, kY = 1, kSpin = 2,                      // inputs [m, m, rad]
-  kFx = 3, kFy = 4, kMz = 5,                      // outputs [N, N, N m]
+  kX = 0, kZ = 1, kSpin = 2,                      // inputs [m, m, rad]
+  kFx = 3, kFz = 4, kMy = 5,                      // outputs [N, N, N m]
   kPressure = 10, kKsw = 11, kFriction = 12, kHhtAlpha = 13,  // Real parameters
   kFreeSpin = 14                                  // Boolean parameter
 };
@@ -87,8 +88,8 @@ fmi2Status open_tire(Instance& instance) {
 
 double* real_variable(Instance& instance, fmi2ValueReference reference) {
   switch (reference) {
-    case kX: case kY: case kSpin: return &instance.now.input[reference - kX];
-    case kFx: case kFy: case kMz: return &instance.now.force[reference - kFx];
+    case kX: case kZ: case kSpin: return &instance.now.input[reference - kX];
+    case kFx: case kFz: case kMy: return &instance.now.force[reference - kFx];
     case kPressure: return &instance.pressure;
     case kKsw: return &instance.k_sw;
     case kFriction: return &instance.options.friction;
@@ -172,7 +173,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
   Instance& instance = *instance_of(c);
   for (size_t i = 0; i < nvr; ++i) {
     double* variable = real_variable(instance, vr[i]);
-    if (!variable || (vr[i] >= kFx && vr[i] <= kMz))
+    if (!variable || (vr[i] >= kFx && vr[i] <= kMy))
       return report(instance, fmi2Error, "no settable Real with value reference " + std::to_string(vr[i]));
     if (is_parameter(vr[i]) && instance.phase == Phase::Stepping)
       return report(instance, fmi2Error, "the tire's parameters are fixed once it is initialized");
@@ -268,11 +269,11 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
   Instance& instance = *instance_of(c);
   for (size_t i = 0; i < nUnknown; ++i) {
-    if (vUnknown_ref[i] < kFx || vUnknown_ref[i] > kMz)
-      return report(instance, fmi2Error, "derivatives are of the outputs Fx, Fy, Mz only");
+    if (vUnknown_ref[i] < kFx || vUnknown_ref[i] > kMy)
+      return report(instance, fmi2Error, "derivatives are of the outputs Fx, Fz, My only");
     dvUnknown[i] = 0.0;
     for (size_t j = 0; j < nKnown; ++j) {
-      if (vKnown_ref[j] > kSpin) return report(instance, fmi2Error, "derivatives are with respect to x, y, spin only");
+      if (vKnown_ref[j] > kSpin) return report(instance, fmi2Error, "derivatives are with respect to x, z, spin only");
       dvUnknown[i] += instance.now.jacobian[vUnknown_ref[i] - kFx][vKnown_ref[j] - kX] * dvKnown[j];
     }
   }

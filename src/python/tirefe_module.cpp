@@ -34,7 +34,7 @@ void raise_on_failure(tirefe_status status, const char* message) {
 class Tire {
  public:
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
-       bool free_spin) {
+       bool free_spin, const std::string& heading) {
     std::vector<tirefe_parameter> overrides;
     for (const auto& [name, value] : parameters) overrides.push_back({name.c_str(), value});
     tirefe_options options;
@@ -42,6 +42,8 @@ class Tire {
     options.friction = friction;
     options.hht_alpha = hht_alpha;
     options.free_spin = free_spin ? 1 : 0;
+    if (heading != "+x" && heading != "-x") throw py::value_error("heading must be \"+x\" or \"-x\", not \"" + heading + "\"");
+    options.heading = heading == "+x" ? 1 : -1;
     char error[512] = "";
     raise_on_failure(tirefe_open(source.c_str(), overrides.data(), overrides.size(), &options, &tire_, error,
                                  sizeof error),
@@ -51,8 +53,8 @@ class Tire {
   Tire(const Tire&) = delete;
   Tire& operator=(const Tire&) = delete;
 
-  py::tuple solve(double time_step, double x, double y, double spin) {
-    const tirefe_spindle_motion motion{time_step, x, y, spin};
+  py::tuple solve(double time_step, double x, double z, double spin) {
+    const tirefe_spindle_motion motion{time_step, x, z, spin};
     tirefe_spindle_force out;
     tirefe_status status;
     {
@@ -62,8 +64,8 @@ class Tire {
     raise_on_failure(status, tirefe_message(tire_));
     return reply(out);
   }
-  py::tuple solve_velocity(double time_step, double vx, double vy, double spin_rate) {
-    const double velocity[3] = {vx, vy, spin_rate};
+  py::tuple solve_velocity(double time_step, double vx, double vz, double spin_rate) {
+    const double velocity[3] = {vx, vz, spin_rate};
     tirefe_spindle_force out;
     tirefe_status status;
     {
@@ -107,7 +109,7 @@ class Tire {
   tirefe_tire* tire_ = nullptr;
 };
 
-/// tirefe_static_forces: Fy [N] at each deflection [m] of a quasi-static press.
+/// tirefe_static_forces: Fz [N] at each deflection [m] of a quasi-static press.
 py::array_t<double> static_forces(const std::string& source, const std::map<std::string, double>& parameters,
                                   const std::vector<double>& deflections) {
   std::vector<tirefe_parameter> overrides;
@@ -163,19 +165,22 @@ PYBIND11_MODULE(tirefe, module) {
              "the exit status of `tirefe`, its error text, and the result files (.h5) written.");
 
   module.def("static_forces", &static_forces, py::arg("source"), py::arg("parameters"), py::arg("deflections"),
-             "The tire's static vertical curve on a flat frictionless road: Fy [N] applied to the tire at each "
-             "spindle deflection [m] below first touch (negative when pressed).");
+             "The tire's static vertical curve on a flat frictionless road: Fz [N] the tire exerts on the wheel at "
+             "each spindle deflection [m] below first touch (positive when pressed).");
 
   py::class_<Tire>(module, "Tire",
-                   "A tire on a flat road driven through its spindle (the C API's tirefe_open). Forces are applied "
-                   "to the tire at the spindle (Fx, Fy, Mz) [N, N, N m]; the tire pushes the host with minus them.")
-      .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool>(),
+                   "A tire on a flat road driven through its spindle (the C API's tirefe_open), in ISO 8855 wheel "
+                   "axes (x the heading, z up, y the spin axis): motions (x, z, spin) [m, m, rad], forces (Fx, Fz, "
+                   "My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz > 0).")
+      .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool,
+                    const std::string&>(),
            py::arg("source") = "tires.145SR12", py::arg("parameters") = std::map<std::string, double>{},
-           py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true)
-      .def("solve", &Tire::solve, py::arg("time_step"), py::arg("x"), py::arg("y"), py::arg("spin") = 0.0,
-           "Trial step to the spindle position: (force[3], jacobian[3, 3]) with jacobian[i, j] = d force_i / d "
-           "(x, y, spin)_j.")
-      .def("solve_velocity", &Tire::solve_velocity, py::arg("time_step"), py::arg("vx"), py::arg("vy"),
+           py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true,
+           py::arg("heading") = "+x")
+      .def("solve", &Tire::solve, py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
+           "Trial step to the wheel centre's position: (force[3], jacobian[3, 3]) with jacobian[i, j] = d force_i / d "
+           "(x, z, spin)_j.")
+      .def("solve_velocity", &Tire::solve_velocity, py::arg("time_step"), py::arg("vx"), py::arg("vz"),
            py::arg("spin_rate") = 0.0, "Trial step to the end-of-step spindle velocities; the Jacobian is d force / d v.")
       .def("commit", &Tire::commit, "Accepts the last trial step.")
       .def("revert", &Tire::revert, "Forgets the last trial step.")

@@ -44,4 +44,21 @@ inline Eigen::Vector3d wheel_load_from_reaction(const Eigen::Vector3d& reaction,
 /// Spin rate about y_ISO [rad/s] (positive rolling forward) from d(theta_z)/dt.
 inline double wheel_spin_rate(double theta_z_rate, Heading heading) { return -heading_sign(heading) * theta_z_rate; }
 
+/// A spindle motion (x [m] along the heading, z [m] up, spin [rad] about y_ISO), or its
+/// rates, as the plane's (x, y, theta_z): (h x, z, -h spin). The map is its own inverse,
+/// so it also gives the wheel-axes motion of a plane one.
+inline Eigen::Vector3d plane_motion(const Eigen::Vector3d& motion, Heading heading) {
+  const double h = heading_sign(heading);
+  return {h * motion.x(), motion.y(), -h * motion.z()};
+}
+
+/// d(Fx, Fz, My)/d(x, z, spin) in wheel axes from the plane's d(R_x, R_y, M_z)/d(x, y,
+/// theta_z): T_F J T_q with the diagonal signs of wheel_load_from_reaction (T_F) and
+/// plane_motion (T_q).
+inline Eigen::Matrix3d wheel_load_jacobian(const Eigen::Matrix3d& reaction_jacobian, Heading heading) {
+  const double h = heading_sign(heading);
+  const Eigen::Vector3d load_signs(-h, -1.0, h), motion_signs(h, 1.0, -h);
+  return load_signs.asDiagonal() * reaction_jacobian * motion_signs.asDiagonal();
+}
+
 }  // namespace tirefe

@@ -1,6 +1,6 @@
 /* Presses a tirefe tire 5 mm onto the road, smoothly in 100 steps of 1 ms, holds it there
- * 20 steps and prints the spindle force and its vertical stiffness: the same numbers
- * from every copy of the library. */
+ * 20 steps and prints the vertical force Fz the tire exerts on the wheel and its
+ * derivative dFz/dz (ISO wheel axes): the same numbers from every copy of the library. */
 #include <stdio.h>
 
 #include "tirefe.h"
@@ -23,7 +23,7 @@ int main(void) {
       return 1;
     }
   }
-  printf("Fy %.17g\nH_yy %.17g\n", reply.force[1], reply.jacobian[1][1]);
+  printf("Fz %.17g\nH_zz %.17g\n", reply.force[1], reply.jacobian[1][1]);
   tirefe_close(tire);
   return 0;
 }
