@@ -148,7 +148,12 @@ def test_a_reader_opening_the_index_while_the_run_writes_it(folder):
                                 "fields_interval=0.005"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     snapshots, failures = [], 0
     try:
-        while process.poll() is None and len(snapshots) < 3:
+        # At least three reads, and on until the index has grown: it follows the flushes,
+        # which come further apart as the file grows.
+        def grown():
+            return len(snapshots) >= 3 and len(snapshots[-1][0]) > len(snapshots[0][0])
+
+        while process.poll() is None and not grown() and len(snapshots) < 40:
             time.sleep(0.15)
             if not os.path.exists(index):
                 continue
@@ -162,7 +167,7 @@ def test_a_reader_opening_the_index_while_the_run_writes_it(folder):
     finally:
         _, errors = process.communicate(timeout=120)
     assert process.returncode == 0, errors
-    assert len(snapshots) == 3, f"{len(snapshots)} reads during the run, {failures} failed"
+    assert len(snapshots) >= 3, f"{len(snapshots)} reads during the run, {failures} failed"
     assert failures <= 3, failures
     with h5py.File(h5, "r") as f:
         times, displacement = f["fields/time"][:], f["fields/displacement"][:]

@@ -100,6 +100,25 @@ void copy_message(const std::string& message, char* error, size_t error_size) {
   if (error && error_size > 0) std::snprintf(error, error_size, "%s", message.c_str());
 }
 
+/// Runs 'body' for a call without a tire handle: every exception becomes a status and
+/// the message in 'error'.
+template <class Body>
+tirefe_status without_handle(char* error, size_t error_size, Body&& body) {
+  std::string message;
+  try {
+    body();
+  } catch (const std::invalid_argument& invalid) {
+    copy_message(invalid.what(), error, error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  } catch (...) {
+    const tirefe_status status = status_of_current_exception(message);
+    copy_message(message, error, error_size);
+    return status;
+  }
+  copy_message("", error, error_size);
+  return TIREFE_OK;
+}
+
 std::vector<ParameterValue> parameter_values(const tirefe_parameter* overrides, size_t count) {
   std::vector<ParameterValue> values;
   for (size_t i = 0; i < count; ++i) {
@@ -250,20 +269,11 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
   tirefe_options chosen;
   tirefe_default_options(&chosen);
   if (options) chosen = *options;
-  std::string message;
-  try {
+  const tirefe_status status = without_handle(error, error_size, [&] {
     *tire = open_tire(source, parameter_values(overrides, count), chosen).release();
-    copy_message("", error, error_size);
-    return TIREFE_OK;
-  } catch (const std::invalid_argument& invalid) {
-    copy_message(invalid.what(), error, error_size);
-    return TIREFE_INVALID_ARGUMENT;
-  } catch (...) {
-    const tirefe_status status = status_of_current_exception(message);
-    // Building the tire is not a step: a failure to inflate it is the parameters' fault.
-    copy_message(message, error, error_size);
-    return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
-  }
+  });
+  // Building the tire is not a step: a failure to inflate it is the parameters' fault.
+  return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
 }
 
 tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
@@ -274,8 +284,7 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
                  error_size);
     return TIREFE_INVALID_ARGUMENT;
   }
-  std::string message;
-  try {
+  return without_handle(error, error_size, [&] {
     for (size_t i = 0; i < n; ++i)
       if (!std::isfinite(deflections[i])) throw std::invalid_argument("the deflections must be finite");
     TireOnRoad tire(macros::load_tire_parameters(source, parameter_values(overrides, count)), flat_road(),
@@ -284,16 +293,7 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
       const double reaction_y = tire.press(deflections[i]);
       forces[i] = wheel_load_from_reaction(Eigen::Vector3d(0.0, reaction_y, 0.0), Heading::PlusX).y();
     }
-    copy_message("", error, error_size);
-    return TIREFE_OK;
-  } catch (const std::invalid_argument& invalid) {
-    copy_message(invalid.what(), error, error_size);
-    return TIREFE_INVALID_ARGUMENT;
-  } catch (...) {
-    const tirefe_status status = status_of_current_exception(message);
-    copy_message(message, error, error_size);
-    return status;
-  }
+  });
 }
 
 tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
@@ -303,8 +303,7 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
     copy_message("tirefe_open_deck: deck and tire must not be NULL, nor overrides when count > 0", error, error_size);
     return TIREFE_INVALID_ARGUMENT;
   }
-  std::string message;
-  try {
+  const tirefe_status status = without_handle(error, error_size, [&] {
     std::map<std::string, std::string> values;
     for (size_t i = 0; i < count; ++i) {
       const std::string pair = overrides[i] ? overrides[i] : "";
@@ -315,19 +314,9 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
     }
     const std::lock_guard<std::mutex> lock(deck_tires_mutex);
     *tire = open_deck(deck, values, output_dir ? output_dir : "results").release();
-    copy_message("", error, error_size);
-    return TIREFE_OK;
-  } catch (const std::invalid_argument& invalid) {
-    copy_message(invalid.what(), error, error_size);
-    return TIREFE_INVALID_ARGUMENT;
-  } catch (const macros::DeckError& deck_error) {  // already "deck.lua:LINE: ..."
-    copy_message(deck_error.what(), error, error_size);
-    return TIREFE_MODEL_ERROR;
-  } catch (...) {
-    const tirefe_status status = status_of_current_exception(message);
-    copy_message(message, error, error_size);
-    return status == TIREFE_STEP_FAILED || status == TIREFE_INTERNAL_ERROR ? TIREFE_MODEL_ERROR : status;
-  }
+  });
+  // A deck's errors (already "deck.lua:LINE: ...") and failed steps are the deck's fault.
+  return status == TIREFE_STEP_FAILED || status == TIREFE_INTERNAL_ERROR ? TIREFE_MODEL_ERROR : status;
 }
 
 void tirefe_close(tirefe_tire* tire) {
