@@ -2,13 +2,11 @@
 // their prescribed motion, node-to-surface contact blocks with friction, and queries of
 // the contact results (docs/contact.md).
 //
-// Surfaces are kept by name per model. The registry lives in a step observer of the
-// model's analysis, so it dies with the model (a new model at the same address starts
-// empty); contact blocks hold their surface themselves.
+// Surfaces are kept by name in their DeckModel, so they die with the model; contact
+// blocks hold their surface themselves.
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -24,29 +22,6 @@ namespace tirefe::macros {
 namespace {
 
 using VT = ValueType;
-
-struct SurfaceRegistry {
-  std::map<std::string, std::shared_ptr<const RigidSurface>> surfaces;
-};
-
-SurfaceRegistry& registry_of(DeckModel& deck) {
-  static std::map<const DeckModel*, std::weak_ptr<SurfaceRegistry>> registries;
-  if (auto live = registries[&deck].lock()) return *live;
-  auto created = std::make_shared<SurfaceRegistry>();
-  deck.analysis().add_step_observer([created](const Analysis&, const StepRecord&) {});  // owns the registry
-  registries[&deck] = created;
-  return *created;
-}
-
-std::shared_ptr<const RigidSurface> named_surface(DeckModel& deck, const std::string& name) {
-  const auto& surfaces = registry_of(deck).surfaces;
-  auto found = surfaces.find(name);
-  if (found != surfaces.end()) return found->second;
-  std::string known;
-  for (const auto& entry : surfaces) known += (known.empty() ? "" : ", ") + entry.first;
-  throw ModelError("no surface named '" + name + "' (" +
-                   (known.empty() ? "define one with model:surface{...}" : "defined: " + known) + ")");
-}
 
 Eigen::Vector2d pair_of(const MacroArguments& arguments, const std::string& key, const Eigen::Vector2d& fallback) {
   if (!arguments.has(key)) return fallback;
@@ -196,17 +171,16 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
 
 int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
-  auto& surfaces = registry_of(deck).surfaces;
-  if (surfaces.count(name)) throw ModelError("surface '" + name + "' is already defined");
+  if (deck.has_surface(name)) throw ModelError("surface '" + name + "' is already defined");
   const std::shared_ptr<const RigidSurface> surface = build_surface(deck, arguments);
-  surfaces[name] = surface;
+  deck.define_surface(name, surface);
   deck.describe_output([name, surface](io::ResultFile& file) { add_surface_output(file, name, surface); });
   return 0;
 }
 
 int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const std::string surface_name = arguments.string("surface");
-  const std::shared_ptr<const RigidSurface> surface = named_surface(deck, surface_name);
+  const std::shared_ptr<const RigidSurface> surface = deck.surface(surface_name);
   const std::vector<int> nodes = target_nodes(deck, arguments);
   const std::string name = arguments.string_or("name", "contact_" + surface_name);
   for (const auto& block : deck.model().blocks())
@@ -257,7 +231,7 @@ int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
 }
 
 int surface_projection_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
-  const std::shared_ptr<const RigidSurface> surface = named_surface(deck, arguments.string("surface"));
+  const std::shared_ptr<const RigidSurface> surface = deck.surface(arguments.string("surface"));
   const Eigen::Vector2d point = pair_of(arguments, "point", Eigen::Vector2d::Zero());
   const SurfaceProjection projection =
       surface->project(point, arguments.number_or("time", deck.analysis().state().time));

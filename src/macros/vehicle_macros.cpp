@@ -1,8 +1,7 @@
 // The vehicle macros: the spindle force of a tire driven from the deck (docs/spindle.md)
 // and a vehicle on the deck's tire models (docs/vehicle.md).
 //
-// A model's driven spindles are kept per node in a registry that lives in a step
-// observer of the model's analysis, so it dies with the model (as the contact surfaces do).
+// A model's driven spindles are kept per node in its DeckModel, so they die with the model.
 #include <chrono>
 #include <functional>
 #include <limits>
@@ -22,19 +21,6 @@ namespace {
 
 using VT = ValueType;
 
-struct SpindleRegistry {
-  std::map<int, std::unique_ptr<TireSpindle>> spindles;  // by 0-based spindle node
-};
-
-SpindleRegistry& spindles_of(DeckModel& deck) {
-  static std::map<const DeckModel*, std::weak_ptr<SpindleRegistry>> registries;
-  if (auto live = registries[&deck].lock()) return *live;
-  auto created = std::make_shared<SpindleRegistry>();
-  deck.analysis().add_step_observer([created](const Analysis&, const StepRecord&) {});  // owns the registry
-  registries[&deck] = created;
-  return *created;
-}
-
 void push_row(lua_State* L, const double* values) {
   lua_createtable(L, 3, 0);
   for (int j = 0; j < 3; ++j) {
@@ -46,10 +32,9 @@ void push_row(lua_State* L, const double* values) {
 int spindle_force_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const int node = deck_node(deck, arguments.integer("node"));
   const SpinMode spin = arguments.has("spin") ? SpinMode::Driven : SpinMode::Free;
-  auto& spindles = spindles_of(deck).spindles;
-  auto& spindle = spindles[node];
+  TireSpindle* spindle = deck.driven_spindle(node);
   if (!spindle) {
-    spindle = std::make_unique<TireSpindle>(deck.analysis(), node, spin);
+    spindle = &deck.drive_spindle(node, spin);
   } else if (spindle->spin() != spin) {
     throw ModelError(std::string("this spindle was first driven with ") +
                      (spindle->spin() == SpinMode::Free ? "a free spin: leave out 'spin'" : "its spin: give 'spin'"));
@@ -185,12 +170,12 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
     corner.suspension = suspension_of(corner_arguments);
     const int node = deck_node(deck, corner_arguments.integer("spindle"));
     headings.push_back(deck.wheel_heading(node));
-    auto& spindle = spindles_of(deck).spindles[node];
-    if (!spindle) spindle = std::make_unique<TireSpindle>(deck.analysis(), node, SpinMode::Free);
+    TireSpindle* spindle = deck.driven_spindle(node);
+    if (!spindle) spindle = &deck.drive_spindle(node, SpinMode::Free);
     if (spindle->spin() != SpinMode::Free) throw ModelError("corner '" + corner.name + "': the spindle spin must be free");
     corners.push_back(corner);
     decks.push_back(&deck);
-    spindles.push_back(spindle.get());
+    spindles.push_back(spindle);
     lua_pop(L, 1);
   }
   const bool threads = arguments.boolean("threads");
