@@ -16,6 +16,7 @@
 #include "elements/point_mass.hpp"
 #include "io/hdf5_file.hpp"
 #include "solvers/analysis.hpp"
+#include "tire/contact_penalty.hpp"
 #include "deck_support.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"

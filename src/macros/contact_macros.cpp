@@ -14,6 +14,7 @@
 #include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
 #include "contact/road_file.hpp"
+#include "tire/contact_penalty.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 
