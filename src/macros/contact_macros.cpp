@@ -4,6 +4,7 @@
 //
 // Surfaces are kept by name in their DeckModel, so they die with the model; contact
 // blocks hold their surface themselves.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -86,66 +87,86 @@ std::vector<Eigen::Vector2d> file_profile(const std::string& file, const std::op
   return points;
 }
 
-std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroArguments& arguments) {
-  // A road data file names its own type.
-  const std::string file = arguments.has("file") ? deck_relative(deck.session(), arguments.string("file")) : "";
-  std::optional<RoadShape> road;
-  if (has_extension(file, ".rdf")) road = read_road_data_file(file, track_of(arguments));
-  if (!arguments.has("type") && !road)
-    throw ModelError("give 'type' (flat, drum or profile), or a road data file (.rdf) as 'file'");
-  const std::string type = arguments.has("type") ? arguments.string("type") : surface_type(road->kind);
-  if (road && type != surface_type(road->kind))
-    throw ModelError("type '" + type + "', but '" + file + "' holds a " + road->road_type + " road (type '" +
-                     surface_type(road->kind) + "')");
+/// The keys a surface type takes besides its name, type and motion; every other key of
+/// model:surface is refused for it.
+struct SurfaceKeys {
+  const char* type;
+  std::vector<std::string> own;
+  std::vector<std::string> with_road_file;  // only with a road data file (.rdf)
+  std::vector<std::string> from_road_file;  // given by a road data file: left out then
+};
+
+/// Keys every type takes: the surface's name and type, and its motion.
+const std::vector<std::string> kEverySurfaceKeys{"name",       "type",          "speed",    "ramp_time",
+                                                 "start_time", "load_function", "amplitude"};
+
+bool listed(const std::vector<std::string>& keys, const std::string& key) {
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+void refuse_given_by_file(const MacroArguments& arguments, const std::vector<std::string>& keys,
+                          const std::string& file) {
+  for (const std::string& key : keys)
+    if (arguments.has(key)) throw ModelError("'" + key + "' is given by the file '" + file + "'; leave it out");
+}
+
+/// Refuses the keys 'keys' does not take; with a road data file, also those it gives.
+void check_surface_keys(const MacroArguments& arguments, const SurfaceKeys& keys, const std::optional<RoadShape>& road,
+                        const std::string& file) {
+  for (const ParameterSpec& parameter : arguments.spec().parameters) {
+    const std::string& key = parameter.key;
+    if (!arguments.has(key) || listed(kEverySurfaceKeys, key) || listed(keys.own, key) ||
+        (road && listed(keys.with_road_file, key)))
+      continue;
+    throw ModelError("'" + key + "' does not apply to a " + keys.type + " surface");
+  }
+  if (road) refuse_given_by_file(arguments, keys.from_road_file, file);
+}
+
+std::shared_ptr<const RigidSurface> build_flat(const MacroArguments& arguments, const std::optional<RoadShape>& road,
+                                               const std::string& file, const MotionFunction& motion) {
+  static const SurfaceKeys keys{"flat", {"point", "direction"}, {"file", "offset", "track"}, {"point", "direction"}};
+  check_surface_keys(arguments, keys, road, file);
+  const Eigen::Vector2d point =
+      road ? Eigen::Vector2d(0.0, road->level + arguments.number("offset")) : pair_of(arguments, "point", {0, 0});
+  return std::make_shared<FlatRoad>(point, pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
+                                    RigidMotion::translation(motion));
+}
+
+std::shared_ptr<const RigidSurface> build_drum(const MacroArguments& arguments, const std::optional<RoadShape>& road,
+                                               const std::string& file, const MotionFunction& motion) {
+  static const SurfaceKeys keys{"drum",
+                                {"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "edge_radius"},
+                                {"file", "track"},
+                                {"diameter", "cleat_height", "cleat_length", "cleat_angle"}};
+  check_surface_keys(arguments, keys, road, file);
   const double edge_radius = arguments.number("edge_radius");
-  const MotionFunction motion = motion_of(deck, arguments);
-  auto refuse = [&](std::initializer_list<const char*> keys) {
-    for (const char* key : keys)
-      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' does not apply to a " + type + " surface");
-  };
-  auto refuse_with_file = [&](std::initializer_list<const char*> keys) {
-    for (const char* key : keys)
-      if (arguments.has(key))
-        throw ModelError(std::string("'") + key + "' is given by the file '" + file + "'; leave it out");
-  };
-  if (!arguments.has("file")) {
-    for (const char* key : {"start", "offset", "track"})
-      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' places a road read from a 'file'");
+  Cleat cleat;
+  double diameter = 0.0;
+  if (road) {
+    if (road->cleat.edge_radius > 0.0) refuse_given_by_file(arguments, {"edge_radius"}, file);
+    diameter = road->diameter;
+    cleat = road->cleat;
+    if (cleat.edge_radius == 0.0) cleat.edge_radius = edge_radius;
+  } else {
+    if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
+    diameter = arguments.number("diameter");
+    cleat.height = arguments.number("cleat_height");
+    cleat.arc_length = arguments.number("cleat_length");
+    cleat.angle = arguments.number("cleat_angle");
+    cleat.edge_radius = edge_radius;
   }
-  if (type == "flat") {
-    refuse({"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "points", "pothole", "cleat",
-            "level", "edge_radius", "start"});
-    if (!road) refuse({"file", "offset"});
-    if (road) refuse_with_file({"point", "direction"});
-    const Eigen::Vector2d point =
-        road ? Eigen::Vector2d(0.0, road->level + arguments.number("offset")) : pair_of(arguments, "point", {0, 0});
-    return std::make_shared<FlatRoad>(point, pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
-                                      RigidMotion::translation(motion));
-  }
-  if (type == "drum") {
-    refuse({"point", "direction", "points", "pothole", "cleat", "level", "start", "offset"});
-    if (!road) refuse({"file"});
-    Cleat cleat;
-    double diameter = 0.0;
-    if (road) {
-      refuse_with_file({"diameter", "cleat_height", "cleat_length", "cleat_angle"});
-      if (road->cleat.edge_radius > 0.0) refuse_with_file({"edge_radius"});
-      diameter = road->diameter;
-      cleat = road->cleat;
-      if (cleat.edge_radius == 0.0) cleat.edge_radius = edge_radius;
-    } else {
-      if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
-      diameter = arguments.number("diameter");
-      cleat.height = arguments.number("cleat_height");
-      cleat.arc_length = arguments.number("cleat_length");
-      cleat.angle = arguments.number("cleat_angle");
-      cleat.edge_radius = edge_radius;
-    }
-    if ((cleat.height > 0.0) != (cleat.arc_length > 0.0))
-      throw ModelError("a cleat needs both 'cleat_height' and 'cleat_length'");
-    return std::make_shared<Drum>(diameter, pair_of(arguments, "centre", Eigen::Vector2d::Zero()), motion, cleat);
-  }
-  refuse({"point", "direction", "diameter", "centre", "cleat_height", "cleat_length", "cleat_angle"});
+  if ((cleat.height > 0.0) != (cleat.arc_length > 0.0))
+    throw ModelError("a cleat needs both 'cleat_height' and 'cleat_length'");
+  return std::make_shared<Drum>(diameter, pair_of(arguments, "centre", Eigen::Vector2d::Zero()), motion, cleat);
+}
+
+std::shared_ptr<const RigidSurface> build_profile(const MacroArguments& arguments,
+                                                  const std::optional<RoadShape>& road, const std::string& file,
+                                                  const MotionFunction& motion) {
+  static const SurfaceKeys keys{
+      "profile", {"file", "start", "offset", "track", "points", "pothole", "cleat", "level", "edge_radius"}, {}, {}};
+  check_surface_keys(arguments, keys, road, file);
   const int sources =
       arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
   if (sources != 1) throw ModelError("a profile needs exactly one of 'file', 'points', 'pothole' or 'cleat'");
@@ -167,7 +188,28 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
     const auto c = triple_of(arguments, "cleat", "start, length, height");
     points = RoadProfile::cleat_points(c[0], c[1], c[2], level);
   }
-  return std::make_shared<RoadProfile>(points, edge_radius, RigidMotion::translation(motion));
+  return std::make_shared<RoadProfile>(points, arguments.number("edge_radius"), RigidMotion::translation(motion));
+}
+
+std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroArguments& arguments) {
+  // A road data file names its own type.
+  const std::string file = arguments.has("file") ? deck_relative(deck.session(), arguments.string("file")) : "";
+  std::optional<RoadShape> road;
+  if (has_extension(file, ".rdf")) road = read_road_data_file(file, track_of(arguments));
+  if (!arguments.has("type") && !road)
+    throw ModelError("give 'type' (flat, drum or profile), or a road data file (.rdf) as 'file'");
+  const std::string type = arguments.has("type") ? arguments.string("type") : surface_type(road->kind);
+  if (road && type != surface_type(road->kind))
+    throw ModelError("type '" + type + "', but '" + file + "' holds a " + road->road_type + " road (type '" +
+                     surface_type(road->kind) + "')");
+  const MotionFunction motion = motion_of(deck, arguments);
+  if (!arguments.has("file")) {
+    for (const char* key : {"start", "offset", "track"})
+      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' places a road read from a 'file'");
+  }
+  if (type == "flat") return build_flat(arguments, road, file, motion);
+  if (type == "drum") return build_drum(arguments, road, file, motion);
+  return build_profile(arguments, road, file, motion);
 }
 
 int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
