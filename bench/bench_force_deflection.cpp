@@ -12,6 +12,7 @@
 #include "contact/node_contact.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
+#include "tire/contact_penalty.hpp"
 #include "tire/tire_builder.hpp"
 
 using namespace tirefe;

@@ -16,6 +16,8 @@
 #include "elements/point_mass.hpp"
 #include "io/hdf5_file.hpp"
 #include "solvers/analysis.hpp"
+#include "tire/contact_penalty.hpp"
+#include "deck_support.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -1005,4 +1007,39 @@ TEST_CASE("deck macros: contact mistakes are reported at the deck line", "[conta
     CHECK(run.exit_status == 1);
     CHECK_THAT(run.output, Contains(c.expected) && Contains(".lua:"));
   }
+}
+
+TEST_CASE("deck macros: surfaces belong to their model, and decks in one process keep their own",
+          "[contact][macros]") {
+  TempDir folder;
+  // Two models of one deck may each name a surface "road"; a model sees its own only.
+  const std::string two_models = folder.write("two_models.lua", R"(
+local first, second = tirefe.model{}, tirefe.model{}
+first:surface{ name = "road", type = "flat", point = { 0, 1 } }
+second:surface{ name = "road", type = "flat", point = { 0, -1 } }
+second:surface{ name = "kerb", type = "flat", point = { 0, 2 } }
+tirefe.check{ name = "first road", value = first:surface_projection{ surface = "road", point = { 0, 0 } }.gap,
+              expected = -1, tolerance = 1e-12 }
+tirefe.check{ name = "second road", value = second:surface_projection{ surface = "road", point = { 0, 0 } }.gap,
+              expected = 1, tolerance = 1e-12 }
+first:surface_projection{ surface = "kerb", point = { 0, 0 } }
+)");
+  const testing::InProcessRun run = testing::run_deck_in_process(two_models, folder.path("out"));
+  CHECK(run.checks == 2);
+  CHECK(run.failed_checks == 0);
+  CHECK_THAT(run.error, Contains("two_models.lua:10") && Contains("no surface named 'kerb' (defined: road)"));
+
+  // A deck run while another's model is alive in the same process sees none of its surfaces.
+  const std::string keeps = folder.write("keeps.lua", "kept = tirefe.model{}\n"
+                                                      "kept:surface{ name = \"road\", type = \"flat\" }\n");
+  const std::string asks = folder.write("asks.lua", "local m = tirefe.model{}\n"
+                                                    "m:surface_projection{ surface = \"road\", point = { 0, 0 } }\n");
+  macros::DeckSession session;
+  session.output_dir = folder.path("out_kept");
+  session.quiet = true;
+  macros::LuaSandbox alive(TIREFE_LUA_DIR);
+  macros::install_macros(alive, session);
+  alive.run_file(keeps);
+  const testing::InProcessRun other = testing::run_deck_in_process(asks, folder.path("out_asks"));
+  CHECK_THAT(other.error, Contains("asks.lua:2") && Contains("no surface named 'road' (define one with model:surface{...})"));
 }

@@ -46,8 +46,6 @@
 
 namespace tirefe {
 
-class Analysis;
-
 /// A converged state the contact cannot accept (a node pushed through the surface).
 class ContactFailure : public std::runtime_error {
  public:
@@ -123,21 +121,6 @@ using ContactBlock = ElementBlockOf<NodeSurfaceContact>;
 ContactBlock& add_contact_block(Model& model, const std::string& name, std::shared_ptr<const RigidSurface> surface,
                                 const std::vector<int>& nodes, const ContactParameters& parameters,
                                 double start_time = 0.0);
-
-/// Default normal penalty: factor x the largest diagonal entry of the structure's static
-/// tangent dF_int/du on the u_x, u_y equations of the nodes, assembled at the analysis's
-/// current state (the reference before the first step). Call it before adding the contact
-/// block. Throws ModelError when the nodes carry no stiffness (give the penalty then).
-double structural_penalty(Analysis& analysis, const std::vector<int>& nodes, double factor = 1.0);
-
-/// Default tangential penalty: factor x the smallest tangential stiffness the structure
-/// itself offers at the nodes, 1 / (tau^T C tau), with C the nodal block of the inverse of
-/// the static tangent and tau the surface's tangent below the node. Above that stiffness a
-/// slipping node (which has no tangential contact stiffness) can make Newton alternate
-/// between slip directions. The structure must be supported without the contact (hold the
-/// hub while defining it); otherwise throws ModelError (give the penalty then).
-double structural_tangential_penalty(Analysis& analysis, const std::vector<int>& nodes, const RigidSurface& surface,
-                                     double factor = 1.0);
 
 /// Block totals of the last accepted step.
 struct ContactSummary {

@@ -2,13 +2,12 @@
 // their prescribed motion, node-to-surface contact blocks with friction, and queries of
 // the contact results (docs/contact.md).
 //
-// Surfaces are kept by name per model. The registry lives in a step observer of the
-// model's analysis, so it dies with the model (a new model at the same address starts
-// empty); contact blocks hold their surface themselves.
+// Surfaces are kept by name in their DeckModel, so they die with the model; contact
+// blocks hold their surface themselves.
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -16,6 +15,7 @@
 #include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
 #include "contact/road_file.hpp"
+#include "tire/contact_penalty.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 
@@ -24,29 +24,6 @@ namespace tirefe::macros {
 namespace {
 
 using VT = ValueType;
-
-struct SurfaceRegistry {
-  std::map<std::string, std::shared_ptr<const RigidSurface>> surfaces;
-};
-
-SurfaceRegistry& registry_of(DeckModel& deck) {
-  static std::map<const DeckModel*, std::weak_ptr<SurfaceRegistry>> registries;
-  if (auto live = registries[&deck].lock()) return *live;
-  auto created = std::make_shared<SurfaceRegistry>();
-  deck.analysis().add_step_observer([created](const Analysis&, const StepRecord&) {});  // owns the registry
-  registries[&deck] = created;
-  return *created;
-}
-
-std::shared_ptr<const RigidSurface> named_surface(DeckModel& deck, const std::string& name) {
-  const auto& surfaces = registry_of(deck).surfaces;
-  auto found = surfaces.find(name);
-  if (found != surfaces.end()) return found->second;
-  std::string known;
-  for (const auto& entry : surfaces) known += (known.empty() ? "" : ", ") + entry.first;
-  throw ModelError("no surface named '" + name + "' (" +
-                   (known.empty() ? "define one with model:surface{...}" : "defined: " + known) + ")");
-}
 
 Eigen::Vector2d pair_of(const MacroArguments& arguments, const std::string& key, const Eigen::Vector2d& fallback) {
   if (!arguments.has(key)) return fallback;
@@ -110,66 +87,86 @@ std::vector<Eigen::Vector2d> file_profile(const std::string& file, const std::op
   return points;
 }
 
-std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroArguments& arguments) {
-  // A road data file names its own type.
-  const std::string file = arguments.has("file") ? deck_relative(deck.session(), arguments.string("file")) : "";
-  std::optional<RoadShape> road;
-  if (has_extension(file, ".rdf")) road = read_road_data_file(file, track_of(arguments));
-  if (!arguments.has("type") && !road)
-    throw ModelError("give 'type' (flat, drum or profile), or a road data file (.rdf) as 'file'");
-  const std::string type = arguments.has("type") ? arguments.string("type") : surface_type(road->kind);
-  if (road && type != surface_type(road->kind))
-    throw ModelError("type '" + type + "', but '" + file + "' holds a " + road->road_type + " road (type '" +
-                     surface_type(road->kind) + "')");
+/// The keys a surface type takes besides its name, type and motion; every other key of
+/// model:surface is refused for it.
+struct SurfaceKeys {
+  const char* type;
+  std::vector<std::string> own;
+  std::vector<std::string> with_road_file;  // only with a road data file (.rdf)
+  std::vector<std::string> from_road_file;  // given by a road data file: left out then
+};
+
+/// Keys every type takes: the surface's name and type, and its motion.
+const std::vector<std::string> kEverySurfaceKeys{"name",       "type",          "speed",    "ramp_time",
+                                                 "start_time", "load_function", "amplitude"};
+
+bool listed(const std::vector<std::string>& keys, const std::string& key) {
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+void refuse_given_by_file(const MacroArguments& arguments, const std::vector<std::string>& keys,
+                          const std::string& file) {
+  for (const std::string& key : keys)
+    if (arguments.has(key)) throw ModelError("'" + key + "' is given by the file '" + file + "'; leave it out");
+}
+
+/// Refuses the keys 'keys' does not take; with a road data file, also those it gives.
+void check_surface_keys(const MacroArguments& arguments, const SurfaceKeys& keys, const std::optional<RoadShape>& road,
+                        const std::string& file) {
+  for (const ParameterSpec& parameter : arguments.spec().parameters) {
+    const std::string& key = parameter.key;
+    if (!arguments.has(key) || listed(kEverySurfaceKeys, key) || listed(keys.own, key) ||
+        (road && listed(keys.with_road_file, key)))
+      continue;
+    throw ModelError("'" + key + "' does not apply to a " + keys.type + " surface");
+  }
+  if (road) refuse_given_by_file(arguments, keys.from_road_file, file);
+}
+
+std::shared_ptr<const RigidSurface> build_flat(const MacroArguments& arguments, const std::optional<RoadShape>& road,
+                                               const std::string& file, const MotionFunction& motion) {
+  static const SurfaceKeys keys{"flat", {"point", "direction"}, {"file", "offset", "track"}, {"point", "direction"}};
+  check_surface_keys(arguments, keys, road, file);
+  const Eigen::Vector2d point =
+      road ? Eigen::Vector2d(0.0, road->level + arguments.number("offset")) : pair_of(arguments, "point", {0, 0});
+  return std::make_shared<FlatRoad>(point, pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
+                                    RigidMotion::translation(motion));
+}
+
+std::shared_ptr<const RigidSurface> build_drum(const MacroArguments& arguments, const std::optional<RoadShape>& road,
+                                               const std::string& file, const MotionFunction& motion) {
+  static const SurfaceKeys keys{"drum",
+                                {"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "edge_radius"},
+                                {"file", "track"},
+                                {"diameter", "cleat_height", "cleat_length", "cleat_angle"}};
+  check_surface_keys(arguments, keys, road, file);
   const double edge_radius = arguments.number("edge_radius");
-  const MotionFunction motion = motion_of(deck, arguments);
-  auto refuse = [&](std::initializer_list<const char*> keys) {
-    for (const char* key : keys)
-      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' does not apply to a " + type + " surface");
-  };
-  auto refuse_with_file = [&](std::initializer_list<const char*> keys) {
-    for (const char* key : keys)
-      if (arguments.has(key))
-        throw ModelError(std::string("'") + key + "' is given by the file '" + file + "'; leave it out");
-  };
-  if (!arguments.has("file")) {
-    for (const char* key : {"start", "offset", "track"})
-      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' places a road read from a 'file'");
+  Cleat cleat;
+  double diameter = 0.0;
+  if (road) {
+    if (road->cleat.edge_radius > 0.0) refuse_given_by_file(arguments, {"edge_radius"}, file);
+    diameter = road->diameter;
+    cleat = road->cleat;
+    if (cleat.edge_radius == 0.0) cleat.edge_radius = edge_radius;
+  } else {
+    if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
+    diameter = arguments.number("diameter");
+    cleat.height = arguments.number("cleat_height");
+    cleat.arc_length = arguments.number("cleat_length");
+    cleat.angle = arguments.number("cleat_angle");
+    cleat.edge_radius = edge_radius;
   }
-  if (type == "flat") {
-    refuse({"diameter", "centre", "cleat_height", "cleat_length", "cleat_angle", "points", "pothole", "cleat",
-            "level", "edge_radius", "start"});
-    if (!road) refuse({"file", "offset"});
-    if (road) refuse_with_file({"point", "direction"});
-    const Eigen::Vector2d point =
-        road ? Eigen::Vector2d(0.0, road->level + arguments.number("offset")) : pair_of(arguments, "point", {0, 0});
-    return std::make_shared<FlatRoad>(point, pair_of(arguments, "direction", Eigen::Vector2d::UnitX()),
-                                      RigidMotion::translation(motion));
-  }
-  if (type == "drum") {
-    refuse({"point", "direction", "points", "pothole", "cleat", "level", "start", "offset"});
-    if (!road) refuse({"file"});
-    Cleat cleat;
-    double diameter = 0.0;
-    if (road) {
-      refuse_with_file({"diameter", "cleat_height", "cleat_length", "cleat_angle"});
-      if (road->cleat.edge_radius > 0.0) refuse_with_file({"edge_radius"});
-      diameter = road->diameter;
-      cleat = road->cleat;
-      if (cleat.edge_radius == 0.0) cleat.edge_radius = edge_radius;
-    } else {
-      if (!arguments.has("diameter")) throw ModelError("a drum needs 'diameter'");
-      diameter = arguments.number("diameter");
-      cleat.height = arguments.number("cleat_height");
-      cleat.arc_length = arguments.number("cleat_length");
-      cleat.angle = arguments.number("cleat_angle");
-      cleat.edge_radius = edge_radius;
-    }
-    if ((cleat.height > 0.0) != (cleat.arc_length > 0.0))
-      throw ModelError("a cleat needs both 'cleat_height' and 'cleat_length'");
-    return std::make_shared<Drum>(diameter, pair_of(arguments, "centre", Eigen::Vector2d::Zero()), motion, cleat);
-  }
-  refuse({"point", "direction", "diameter", "centre", "cleat_height", "cleat_length", "cleat_angle"});
+  if ((cleat.height > 0.0) != (cleat.arc_length > 0.0))
+    throw ModelError("a cleat needs both 'cleat_height' and 'cleat_length'");
+  return std::make_shared<Drum>(diameter, pair_of(arguments, "centre", Eigen::Vector2d::Zero()), motion, cleat);
+}
+
+std::shared_ptr<const RigidSurface> build_profile(const MacroArguments& arguments,
+                                                  const std::optional<RoadShape>& road, const std::string& file,
+                                                  const MotionFunction& motion) {
+  static const SurfaceKeys keys{
+      "profile", {"file", "start", "offset", "track", "points", "pothole", "cleat", "level", "edge_radius"}, {}, {}};
+  check_surface_keys(arguments, keys, road, file);
   const int sources =
       arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
   if (sources != 1) throw ModelError("a profile needs exactly one of 'file', 'points', 'pothole' or 'cleat'");
@@ -191,22 +188,42 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
     const auto c = triple_of(arguments, "cleat", "start, length, height");
     points = RoadProfile::cleat_points(c[0], c[1], c[2], level);
   }
-  return std::make_shared<RoadProfile>(points, edge_radius, RigidMotion::translation(motion));
+  return std::make_shared<RoadProfile>(points, arguments.number("edge_radius"), RigidMotion::translation(motion));
+}
+
+std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroArguments& arguments) {
+  // A road data file names its own type.
+  const std::string file = arguments.has("file") ? deck_relative(deck.session(), arguments.string("file")) : "";
+  std::optional<RoadShape> road;
+  if (has_extension(file, ".rdf")) road = read_road_data_file(file, track_of(arguments));
+  if (!arguments.has("type") && !road)
+    throw ModelError("give 'type' (flat, drum or profile), or a road data file (.rdf) as 'file'");
+  const std::string type = arguments.has("type") ? arguments.string("type") : surface_type(road->kind);
+  if (road && type != surface_type(road->kind))
+    throw ModelError("type '" + type + "', but '" + file + "' holds a " + road->road_type + " road (type '" +
+                     surface_type(road->kind) + "')");
+  const MotionFunction motion = motion_of(deck, arguments);
+  if (!arguments.has("file")) {
+    for (const char* key : {"start", "offset", "track"})
+      if (arguments.has(key)) throw ModelError(std::string("'") + key + "' places a road read from a 'file'");
+  }
+  if (type == "flat") return build_flat(arguments, road, file, motion);
+  if (type == "drum") return build_drum(arguments, road, file, motion);
+  return build_profile(arguments, road, file, motion);
 }
 
 int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
-  auto& surfaces = registry_of(deck).surfaces;
-  if (surfaces.count(name)) throw ModelError("surface '" + name + "' is already defined");
+  if (deck.has_surface(name)) throw ModelError("surface '" + name + "' is already defined");
   const std::shared_ptr<const RigidSurface> surface = build_surface(deck, arguments);
-  surfaces[name] = surface;
+  deck.define_surface(name, surface);
   deck.describe_output([name, surface](io::ResultFile& file) { add_surface_output(file, name, surface); });
   return 0;
 }
 
 int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const std::string surface_name = arguments.string("surface");
-  const std::shared_ptr<const RigidSurface> surface = named_surface(deck, surface_name);
+  const std::shared_ptr<const RigidSurface> surface = deck.surface(surface_name);
   const std::vector<int> nodes = target_nodes(deck, arguments);
   const std::string name = arguments.string_or("name", "contact_" + surface_name);
   for (const auto& block : deck.model().blocks())
@@ -257,7 +274,7 @@ int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
 }
 
 int surface_projection_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
-  const std::shared_ptr<const RigidSurface> surface = named_surface(deck, arguments.string("surface"));
+  const std::shared_ptr<const RigidSurface> surface = deck.surface(arguments.string("surface"));
   const Eigen::Vector2d point = pair_of(arguments, "point", Eigen::Vector2d::Zero());
   const SurfaceProjection projection =
       surface->project(point, arguments.number_or("time", deck.analysis().state().time));

@@ -8,6 +8,7 @@
 #include "io/checkpoint.hpp"
 #include "macros/interrupt.hpp"
 #include "macros/macro_table.hpp"
+#include "vehicle/tire_spindle.hpp"
 
 namespace tirefe::macros {
 
@@ -136,6 +137,31 @@ const BeamSection& DeckModel::section(const std::string& name) const {
   auto found = sections_.find(name);
   if (found == sections_.end()) throw ModelError("no beam section named '" + name + "' (define it with model:section{...})");
   return found->second;
+}
+
+void DeckModel::define_surface(const std::string& name, std::shared_ptr<const RigidSurface> surface) {
+  if (surfaces_.count(name)) throw ModelError("surface '" + name + "' is already defined");
+  surfaces_[name] = std::move(surface);
+}
+
+std::shared_ptr<const RigidSurface> DeckModel::surface(const std::string& name) const {
+  auto found = surfaces_.find(name);
+  if (found != surfaces_.end()) return found->second;
+  std::string known;
+  for (const auto& entry : surfaces_) known += (known.empty() ? "" : ", ") + entry.first;
+  throw ModelError("no surface named '" + name + "' (" +
+                   (known.empty() ? "define one with model:surface{...}" : "defined: " + known) + ")");
+}
+
+TireSpindle* DeckModel::driven_spindle(int node) {
+  auto found = spindles_.find(node);
+  return found == spindles_.end() ? nullptr : found->second.get();
+}
+
+TireSpindle& DeckModel::drive_spindle(int node, SpinMode spin) {
+  auto& spindle = spindles_[node];
+  spindle = std::make_unique<TireSpindle>(analysis_, node, spin);
+  return *spindle;
 }
 
 void DeckModel::define_load_function(const std::string& name, LoadFunction function) {

@@ -1,5 +1,6 @@
 // DeckModel: one structure built and driven by a deck: the Model and its Analysis,
-// the deck's named things (sections, load functions), and its result file.
+// the deck's named things (sections, load functions, surfaces, driven spindles), and its
+// result file. The named things are members, so they live and die with the model.
 #pragma once
 
 #include <chrono>
@@ -15,6 +16,12 @@
 #include "macros/deck_session.hpp"
 #include "solvers/analysis.hpp"
 #include "tire/wheel_axes.hpp"
+#include "vehicle/spindle_exchange.hpp"
+
+namespace tirefe {
+class RigidSurface;
+class TireSpindle;
+}  // namespace tirefe
 
 namespace tirefe::macros {
 
@@ -64,6 +71,16 @@ class DeckModel {
   const BeamSection& section(const std::string& name) const;
   void define_load_function(const std::string& name, LoadFunction function);
   int load_function(const std::string& name) const;
+  /// A named rigid surface (model:surface); contact blocks share it.
+  bool has_surface(const std::string& name) const { return surfaces_.count(name) > 0; }
+  /// ModelError if the name is taken.
+  void define_surface(const std::string& name, std::shared_ptr<const RigidSurface> surface);
+  /// ModelError naming the defined surfaces if there is none of that name.
+  std::shared_ptr<const RigidSurface> surface(const std::string& name) const;
+  /// The spindle driven at 'node' (0-based; model:spindle_force, tirefe.vehicle), or null.
+  TireSpindle* driven_spindle(int node);
+  /// Starts driving the spindle at 'node' (none driven there yet).
+  TireSpindle& drive_spindle(int node, SpinMode spin);
   /// The model calls back into the deck's Lua state (a load function given as a Lua
   /// function): it must then be solved on the deck's thread only.
   void note_lua_callback() { calls_lua_ = true; }
@@ -117,6 +134,8 @@ class DeckModel {
   Analysis analysis_;
   std::map<std::string, BeamSection> sections_;
   std::map<std::string, int> load_functions_;
+  std::map<std::string, std::shared_ptr<const RigidSurface>> surfaces_;
+  std::map<int, std::unique_ptr<TireSpindle>> spindles_;  // by 0-based node; declared after analysis_, which they drive
   std::map<int, Heading> wheel_headings_;  // by spindle node
   std::unique_ptr<io::ResultFile> output_;
   std::vector<std::function<void(io::ResultFile&)>> output_descriptions_;  // until it opens

@@ -1,8 +1,7 @@
 // The vehicle macros: the spindle force of a tire driven from the deck (docs/spindle.md)
 // and a vehicle on the deck's tire models (docs/vehicle.md).
 //
-// A model's driven spindles are kept per node in a registry that lives in a step
-// observer of the model's analysis, so it dies with the model (as the contact surfaces do).
+// A model's driven spindles are kept per node in its DeckModel, so they die with the model.
 #include <chrono>
 #include <functional>
 #include <limits>
@@ -22,19 +21,6 @@ namespace {
 
 using VT = ValueType;
 
-struct SpindleRegistry {
-  std::map<int, std::unique_ptr<TireSpindle>> spindles;  // by 0-based spindle node
-};
-
-SpindleRegistry& spindles_of(DeckModel& deck) {
-  static std::map<const DeckModel*, std::weak_ptr<SpindleRegistry>> registries;
-  if (auto live = registries[&deck].lock()) return *live;
-  auto created = std::make_shared<SpindleRegistry>();
-  deck.analysis().add_step_observer([created](const Analysis&, const StepRecord&) {});  // owns the registry
-  registries[&deck] = created;
-  return *created;
-}
-
 void push_row(lua_State* L, const double* values) {
   lua_createtable(L, 3, 0);
   for (int j = 0; j < 3; ++j) {
@@ -46,10 +32,9 @@ void push_row(lua_State* L, const double* values) {
 int spindle_force_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const int node = deck_node(deck, arguments.integer("node"));
   const SpinMode spin = arguments.has("spin") ? SpinMode::Driven : SpinMode::Free;
-  auto& spindles = spindles_of(deck).spindles;
-  auto& spindle = spindles[node];
+  TireSpindle* spindle = deck.driven_spindle(node);
   if (!spindle) {
-    spindle = std::make_unique<TireSpindle>(deck.analysis(), node, spin);
+    spindle = &deck.drive_spindle(node, spin);
   } else if (spindle->spin() != spin) {
     throw ModelError(std::string("this spindle was first driven with ") +
                      (spindle->spin() == SpinMode::Free ? "a free spin: leave out 'spin'" : "its spin: give 'spin'"));
@@ -155,17 +140,46 @@ std::vector<Vehicle::StepWindow> step_windows_of(const MacroArguments& arguments
   return windows;
 }
 
-int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
-  const std::vector<Vehicle::StepWindow> windows = step_windows_of(arguments);
-  arguments.push_value("body");
-  const MacroArguments body_arguments(L, lua_gettop(L), body_spec());
-  Body body{body_arguments.number("mass"), body_arguments.number("pitch_inertia"),
-            body_arguments.number("roll_inertia")};
-
+/// The corners of tirefe.vehicle{...} with the deck model, tire heading and free-spinning
+/// spindle of each corner's tire.
+struct VehicleCorners {
   std::vector<Corner> corners;
   std::vector<Heading> headings;  // of each corner's tire: the wheel axes of its returned forces
   std::vector<DeckModel*> decks;
   std::vector<TireSpindle*> spindles;
+};
+
+Body body_of(lua_State* L, const MacroArguments& arguments) {
+  arguments.push_value("body");
+  const MacroArguments body_arguments(L, lua_gettop(L), body_spec());
+  return Body{body_arguments.number("mass"), body_arguments.number("pitch_inertia"),
+              body_arguments.number("roll_inertia")};
+}
+
+/// Reads one corner (its table on the top of the stack) into 'read'.
+void read_corner(lua_State* L, int i, VehicleCorners& read) {
+  const MacroArguments corner_arguments(L, lua_gettop(L), corner_spec());
+  corner_arguments.push_value("model");
+  DeckModel& deck = check_model(L, lua_gettop(L));
+  lua_pop(L, 1);
+  Corner corner;
+  corner.name = corner_arguments.string_or("name", "corner" + std::to_string(i));
+  corner.x = corner_arguments.number("x");
+  corner.y = corner_arguments.number("y");
+  corner.mass = corner_arguments.number("mass");
+  corner.suspension = suspension_of(corner_arguments);
+  const int node = deck_node(deck, corner_arguments.integer("spindle"));
+  read.headings.push_back(deck.wheel_heading(node));
+  TireSpindle* spindle = deck.driven_spindle(node);
+  if (!spindle) spindle = &deck.drive_spindle(node, SpinMode::Free);
+  if (spindle->spin() != SpinMode::Free) throw ModelError("corner '" + corner.name + "': the spindle spin must be free");
+  read.corners.push_back(corner);
+  read.decks.push_back(&deck);
+  read.spindles.push_back(spindle);
+}
+
+VehicleCorners corners_of(lua_State* L, const MacroArguments& arguments) {
+  VehicleCorners read;
   arguments.push_value("corners");
   const int list = lua_gettop(L);
   const int count = static_cast<int>(luaL_len(L, list));
@@ -173,32 +187,18 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   for (int i = 1; i <= count; ++i) {
     lua_rawgeti(L, list, i);
     if (!lua_istable(L, -1)) throw ModelError("corner " + std::to_string(i) + " must be a table");
-    const MacroArguments corner_arguments(L, lua_gettop(L), corner_spec());
-    corner_arguments.push_value("model");
-    DeckModel& deck = check_model(L, lua_gettop(L));
-    lua_pop(L, 1);
-    Corner corner;
-    corner.name = corner_arguments.string_or("name", "corner" + std::to_string(i));
-    corner.x = corner_arguments.number("x");
-    corner.y = corner_arguments.number("y");
-    corner.mass = corner_arguments.number("mass");
-    corner.suspension = suspension_of(corner_arguments);
-    const int node = deck_node(deck, corner_arguments.integer("spindle"));
-    headings.push_back(deck.wheel_heading(node));
-    auto& spindle = spindles_of(deck).spindles[node];
-    if (!spindle) spindle = std::make_unique<TireSpindle>(deck.analysis(), node, SpinMode::Free);
-    if (spindle->spin() != SpinMode::Free) throw ModelError("corner '" + corner.name + "': the spindle spin must be free");
-    corners.push_back(corner);
-    decks.push_back(&deck);
-    spindles.push_back(spindle.get());
+    read_corner(L, i, read);
     lua_pop(L, 1);
   }
+  return read;
+}
+
+/// The vehicle integrates as its tires do: Newmark (alpha = 0) or HHT with the same alpha.
+VehicleSettings settings_of(const MacroArguments& arguments, const std::vector<DeckModel*>& decks) {
   const bool threads = arguments.boolean("threads");
   for (DeckModel* deck : decks)
     if (threads && deck->calls_lua())
       throw ModelError("a tire model calls a Lua load function ('fn'): solve it with threads = false");
-
-  // The vehicle integrates as its tires do: Newmark (alpha = 0) or HHT with the same alpha.
   const Integrator& scheme = decks[0]->analysis().integrator();
   for (DeckModel* deck : decks) {
     const Integrator& other = deck->analysis().integrator();
@@ -214,12 +214,12 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   settings.residual_tolerance = arguments.number("tolerance");
   settings.jacobian = arguments.string("jacobian") == "direct" ? SpindleJacobianSource::Direct
                                                                 : SpindleJacobianSource::FiniteDifference;
-  const std::unique_ptr<TireExchange> tires = tire_exchange(session, spindles, decks, threads);
-  Vehicle vehicle(body, corners, *tires, settings);
+  return settings;
+}
 
-  // History channels in every corner's result file; the returned arrays.
-  auto view = std::make_shared<VehicleView>();
-  view->vehicle = &vehicle;
+/// History channels of the vehicle in every corner's result file; NaN once the run is over.
+void add_vehicle_channels(const std::vector<DeckModel*>& decks, const Vehicle& vehicle,
+                          const std::shared_ptr<VehicleView>& view) {
   for (size_t i = 0; i < decks.size(); ++i) {
     io::ResultFile& file = decks[i]->output_or_default();
     const int c = static_cast<int>(i);
@@ -237,11 +237,15 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
     file.add_channel("wheel_z", "m", channel([c](const Vehicle& v) { return v.state().displacement[v.wheel_vertical_dof(c)]; }));
     file.add_channel("wheel_x", "m", channel([c](const Vehicle& v) { return v.state().displacement[v.wheel_fore_aft_dof(c)]; }));
   }
-  const int every = static_cast<int>(arguments.integer("history_every"));
+}
+
+/// The series tirefe.vehicle{...} returns, one entry every 'history_every' steps.
+struct VehicleSeries {
+  explicit VehicleSeries(size_t corners) : jounce(corners), wheel_z(corners), fx(corners), fz(corners) {}
   std::vector<double> time, heave, pitch, roll;
-  std::vector<std::vector<double>> jounce(corners.size()), wheel_z(corners.size()), fx(corners.size()), fz(corners.size());
-  vehicle.add_step_observer([&](const Vehicle& v) {
-    if (v.statistics().steps % every != 0) return;
+  std::vector<std::vector<double>> jounce, wheel_z, fx, fz;  // per corner
+
+  void record(const Vehicle& v, const std::vector<Heading>& headings) {
     time.push_back(v.time());
     heave.push_back(v.state().displacement[0]);
     pitch.push_back(v.body_dofs() == 3 ? v.state().displacement[1] : 0.0);
@@ -255,7 +259,12 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
       fx[i].push_back(load.x());
       fz[i].push_back(load.y());
     }
-  });
+  }
+};
+
+/// Steps the vehicle with its tires kept busy; returns the wall time [s].
+double run_vehicle(Vehicle& vehicle, const std::vector<DeckModel*>& decks, const MacroArguments& arguments,
+                   const std::vector<Vehicle::StepWindow>& windows, VehicleView& view) {
   const auto start = std::chrono::steady_clock::now();
   const RemoteTiresGuard remote_tires{decks};
   std::vector<std::unique_ptr<DeckModel::Busy>> busy;  // a tire's load function must not step or change a tire
@@ -264,13 +273,15 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
   try {
     vehicle.advance(arguments.number("duration"), arguments.number("dt"), windows);
   } catch (...) {
-    view->vehicle = nullptr;
+    view.vehicle = nullptr;
     throw;
   }
-  view->vehicle = nullptr;
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  view.vehicle = nullptr;
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  const VehicleStatistics& s = vehicle.statistics();
+/// Pushes tirefe.vehicle's returned table: totals, series, and per corner series.
+void push_vehicle_results(lua_State* L, const VehicleStatistics& s, double wall, const VehicleSeries& series) {
   lua_createtable(L, 0, 16);
   const std::pair<const char*, double> totals[] = {
       {"steps", s.steps}, {"corrector_iterations", s.corrector_iterations}, {"tire_solves", s.tire_solves},
@@ -280,17 +291,17 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
     lua_pushnumber(L, value);
     lua_setfield(L, -2, name);
   }
-  const std::pair<const char*, const std::vector<double>*> series[] = {
-      {"time", &time}, {"heave", &heave}, {"pitch", &pitch}, {"roll", &roll}};
-  for (const auto& [name, values] : series) {
+  const std::pair<const char*, const std::vector<double>*> body_series[] = {
+      {"time", &series.time}, {"heave", &series.heave}, {"pitch", &series.pitch}, {"roll", &series.roll}};
+  for (const auto& [name, values] : body_series) {
     push_list(L, *values);
     lua_setfield(L, -2, name);
   }
-  lua_createtable(L, static_cast<int>(corners.size()), 0);
-  for (size_t i = 0; i < corners.size(); ++i) {
+  lua_createtable(L, static_cast<int>(series.jounce.size()), 0);
+  for (size_t i = 0; i < series.jounce.size(); ++i) {
     lua_createtable(L, 0, 4);
     const std::pair<const char*, const std::vector<double>*> corner_series[] = {
-        {"jounce", &jounce[i]}, {"wheel_z", &wheel_z[i]}, {"fx", &fx[i]}, {"fz", &fz[i]}};
+        {"jounce", &series.jounce[i]}, {"wheel_z", &series.wheel_z[i]}, {"fx", &series.fx[i]}, {"fz", &series.fz[i]}};
     for (const auto& [name, values] : corner_series) {
       push_list(L, *values);
       lua_setfield(L, -2, name);
@@ -298,6 +309,27 @@ int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& argu
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "corners");
+}
+
+int vehicle_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
+  const std::vector<Vehicle::StepWindow> windows = step_windows_of(arguments);
+  const Body body = body_of(L, arguments);
+  const VehicleCorners read = corners_of(L, arguments);
+  const VehicleSettings settings = settings_of(arguments, read.decks);
+  const std::unique_ptr<TireExchange> tires =
+      tire_exchange(session, read.spindles, read.decks, arguments.boolean("threads"));
+  Vehicle vehicle(body, read.corners, *tires, settings);
+
+  auto view = std::make_shared<VehicleView>();
+  view->vehicle = &vehicle;
+  add_vehicle_channels(read.decks, vehicle, view);
+  const int every = static_cast<int>(arguments.integer("history_every"));
+  VehicleSeries series(read.corners.size());
+  vehicle.add_step_observer([&](const Vehicle& v) {
+    if (v.statistics().steps % every == 0) series.record(v, read.headings);
+  });
+  const double wall = run_vehicle(vehicle, read.decks, arguments, windows, *view);
+  push_vehicle_results(L, vehicle.statistics(), wall, series);
   return 1;
 }
 

@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "tire/contact_penalty.hpp"
+
 namespace tirefe {
 
 TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, const RoadContact& contact) {
