@@ -1,0 +1,104 @@
+// Tests of the deck library modules in lua/ (drum, press, series, rolling), each through a
+// small self-checking deck run in the sandbox.
+#include <catch2/catch.hpp>
+
+#include "deck_support.hpp"
+#include "test_support.hpp"
+
+TEST_CASE("lua/drum.lua: the drum's turn, the cleat passages and the step schedule", "[lua][modules][drum]") {
+  // The drum-cleat rig with a 0.5 s spin-up: omega = 14.25 m/s / 0.85 m = 16.7647 rad/s; the
+  // cleat's middle at the bottom, its leading edge reaches the top after pi - 0.66 / 1.7 rad.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("drum_deck.lua", R"(
+local rig = require("drum").rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 0.5 }
+tirefe.check{ name = "omega [rad/s]", value = rig.omega, expected = 16.764705882352942, relative = 1e-14 }
+tirefe.check{ name = "at rest before the start", value = rig:angle(1.5), expected = 0, tolerance = 0 }
+tirefe.check{ name = "angle in the spin-up [rad]", value = rig:angle(2.25), expected = 1.0477941176470587, relative = 1e-14 }
+tirefe.check{ name = "angle at full speed [rad]", value = rig:angle(3.0), expected = 12.573529411764703, relative = 1e-14 }
+tirefe.check{ name = "time_at_angle inverts angle, spin-up [s]", value = rig:time_at_angle(rig:angle(2.3)),
+              expected = 2.3, tolerance = 1e-12 }
+tirefe.check{ name = "time_at_angle inverts angle, full speed [s]", value = rig:time_at_angle(rig:angle(2.9)),
+              expected = 2.9, tolerance = 1e-12 }
+tirefe.check{ name = "surface speed halfway up [m/s]", value = rig:surface_speed(2.25), expected = 7.125, relative = 1e-14 }
+local cleat = { cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 3.5 }
+local passages = rig:passages(cleat)
+tirefe.check{ name = "passages before 3.5 s", value = #passages, expected = 3, tolerance = 0 }
+tirefe.check{ name = "first passage on [s]", value = passages[1].on, expected = 2.4052596097155003, tolerance = 1e-12 }
+tirefe.check{ name = "first passage off [s]", value = passages[1].off, expected = 2.4588585193068164, tolerance = 1e-12 }
+tirefe.check{ name = "second passage on [s]", value = passages[2].on, expected = 2.789021843273963, tolerance = 1e-12 }
+tirefe.check{ name = "full speed: a turn between passages = pi D / v [s]", value = passages[3].on - passages[2].on,
+              expected = math.pi * 1.7 / (51.3 / 3.6), relative = 1e-12 }
+tirefe.check{ name = "full speed: the cleat passes in its length / v [s]", value = passages[2].off - passages[2].on,
+              expected = 0.66 / (51.3 / 3.6), relative = 1e-12 }
+tirefe.check{ name = "first full-speed passage ends [s]", value = rig:first_full_speed_passage_end(cleat),
+              expected = 2.835337632747647, tolerance = 1e-12 }
+local step = rig:time_step{ passages = passages, dt = 5e-4, dt_max = 2e-3, dt_cleat = 2.5e-4, ring_time = 0.15 }
+tirefe.check{ name = "slow drum: dt_max [s]", value = step(2.1), expected = 2e-3, tolerance = 0 }
+tirefe.check{ name = "spin-up: dt x full speed / speed [s]", value = step(2.2), expected = 1.25e-3, relative = 1e-12 }
+tirefe.check{ name = "10 ms before a passage: dt_cleat [s]", value = step(2.3955), expected = 2.5e-4, tolerance = 0 }
+tirefe.check{ name = "ring_time after a passage: dt_cleat [s]", value = step(2.98), expected = 2.5e-4, tolerance = 0 }
+tirefe.check{ name = "full speed between passages: dt [s]", value = step(3.1), expected = 5e-4, relative = 1e-14 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 19);
+}
+
+TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, means, rolling radius", "[lua][modules]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("series_deck.lua", R"(
+local series = require("series")
+local rolling = require("rolling")
+local time = { 1.0, 2.0, 3.0, 4.0, 5.0 }
+local fz = { 10.0, 30.0, -5.0, 30.0, 20.0 }
+local low, high = series.range(time, fz, 2.0, 4.0)
+tirefe.check{ name = "range low, window ends included", value = low, expected = -5, tolerance = 0 }
+tirefe.check{ name = "range high", value = high, expected = 30, tolerance = 0 }
+local peak_time, peak = series.peak(time, fz, 1.5, 5.0)
+tirefe.check{ name = "peak: the first of equal maxima [s]", value = peak_time, expected = 2.0, tolerance = 0 }
+tirefe.check{ name = "peak value", value = peak, expected = 30, tolerance = 0 }
+tirefe.check{ name = "no peak in an empty window", value = series.peak(time, fz, 6, 7) == nil and 1 or 0, expected = 1 }
+tirefe.check{ name = "mean over from < t <= to", value = series.mean(time, fz, 1.0, 3.0, function(v) return v end),
+              expected = 12.5, tolerance = 1e-15 }
+tirefe.check{ name = "mean spacing of peak times [s]", value = series.mean_spacing{ 2.0, 2.375, 2.75, 3.125 },
+              expected = 0.375, tolerance = 1e-15 }
+tirefe.check{ name = "rolling radius = speed / spin, averaged [m]",
+              value = rolling.radius{ time = time, spin = { 10, 20, 40, 50, 60 }, speed = 2.0, from = 1.0, to = 3.0 },
+              expected = 0.075, tolerance = 1e-15 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 8);
+}
+
+TEST_CASE("lua/press.lua presses a tire onto a road to a load; rolling.lua's contact ring", "[lua][modules][press]") {
+  // The 145 SR-12 inflated on a held hub over a flat road, pressed to 2500 N by secant steps.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("press_deck.lua", R"(
+local tp = require("tires.145SR12")
+tp.elements = 60
+local model = tirefe.model{ title = "press" }
+local tire, level = require("tire_on_road").inflated(model, tp)
+-- The inflated, unloaded contact nodes form a regular polygon of 60 sides about the spindle.
+local sx = model:value{ node = tire.spindle, dof = "ux", quantity = "position" }
+local sy = model:value{ node = tire.spindle, dof = "uy", quantity = "position" }
+local r = 0
+for _, node in ipairs(tire.contact) do
+  local x = model:value{ node = node, dof = "ux", quantity = "position" }
+  local y = model:value{ node = node, dof = "uy", quantity = "position" }
+  r = r + math.sqrt((x - sx) ^ 2 + (y - sy) ^ 2) / #tire.contact
+end
+tirefe.check{ name = "contact ring of the round tire = 2 n r sin(pi / n) [m]",
+              value = require("rolling").contact_circumference(model, tire.contact),
+              expected = 2 * #tire.contact * r * math.sin(math.pi / #tire.contact), relative = 1e-9 }
+model:surface{ name = "road", type = "flat", point = { 0, level } }
+model:contact{ surface = "road", set = tire.contact_set, friction = 0.5 }
+local path = require("press").path(model, tire.spindle, "press")
+local depth = path:to_load{ load = 2500 }
+tirefe.check{ name = "pressed to the load [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
+tirefe.check{ name = "the spindle went down by the depth returned [m]",
+              value = -model:value{ node = tire.spindle, dof = "uy" }, expected = depth, relative = 1e-12 }
+tirefe.check{ name = "the depth is a tire's deflection at that load, 10-20 mm [m]", value = depth, expected = 0.015,
+              tolerance = 0.005 }
+model:solve{ to = model:time() + 0.2, dt = 0.1 }
+tirefe.check{ name = "the depth is then held [m]", value = path:depth(model:time()), expected = depth, tolerance = 0 }
+tirefe.check{ name = "and the load with it [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 6);
+}
