@@ -130,36 +130,16 @@ else
   error("parameter integrator must be hht or newmark, not '" .. p.integrator .. "'")
 end
 
-local record = { time = {}, fx = {}, fz = {}, spin = {} }
-local totals = { steps = 0, newton = 0, cuts = 0 }
-local wall_start = os.clock()  -- CPU time of this process
-while model:time() < p.end_time - 1e-9 do
-  local t = model:time()
-  local step = model:step{ dt = math.min(time_step(t), p.end_time - t) }
-  totals.steps, totals.newton, totals.cuts = totals.steps + step.steps, totals.newton + step.newton_iterations,
-                                             totals.cuts + step.cuts
-  record.time[#record.time + 1] = model:time()
-  record.fx[#record.fx + 1] = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fx" }
-  record.fz[#record.fz + 1] = press:load()
-  record.spin[#record.spin + 1] = model:value{ node = tire.spindle, quantity = "spin_rate" }
-end
-local wall = os.clock() - wall_start
-model:result{ name = "dynamic_steps", value = totals.steps }
-model:result{ name = "dynamic_newton_iterations", value = totals.newton }
-model:result{ name = "dynamic_cpu_time", value = wall, unit = "s" }
-print(string.format("dynamic run: %d steps, %d Newton iterations (%.2f per step), %d cuts, %.2f s CPU, "
-                    .. "%.1f us per iteration", totals.steps, totals.newton, totals.newton / totals.steps, totals.cuts,
-                    wall, 1e6 * wall / totals.newton))
+local record, totals = require("stepping").run(model, { to = p.end_time, time_step = time_step, channels = {
+  fx = function() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fx" } end,
+  fz = function() return press:load() end,
+  spin = function() return model:value{ node = tire.spindle, quantity = "spin_rate" } end } })
+require("stepping").report(model, totals, "dynamic")
 
 -- Summary of the last passage at full speed with its ringing recorded (lua/series.lua,
--- lua/cleat_ringing.lua).
-local series = require("series")
-local full_speed = rig.start + p.spin_up_time
-local last
-for _, passage in ipairs(passages) do
-  if passage.on >= full_speed and passage.off + p.ring_time <= p.end_time then last = passage end
-end
-local cleat_ringing = require("cleat_ringing")
+-- lua/cleat_ringing.lua): peak-to-peak forces, ringing frequencies, the impacts' period.
+local series, cleat_ringing = require("series"), require("cleat_ringing")
+local last = rig:last_full_speed_passage(passages, p.ring_time, p.end_time)
 local summary = {}
 if last then
   local fx_low, fx_high = series.range(record.time, record.fx, last.on - 0.01, last.off + p.ring_time)
@@ -170,23 +150,16 @@ if last then
   print(string.format("  peak to peak: Fx %.0f N, Fz %.0f N", summary.fx_peak_to_peak, summary.fz_peak_to_peak))
   summary.ringing = cleat_ringing.read{ time = record.time, fx = record.fx, fz = record.fz, on = last.on,
                                         off = last.off, speed = rig.speed }
-  -- The measured column only for the test's own conditions.
-  summary.measured = cleat_ringing.measured(p)
+  summary.measured = cleat_ringing.measured(p)  -- only for the test's own conditions
   cleat_ringing.report(model, summary.ringing, summary.measured)
   model:result{ name = "cleat_on_s", value = last.on, unit = "s" }
   model:result{ name = "cleat_off_s", value = last.off, unit = "s" }
   model:result{ name = "fx_peak_to_peak", value = summary.fx_peak_to_peak, unit = "N" }
   model:result{ name = "fz_peak_to_peak", value = summary.fz_peak_to_peak, unit = "N" }
-  -- The period of the impacts at full speed: times of the Fz maxima of successive passages.
-  local peaks = {}
-  for _, passage in ipairs(passages) do
-    if passage.on >= full_speed and passage.off + 0.01 <= p.end_time then
-      peaks[#peaks + 1] = series.peak(record.time, record.fz, passage.on - 0.01, passage.off + 0.01)
-    end
-  end
-  summary.impact_period = series.mean_spacing(peaks)
+  local passed
+  summary.impact_period, passed = rig:impact_period(passages, record.time, record.fz, p.end_time)
   if summary.impact_period then
-    print(string.format("  Fz peaks every %.4f s over %d passages (pi D / v = %.4f s)", summary.impact_period, #peaks,
+    print(string.format("  Fz peaks every %.4f s over %d passages (pi D / v = %.4f s)", summary.impact_period, passed,
                         math.pi * p.drum_diameter / rig.speed))
     model:result{ name = "impact_period", value = summary.impact_period, unit = "s" }
   end

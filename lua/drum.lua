@@ -86,4 +86,28 @@ function Rig:time_step(args)
   end
 end
 
+-- The last passage at full speed (from start + spin_up_time on) whose ring_time after it
+-- ends by end_time, or nil.
+function Rig:last_full_speed_passage(passages, ring_time, end_time)
+  local last
+  for _, passage in ipairs(passages) do
+    if passage.on >= self.start + self.spin_up_time and passage.off + ring_time <= end_time then last = passage end
+  end
+  return last
+end
+
+-- The period of the impacts at full speed: the mean spacing of the times of the largest
+-- values (spindle Fz, say) of the passages at full speed that end 10 ms before end_time;
+-- also their number. nil if fewer than two.
+function Rig:impact_period(passages, time, values, end_time)
+  local series = require("series")
+  local peaks = {}
+  for _, passage in ipairs(passages) do
+    if passage.on >= self.start + self.spin_up_time and passage.off + 0.01 <= end_time then
+      peaks[#peaks + 1] = series.peak(time, values, passage.on - 0.01, passage.off + 0.01)
+    end
+  end
+  return series.mean_spacing(peaks), #peaks
+end
+
 return drum

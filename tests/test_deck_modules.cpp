@@ -38,8 +38,24 @@ tirefe.check{ name = "spin-up: dt x full speed / speed [s]", value = step(2.2), 
 tirefe.check{ name = "10 ms before a passage: dt_cleat [s]", value = step(2.3955), expected = 2.5e-4, tolerance = 0 }
 tirefe.check{ name = "ring_time after a passage: dt_cleat [s]", value = step(2.98), expected = 2.5e-4, tolerance = 0 }
 tirefe.check{ name = "full speed between passages: dt [s]", value = step(3.1), expected = 5e-4, relative = 1e-14 }
+local last = rig:last_full_speed_passage(passages, 0.15, 3.2)
+tirefe.check{ name = "last full-speed passage rung out by 3.2 s [s]", value = last.on, expected = passages[2].on,
+              tolerance = 0 }
+-- Made-up Fz: a spike 20 ms into each passage.
+local time, fz = {}, {}
+for k = 0, 1500 do
+  time[#time + 1] = 2.0 + k * 1e-3
+  fz[#fz + 1] = 0
+  for _, passage in ipairs(passages) do
+    if math.abs(time[#time] - (passage.on + 0.02)) < 5e-4 then fz[#fz] = 1 end
+  end
+end
+local period, count = rig:impact_period(passages, time, fz, 3.5)
+tirefe.check{ name = "impact period from the Fz peaks [s]", value = period, expected = passages[3].on - passages[2].on,
+              tolerance = 1e-3 }
+tirefe.check{ name = "full-speed passages read", value = count, expected = 2, tolerance = 0 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 19);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 22);
 }
 
 TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, means, rolling radius", "[lua][modules]") {
@@ -101,4 +117,31 @@ tirefe.check{ name = "the depth is then held [m]", value = path:depth(model:time
 tirefe.check{ name = "and the load with it [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 6);
+}
+
+TEST_CASE("lua/stepping.lua steps on a schedule, lands on the end and records channels", "[lua][modules]") {
+  // A stand-in model whose step reports two Newton iterations and cuts every third step.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("stepping_deck.lua", R"(
+local model = { t = 0.0, calls = 0 }
+function model:time() return self.t end
+function model:step(args)
+  self.t, self.calls = self.t + args.dt, self.calls + 1
+  local cut = self.calls % 3 == 0 and 1 or 0
+  return { steps = 1 + cut, newton_iterations = 2, cuts = cut }
+end
+local record, totals = require("stepping").run(model, {
+  to = 1.05, time_step = function(t) return t < 0.5 and 0.1 or 0.2 end,
+  channels = { twice = function() return 2 * model.t end } })
+-- Five steps of 0.1 to 0.5, then 0.7, 0.9 and a last one shortened to land on 1.05.
+tirefe.check{ name = "steps", value = #record.time, expected = 8, tolerance = 0 }
+tirefe.check{ name = "ends on 'to' [s]", value = record.time[#record.time], expected = 1.05, tolerance = 1e-12 }
+tirefe.check{ name = "channel read after each step", value = record.twice[#record.twice], expected = 2.1,
+              tolerance = 1e-12 }
+tirefe.check{ name = "Newton iterations summed", value = totals.newton, expected = 16, tolerance = 0 }
+tirefe.check{ name = "cuts summed", value = totals.cuts, expected = 2, tolerance = 0 }
+tirefe.check{ name = "steps include the cut pieces", value = totals.steps, expected = 10, tolerance = 0 }
+tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 0.1, tolerance = 1e-15 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
 }
