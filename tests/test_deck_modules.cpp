@@ -2,8 +2,15 @@
 // small self-checking deck run in the sandbox.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "contact/rigid_surface.hpp"
 #include "deck_support.hpp"
+#include "macros/macro_table.hpp"
 #include "test_support.hpp"
+#include "vehicle/tire_on_road.hpp"
 
 TEST_CASE("lua/drum.lua: the drum's turn, the cleat passages and the step schedule", "[lua][modules][drum]") {
   // The drum-cleat rig with a 0.5 s spin-up: omega = 14.25 m/s / 0.85 m = 16.7647 rad/s; the
@@ -144,4 +151,33 @@ tirefe.check{ name = "steps include the cut pieces", value = totals.steps, expec
 tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 0.1, tolerance = 1e-15 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
+}
+
+TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes", "[lua][modules][vehicle]") {
+  // With a tread layer the contact nodes are the layer's, 10 mm below the belt at rest:
+  // both the C++ tire and the deck module must find the road level from them, and the C++
+  // tire must put its contact on them.
+  const tirefe::TireParameters layered = tirefe::macros::load_tire_parameters("tires.145SR12_tread_layer");
+  tirefe::TireOnRoad tire(layered, [](double level) { return std::make_shared<tirefe::FlatRoad>(Eigen::Vector2d(0.0, level)); },
+                          tirefe::RoadContact{});
+  const std::vector<int>& contact_nodes = tire.tire().contact_nodes;
+  REQUIRE(contact_nodes.size() == 100);
+  CHECK(contact_nodes != tire.tire().tread_nodes);
+  std::vector<int> touching;
+  for (int e = 0; e < tire.contact().size(); ++e) touching.push_back(tire.contact().element_nodes(e).front());
+  CHECK(touching == contact_nodes);
+  const double r_outer = 0.543 / 2;
+  CHECK(tire.road_level() == Approx(-r_outer).margin(0.001));  // the layer's outer face, inflated
+
+  std::ostringstream expected;
+  expected.precision(17);
+  expected << tire.road_level();
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("level_deck.lua", R"(
+local model = tirefe.model{ title = "level" }
+local tire, level = require("tire_on_road").inflated(model, require("tires.145SR12_tread_layer"))
+tirefe.check{ name = "the deck module's road level = TireOnRoad's [m]", value = level, expected = )" +
+                                                                expected.str() + R"(, tolerance = 1e-7 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 1);
 }
