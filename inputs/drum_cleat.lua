@@ -185,23 +185,7 @@ if p.check then
   tirefe.check{ name = "rolling radius = contact ring circumference / 2 pi [m]", value = rolling_radius, expected = belt_radius,
                 tolerance = 2e-3 * belt_radius }
   if p.tire == "tires.145SR12_tread_layer" and summary.measured then
-    -- The calibrated tire against the measured ringing (docs/calibration.md): each window's
-    -- reading within 5 % of the measured frequency, and its two estimators within 5 % of each
-    -- other. Fx from the first hit is not one mode's ringing (the passage's own content and the
-    -- restart of the ringing as the tire leaves the cleat, docs/drum_cleat.md): it is checked
-    -- against the model's documented reading instead.
-    local measured = summary.measured
-    for _, window in ipairs(cleat_ringing.windows) do
-      local reading = summary.ringing[window.name]
-      if window.name ~= "fx_from_hit" then
-        tirefe.check{ name = window.what .. " vs measured " .. measured[window.name] .. " Hz",
-                      value = reading.frequency, expected = measured[window.name], relative = 0.05 }
-        tirefe.check{ name = window.what .. ": matrix pencil vs spectrum", value = reading.pencil_frequency,
-                      expected = reading.spectrum_frequency, relative = 0.05 }
-      end
-    end
-    tirefe.check{ name = "Fx from the first hit, the model's documented reading [Hz]",
-                  value = summary.ringing.fx_from_hit.frequency, expected = 31.5, relative = 0.05 }
+    cleat_ringing.check_calibrated(summary.ringing, summary.measured)  -- against the measured ringing
   end
 end
 
