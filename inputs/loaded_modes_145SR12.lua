@@ -87,17 +87,11 @@ local function ranges(samples)
   return result
 end
 
-local function copy(set)
-  local result = {}
-  for key, value in pairs(set) do result[key] = value end
-  return result
-end
-
 -- Builds, inflates, loads and linearises one tire; returns its fore-aft and vertical
 -- frequencies, the spindle deflection and the contact patch length.
 local function loaded_modes(title, module)
   local model = tirefe.model{ title = title }
-  local tp = copy(require(module))
+  local tp = require(module)  -- a fresh copy of the set (require copies parameter tables)
   tp.elements = p.elements
   tp.y = drum_radius + tp.outer_diameter / 2  -- touching the top of the drum at rest
   tp.pressure_load_function = "inflate"

@@ -28,7 +28,7 @@ local function tire_model(title, road)
   local surface = road(level)
   surface.name = "road"
   model:surface(surface)
-  model:contact{ surface = "road", set = tire.tread_set, friction = p.mu }
+  model:contact{ surface = "road", set = tire.contact_set, friction = p.mu }
   return model, tire
 end
 

@@ -20,7 +20,7 @@ local tp = require("tires.145SR12")
 -- Inflated on a held hub; the road touches the inflated tire's lowest tread node.
 local tire, level = require("tire_on_road").inflated(model, tp)
 model:surface{ name = "road", type = "flat", point = {0, level}, speed = -p.speed, ramp_time = 0.05, start_time = 2.0 }
-model:contact{ surface = "road", set = tire.tread_set, friction = p.mu, history = "patch" }
+model:contact{ surface = "road", set = tire.contact_set, friction = p.mu, history = "patch" }
 model:load_function{ name = "press", points = {{1, 0}, {2, 1}} }
 model:prescribe{ node = tire.spindle, dof = "uy", value = -p.deflection, load_function = "press" }
 model:solve{ to = 2.0, dt = 0.25 }

@@ -79,7 +79,7 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
     model:surface{ name = "road", type = "flat", point = {0, level}, speed = -v, ramp_time = p.ramp,
                    start_time = start }
   end
-  model:contact{ surface = "road", set = tire.tread_set, friction = p.mu, history = "patch" }
+  model:contact{ surface = "road", set = tire.contact_set, friction = p.mu, history = "patch" }
   -- Pressed to the static corner load: the deflection from the tire's secant stiffness
   -- between 10 and 20 mm (the press of the design position; settling does the rest).
   local weight = load + carrier * g

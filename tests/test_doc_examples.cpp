@@ -134,3 +134,7 @@ TEST_CASE("the examples of docs/tire.md, docs/contact.md and docs/output.md run 
 TEST_CASE("the example of docs/security.md runs and passes its checks", "[docs][files]") {
   CHECK(run_examples("docs/security.md") == 1);
 }
+
+TEST_CASE("the example of docs/decks.md's library modules runs and passes its checks", "[docs][modules]") {
+  CHECK(run_examples("docs/decks.md") == 1);
+}

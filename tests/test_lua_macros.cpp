@@ -330,6 +330,35 @@ common_from_deck = require("common").where == "deck"
   }
 }
 
+TEST_CASE("require hands each caller its own copy of a parameter table", "[lua][sandbox][require]") {
+  TempDir dir;
+  dir.write("lib/tires/set.lua", R"(load_count = (load_count or 0) + 1
+return { pressure = 2e5, layer = { stiffness = 1e7 }, names = { "belt", "tread" } }
+)");
+  LuaSandbox sandbox(dir.path("lib"));
+  bind_test_functions(sandbox);
+  const std::string deck = dir.write("deck/deck.lua", R"(
+local first = require("tires.set")
+first.pressure = 1
+first.layer.stiffness = 2
+first.names[1] = "ply"
+first.y = 0.5
+local second = require("tires.set")
+pressure = second.pressure
+stiffness = second.layer.stiffness
+first_name_kept = second.names[1] == "belt"
+has_y = second.y ~= nil
+distinct = not rawequal(first, second) and not rawequal(first.layer, second.layer)
+)");
+  sandbox.run_file(deck);
+  CHECK(global_number(sandbox.state(), "load_count") == 1);  // loaded once, copied per require
+  CHECK(global_number(sandbox.state(), "pressure") == 2e5);
+  CHECK(global_number(sandbox.state(), "stiffness") == 1e7);
+  CHECK(global_boolean(sandbox.state(), "first_name_kept"));
+  CHECK_FALSE(global_boolean(sandbox.state(), "has_y"));
+  CHECK(global_boolean(sandbox.state(), "distinct"));
+}
+
 TEST_CASE("protected_call turns C++ exceptions into deck errors and unwinds C++ frames", "[lua][sandbox]") {
   TempDir dir;
   LuaSandbox sandbox("");

@@ -78,12 +78,87 @@ int text_only_load(lua_State* L) {
   return lua_gettop(L);
 }
 
+// Is the table at 'index' plain data (numbers, strings, booleans and such tables, no
+// metatable)? 'seen' (absolute index) holds the tables already visited, for cycles.
+bool is_data_table(lua_State* L, int index, int seen) {
+  index = lua_absindex(L, index);
+  if (lua_getmetatable(L, index)) {
+    lua_pop(L, 1);
+    return false;
+  }
+  lua_pushvalue(L, index);
+  const bool visited = lua_rawget(L, seen) != LUA_TNIL;
+  lua_pop(L, 1);
+  if (visited) return true;
+  lua_pushvalue(L, index);
+  lua_pushboolean(L, 1);
+  lua_rawset(L, seen);
+  luaL_checkstack(L, 4, "parameter table nested too deep");
+  lua_pushnil(L);
+  while (lua_next(L, index)) {
+    const int type = lua_type(L, -1);
+    const bool data = type == LUA_TTABLE ? is_data_table(L, -1, seen)
+                                         : type != LUA_TFUNCTION && type != LUA_TUSERDATA && type != LUA_TTHREAD &&
+                                               type != LUA_TLIGHTUSERDATA;
+    lua_pop(L, 1);
+    if (!data) {
+      lua_pop(L, 1);
+      return false;
+    }
+  }
+  return true;
+}
+
+// Pushes a deep copy of the data table at 'index'; 'copies' (absolute index) maps each
+// original table to its copy, so shared and cyclic parts keep their shape.
+void push_deep_copy(lua_State* L, int index, int copies) {
+  index = lua_absindex(L, index);
+  lua_pushvalue(L, index);
+  if (lua_rawget(L, copies) != LUA_TNIL) return;
+  lua_pop(L, 1);
+  lua_newtable(L);
+  const int copy = lua_gettop(L);
+  lua_pushvalue(L, index);
+  lua_pushvalue(L, copy);
+  lua_rawset(L, copies);
+  luaL_checkstack(L, 4, "parameter table nested too deep");
+  lua_pushnil(L);
+  while (lua_next(L, index)) {
+    if (lua_istable(L, -1)) {
+      push_deep_copy(L, -1, copies);
+      lua_replace(L, -2);
+    }
+    lua_pushvalue(L, -2);
+    lua_insert(L, -2);
+    lua_rawset(L, copy);
+  }
+}
+
+// Replaces the module value on top of the stack by what require hands out: a parameter
+// table (plain data) as a fresh deep copy, so that one deck's 'set.y = ...' cannot reach
+// the next require; a library (a table holding functions) or any other value as it is.
+void hand_out_module(lua_State* L) {
+  if (!lua_istable(L, -1)) return;
+  lua_newtable(L);
+  const bool data = is_data_table(L, -2, lua_gettop(L));
+  lua_pop(L, 1);
+  if (!data) return;
+  lua_newtable(L);
+  push_deep_copy(L, -2, lua_gettop(L));
+  lua_replace(L, -3);
+  lua_pop(L, 1);
+}
+
 // require(name): <deck dir>/name.lua, <deck dir>/name/init.lua, then the same under lua_dir.
+// The loaded value is cached; parameter tables are handed out as copies (hand_out_module).
 int lua_require(lua_State* L) {
   const std::string name = luaL_checkstring(L, 1);
   lua_settop(L, 1);
   lua_getfield(L, LUA_REGISTRYINDEX, kLoadedKey);  // 2
-  if (lua_getfield(L, 2, name.c_str()) != LUA_TNIL) return 1;
+  if (lua_getfield(L, 2, name.c_str()) != LUA_TNIL) {
+    hand_out_module(L);
+    return 1;
+  }
   lua_pop(L, 1);
   if (name.empty() || name.front() == '.' || name.find_first_of("/\\") != std::string::npos ||
       name.find("..") != std::string::npos)
@@ -119,6 +194,7 @@ int lua_require(lua_State* L) {
       }
       lua_pushvalue(L, -1);
       lua_setfield(L, 2, name.c_str());
+      hand_out_module(L);
       return 1;
     }
   }

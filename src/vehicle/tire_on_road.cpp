@@ -13,20 +13,24 @@ TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, 
   model_.condense_node(tire_.spindle);
   for (int c = 0; c < kDofsPerNode; ++c) model_.fix(tire_.spindle, c);
   analysis_ = std::make_unique<Analysis>(model_);
-  analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
+  // The ring solver takes one ring of nodes plus the spindle: a tread layer's nodes are a
+  // second ring, which the default (KLU) solver takes instead.
+  if (tire_.contact_nodes == tire_.tread_nodes) analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
   analysis_->set_time_step(0.25);
   analysis_->advance(1.0);
 
+  // The nodes that touch the road are the tire's contact nodes (the tread layer's, or the
+  // tread's without one), as for model:tire in a deck and lua/tire_on_road.lua.
+  const std::vector<int>& touching = tire_.contact_nodes;
   road_level_ = std::numeric_limits<double>::infinity();
-  for (int node : tire_.tread_nodes)
+  for (int node : touching)
     road_level_ = std::min(road_level_, model_.mesh().position(node).y() + analysis_->state().displacement[dof_index(node, 1)]);
   const std::shared_ptr<const RigidSurface> surface = road(road_level_);
   ContactParameters penalties;
   penalties.friction = contact.friction;
-  penalties.normal_penalty = structural_penalty(*analysis_, tire_.tread_nodes, contact.penalty_factor);
-  penalties.tangential_penalty =
-      structural_tangential_penalty(*analysis_, tire_.tread_nodes, *surface, contact.tangential_factor);
-  contact_ = &add_contact_block(model_, "contact", surface, tire_.tread_nodes, penalties, analysis_->state().time);
+  penalties.normal_penalty = structural_penalty(*analysis_, touching, contact.penalty_factor);
+  penalties.tangential_penalty = structural_tangential_penalty(*analysis_, touching, *surface, contact.tangential_factor);
+  contact_ = &add_contact_block(model_, "contact", surface, touching, penalties, analysis_->state().time);
 }
 
 double TireOnRoad::press(double deflection) {

@@ -1,9 +1,10 @@
 // TireOnRoad: a tire model ready to be driven through its spindle. Builds the ring tire
 // with its spindle at the origin and held, inflates it quasi-statically (1 s, the hub
 // held: a free hub has rigid-body modes quasi-statically), puts the road under the
-// inflated tire, touching its lowest tread node, and adds Coulomb contact with the
+// inflated tire, touching its lowest contact node (Tire::contact_nodes: the tread layer's
+// nodes, or the tread nodes without a layer), and adds Coulomb contact on those with the
 // structure's default penalties (node_contact.hpp). The spindle is condensed and the
-// RingSolver solves. press() then loads it quasi-statically, and drive() makes it
+// RingSolver solves (KLU for a tire with a tread layer). press() then loads it quasi-statically, and drive() makes it
 // dynamic and hands the spindle to a TireSpindle for a host.
 #pragma once
 

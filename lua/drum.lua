@@ -1,0 +1,113 @@
+-- The drum of a drum-cleat rig: its turn as the drum surface of the model drives it (at rest
+-- until 'start', a linear spin-up of the surface speed over 'spin_up_time', then the full
+-- speed), the times the cleat passes under the tire on top of the drum, and the time step
+-- schedule around those passages.
+--
+--   local drum = require("drum")
+--   local rig = drum.rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 4.0 }
+--   local passages = rig:passages{ cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 8.0 }
+--   local time_step = rig:time_step{ passages = passages, dt = 5e-4, dt_max = 2e-3, dt_cleat = 2.5e-4,
+--                                    ring_time = 0.15 }
+-- The angles are those the model's drum surface turns through with speed = -rig.omega,
+-- ramp_time = spin_up_time and start_time = start (its history channel _surface_angle);
+-- the passages are needed before the run, to plan its steps, so they are computed here.
+local drum = {}
+
+local Rig = {}
+Rig.__index = Rig
+
+-- The rig from its drum diameter [m], final surface speed [m/s], spin-up start and time [s].
+function drum.rig(args)
+  local rig = setmetatable({ radius = args.diameter / 2, speed = args.speed, start = args.start,
+                             spin_up_time = args.spin_up_time }, Rig)
+  rig.omega = rig.speed / rig.radius  -- drum spin at full speed [rad/s]
+  return rig
+end
+
+-- The drum's clockwise angle at time t [rad].
+function Rig:angle(t)
+  local running = t - self.start
+  if running <= 0 then return 0 end
+  local ramp = math.min(running, self.spin_up_time)
+  return 0.5 * self.omega * ramp * ramp / self.spin_up_time + self.omega * math.max(running - self.spin_up_time, 0)
+end
+
+-- The time at which the drum has turned through 'angle' clockwise (the inverse of Rig:angle).
+function Rig:time_at_angle(angle)
+  local ramp_angle = 0.5 * self.omega * self.spin_up_time
+  if angle <= ramp_angle then return self.start + math.sqrt(2 * angle * self.spin_up_time / self.omega) end
+  return self.start + self.spin_up_time + (angle - ramp_angle) / self.omega
+end
+
+-- The drum's surface speed at time t [m/s].
+function Rig:surface_speed(t)
+  return self.speed * math.min(math.max(t - self.start, 0) / self.spin_up_time, 1)
+end
+
+-- The passages of a cleat (middle at 'cleat_angle' from +x at rest, 'cleat_length' along the
+-- surface) under the top of the drum (the middle of the contact patch) before 'end_time':
+-- a list of { on = time the leading edge arrives, off = time the trailing edge leaves }.
+function Rig:passages(args)
+  local half_angle = args.cleat_length / (2 * self.radius)
+  if half_angle >= math.pi / 2 then error("parameter cleat_length is too long for the drum", 0) end
+  local lead = (args.cleat_angle - half_angle) - math.pi / 2  -- clockwise turn that brings the leading edge to the top
+  local trail = (args.cleat_angle + half_angle) - math.pi / 2
+  while lead < 0 do lead, trail = lead + 2 * math.pi, trail + 2 * math.pi end
+  local passages = {}
+  while self:time_at_angle(lead) < args.end_time do
+    passages[#passages + 1] = { on = self:time_at_angle(lead), off = self:time_at_angle(trail) }
+    lead, trail = lead + 2 * math.pi, trail + 2 * math.pi
+  end
+  return passages
+end
+
+-- The end of the first passage at full speed: when its trailing edge has left the top.
+function Rig:first_full_speed_passage_end(args)
+  local half_angle = args.cleat_length / (2 * self.radius)
+  local lead = (args.cleat_angle - half_angle) - math.pi / 2
+  while lead < 0 do lead = lead + 2 * math.pi end
+  while self:time_at_angle(lead) < self.start + self.spin_up_time do lead = lead + 2 * math.pi end
+  return self:time_at_angle(lead + 2 * half_angle)
+end
+
+-- The time step at time t: dt_cleat from 10 ms before a passage until ring_time after it;
+-- elsewhere the step in which a point of the drum surface travels as far as in dt at full
+-- speed, up to dt_max. Returns the schedule as a function of t.
+function Rig:time_step(args)
+  local function near_cleat(t)
+    for _, passage in ipairs(args.passages) do
+      if t > passage.on - 0.01 and t < passage.off + args.ring_time then return true end
+    end
+    return false
+  end
+  return function(t)
+    if near_cleat(t) then return args.dt_cleat end
+    return math.min(args.dt_max, args.dt * self.speed / math.max(self:surface_speed(t), 1e-9))
+  end
+end
+
+-- The last passage at full speed (from start + spin_up_time on) whose ring_time after it
+-- ends by end_time, or nil.
+function Rig:last_full_speed_passage(passages, ring_time, end_time)
+  local last
+  for _, passage in ipairs(passages) do
+    if passage.on >= self.start + self.spin_up_time and passage.off + ring_time <= end_time then last = passage end
+  end
+  return last
+end
+
+-- The period of the impacts at full speed: the mean spacing of the times of the largest
+-- values (spindle Fz, say) of the passages at full speed that end 10 ms before end_time;
+-- also their number. nil if fewer than two.
+function Rig:impact_period(passages, time, values, end_time)
+  local series = require("series")
+  local peaks = {}
+  for _, passage in ipairs(passages) do
+    if passage.on >= self.start + self.spin_up_time and passage.off + 0.01 <= end_time then
+      peaks[#peaks + 1] = series.peak(time, values, passage.on - 0.01, passage.off + 0.01)
+    end
+  end
+  return series.mean_spacing(peaks), #peaks
+end
+
+return drum

@@ -1,0 +1,44 @@
+-- Readings of a recorded time series (parallel lists of times and values): extremes and
+-- peaks in a time window, the mean of a function of the values over a window.
+--
+--   local series = require("series")
+--   local low, high = series.range(record.time, record.fz, 2.4, 2.6)
+--   local peak_time, peak = series.peak(record.time, record.fz, 2.4, 2.6)
+local series = {}
+
+-- The lowest and highest value at times from <= t <= to (math.huge, -math.huge if none).
+function series.range(time, values, from, to)
+  local low, high = math.huge, -math.huge
+  for i, t in ipairs(time) do
+    if t >= from and t <= to then low, high = math.min(low, values[i]), math.max(high, values[i]) end
+  end
+  return low, high
+end
+
+-- The time and value of the largest value at times from <= t <= to (the first of equal ones;
+-- nil, -math.huge if none).
+function series.peak(time, values, from, to)
+  local peak_time, peak = nil, -math.huge
+  for i, t in ipairs(time) do
+    if t >= from and t <= to and values[i] > peak then peak_time, peak = t, values[i] end
+  end
+  return peak_time, peak
+end
+
+-- The mean of fn(value, t) over the samples at times from < t <= to (nil if none).
+function series.mean(time, values, from, to, fn)
+  local sum, count = 0, 0
+  for i, t in ipairs(time) do
+    if t > from and t <= to then sum, count = sum + fn(values[i], t), count + 1 end
+  end
+  if count == 0 then return nil end
+  return sum / count
+end
+
+-- The mean spacing of the given times (nil for fewer than two).
+function series.mean_spacing(times)
+  if #times < 2 then return nil end
+  return (times[#times] - times[1]) / (#times - 1)
+end
+
+return series

@@ -1,0 +1,183 @@
+// Tests of the deck library modules in lua/ (drum, press, series, rolling), each through a
+// small self-checking deck run in the sandbox.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "contact/rigid_surface.hpp"
+#include "deck_support.hpp"
+#include "macros/macro_table.hpp"
+#include "test_support.hpp"
+#include "vehicle/tire_on_road.hpp"
+
+TEST_CASE("lua/drum.lua: the drum's turn, the cleat passages and the step schedule", "[lua][modules][drum]") {
+  // The drum-cleat rig with a 0.5 s spin-up: omega = 14.25 m/s / 0.85 m = 16.7647 rad/s; the
+  // cleat's middle at the bottom, its leading edge reaches the top after pi - 0.66 / 1.7 rad.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("drum_deck.lua", R"(
+local rig = require("drum").rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 0.5 }
+tirefe.check{ name = "omega [rad/s]", value = rig.omega, expected = 16.764705882352942, relative = 1e-14 }
+tirefe.check{ name = "at rest before the start", value = rig:angle(1.5), expected = 0, tolerance = 0 }
+tirefe.check{ name = "angle in the spin-up [rad]", value = rig:angle(2.25), expected = 1.0477941176470587, relative = 1e-14 }
+tirefe.check{ name = "angle at full speed [rad]", value = rig:angle(3.0), expected = 12.573529411764703, relative = 1e-14 }
+tirefe.check{ name = "time_at_angle inverts angle, spin-up [s]", value = rig:time_at_angle(rig:angle(2.3)),
+              expected = 2.3, tolerance = 1e-12 }
+tirefe.check{ name = "time_at_angle inverts angle, full speed [s]", value = rig:time_at_angle(rig:angle(2.9)),
+              expected = 2.9, tolerance = 1e-12 }
+tirefe.check{ name = "surface speed halfway up [m/s]", value = rig:surface_speed(2.25), expected = 7.125, relative = 1e-14 }
+local cleat = { cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 3.5 }
+local passages = rig:passages(cleat)
+tirefe.check{ name = "passages before 3.5 s", value = #passages, expected = 3, tolerance = 0 }
+tirefe.check{ name = "first passage on [s]", value = passages[1].on, expected = 2.4052596097155003, tolerance = 1e-12 }
+tirefe.check{ name = "first passage off [s]", value = passages[1].off, expected = 2.4588585193068164, tolerance = 1e-12 }
+tirefe.check{ name = "second passage on [s]", value = passages[2].on, expected = 2.789021843273963, tolerance = 1e-12 }
+tirefe.check{ name = "full speed: a turn between passages = pi D / v [s]", value = passages[3].on - passages[2].on,
+              expected = math.pi * 1.7 / (51.3 / 3.6), relative = 1e-12 }
+tirefe.check{ name = "full speed: the cleat passes in its length / v [s]", value = passages[2].off - passages[2].on,
+              expected = 0.66 / (51.3 / 3.6), relative = 1e-12 }
+tirefe.check{ name = "first full-speed passage ends [s]", value = rig:first_full_speed_passage_end(cleat),
+              expected = 2.835337632747647, tolerance = 1e-12 }
+local step = rig:time_step{ passages = passages, dt = 5e-4, dt_max = 2e-3, dt_cleat = 2.5e-4, ring_time = 0.15 }
+tirefe.check{ name = "slow drum: dt_max [s]", value = step(2.1), expected = 2e-3, tolerance = 0 }
+tirefe.check{ name = "spin-up: dt x full speed / speed [s]", value = step(2.2), expected = 1.25e-3, relative = 1e-12 }
+tirefe.check{ name = "10 ms before a passage: dt_cleat [s]", value = step(2.3955), expected = 2.5e-4, tolerance = 0 }
+tirefe.check{ name = "ring_time after a passage: dt_cleat [s]", value = step(2.98), expected = 2.5e-4, tolerance = 0 }
+tirefe.check{ name = "full speed between passages: dt [s]", value = step(3.1), expected = 5e-4, relative = 1e-14 }
+local last = rig:last_full_speed_passage(passages, 0.15, 3.2)
+tirefe.check{ name = "last full-speed passage rung out by 3.2 s [s]", value = last.on, expected = passages[2].on,
+              tolerance = 0 }
+-- Made-up Fz: a spike 20 ms into each passage.
+local time, fz = {}, {}
+for k = 0, 1500 do
+  time[#time + 1] = 2.0 + k * 1e-3
+  fz[#fz + 1] = 0
+  for _, passage in ipairs(passages) do
+    if math.abs(time[#time] - (passage.on + 0.02)) < 5e-4 then fz[#fz] = 1 end
+  end
+end
+local period, count = rig:impact_period(passages, time, fz, 3.5)
+tirefe.check{ name = "impact period from the Fz peaks [s]", value = period, expected = passages[3].on - passages[2].on,
+              tolerance = 1e-3 }
+tirefe.check{ name = "full-speed passages read", value = count, expected = 2, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 22);
+}
+
+TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, means, rolling radius", "[lua][modules]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("series_deck.lua", R"(
+local series = require("series")
+local rolling = require("rolling")
+local time = { 1.0, 2.0, 3.0, 4.0, 5.0 }
+local fz = { 10.0, 30.0, -5.0, 30.0, 20.0 }
+local low, high = series.range(time, fz, 2.0, 4.0)
+tirefe.check{ name = "range low, window ends included", value = low, expected = -5, tolerance = 0 }
+tirefe.check{ name = "range high", value = high, expected = 30, tolerance = 0 }
+local peak_time, peak = series.peak(time, fz, 1.5, 5.0)
+tirefe.check{ name = "peak: the first of equal maxima [s]", value = peak_time, expected = 2.0, tolerance = 0 }
+tirefe.check{ name = "peak value", value = peak, expected = 30, tolerance = 0 }
+tirefe.check{ name = "no peak in an empty window", value = series.peak(time, fz, 6, 7) == nil and 1 or 0, expected = 1 }
+tirefe.check{ name = "mean over from < t <= to", value = series.mean(time, fz, 1.0, 3.0, function(v) return v end),
+              expected = 12.5, tolerance = 1e-15 }
+tirefe.check{ name = "mean spacing of peak times [s]", value = series.mean_spacing{ 2.0, 2.375, 2.75, 3.125 },
+              expected = 0.375, tolerance = 1e-15 }
+tirefe.check{ name = "rolling radius = speed / spin, averaged [m]",
+              value = rolling.radius{ time = time, spin = { 10, 20, 40, 50, 60 }, speed = 2.0, from = 1.0, to = 3.0 },
+              expected = 0.075, tolerance = 1e-15 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 8);
+}
+
+TEST_CASE("lua/press.lua presses a tire onto a road to a load; rolling.lua's contact ring", "[lua][modules][press]") {
+  // The 145 SR-12 inflated on a held hub over a flat road, pressed to 2500 N by secant steps.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("press_deck.lua", R"(
+local tp = require("tires.145SR12")
+tp.elements = 60
+local model = tirefe.model{ title = "press" }
+local tire, level = require("tire_on_road").inflated(model, tp)
+-- The inflated, unloaded contact nodes form a regular polygon of 60 sides about the spindle.
+local sx = model:value{ node = tire.spindle, dof = "ux", quantity = "position" }
+local sy = model:value{ node = tire.spindle, dof = "uy", quantity = "position" }
+local r = 0
+for _, node in ipairs(tire.contact) do
+  local x = model:value{ node = node, dof = "ux", quantity = "position" }
+  local y = model:value{ node = node, dof = "uy", quantity = "position" }
+  r = r + math.sqrt((x - sx) ^ 2 + (y - sy) ^ 2) / #tire.contact
+end
+tirefe.check{ name = "contact ring of the round tire = 2 n r sin(pi / n) [m]",
+              value = require("rolling").contact_circumference(model, tire.contact),
+              expected = 2 * #tire.contact * r * math.sin(math.pi / #tire.contact), relative = 1e-9 }
+model:surface{ name = "road", type = "flat", point = { 0, level } }
+model:contact{ surface = "road", set = tire.contact_set, friction = 0.5 }
+local path = require("press").path(model, tire.spindle, "press")
+local depth = path:to_load{ load = 2500 }
+tirefe.check{ name = "pressed to the load [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
+tirefe.check{ name = "the spindle went down by the depth returned [m]",
+              value = -model:value{ node = tire.spindle, dof = "uy" }, expected = depth, relative = 1e-12 }
+tirefe.check{ name = "the depth is a tire's deflection at that load, 10-20 mm [m]", value = depth, expected = 0.015,
+              tolerance = 0.005 }
+model:solve{ to = model:time() + 0.2, dt = 0.1 }
+tirefe.check{ name = "the depth is then held [m]", value = path:depth(model:time()), expected = depth, tolerance = 0 }
+tirefe.check{ name = "and the load with it [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 6);
+}
+
+TEST_CASE("lua/stepping.lua steps on a schedule, lands on the end and records channels", "[lua][modules]") {
+  // A stand-in model whose step reports two Newton iterations and cuts every third step.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("stepping_deck.lua", R"(
+local model = { t = 0.0, calls = 0 }
+function model:time() return self.t end
+function model:step(args)
+  self.t, self.calls = self.t + args.dt, self.calls + 1
+  local cut = self.calls % 3 == 0 and 1 or 0
+  return { steps = 1 + cut, newton_iterations = 2, cuts = cut }
+end
+local record, totals = require("stepping").run(model, {
+  to = 1.05, time_step = function(t) return t < 0.5 and 0.1 or 0.2 end,
+  channels = { twice = function() return 2 * model.t end } })
+-- Five steps of 0.1 to 0.5, then 0.7, 0.9 and a last one shortened to land on 1.05.
+tirefe.check{ name = "steps", value = #record.time, expected = 8, tolerance = 0 }
+tirefe.check{ name = "ends on 'to' [s]", value = record.time[#record.time], expected = 1.05, tolerance = 1e-12 }
+tirefe.check{ name = "channel read after each step", value = record.twice[#record.twice], expected = 2.1,
+              tolerance = 1e-12 }
+tirefe.check{ name = "Newton iterations summed", value = totals.newton, expected = 16, tolerance = 0 }
+tirefe.check{ name = "cuts summed", value = totals.cuts, expected = 2, tolerance = 0 }
+tirefe.check{ name = "steps include the cut pieces", value = totals.steps, expected = 10, tolerance = 0 }
+tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 0.1, tolerance = 1e-15 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
+}
+
+TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes", "[lua][modules][vehicle]") {
+  // With a tread layer the contact nodes are the layer's, 10 mm below the belt at rest:
+  // both the C++ tire and the deck module must find the road level from them, and the C++
+  // tire must put its contact on them.
+  const tirefe::TireParameters layered = tirefe::macros::load_tire_parameters("tires.145SR12_tread_layer");
+  tirefe::TireOnRoad tire(layered, [](double level) { return std::make_shared<tirefe::FlatRoad>(Eigen::Vector2d(0.0, level)); },
+                          tirefe::RoadContact{});
+  const std::vector<int>& contact_nodes = tire.tire().contact_nodes;
+  REQUIRE(contact_nodes.size() == 100);
+  CHECK(contact_nodes != tire.tire().tread_nodes);
+  std::vector<int> touching;
+  for (int e = 0; e < tire.contact().size(); ++e) touching.push_back(tire.contact().element_nodes(e).front());
+  CHECK(touching == contact_nodes);
+  const double r_outer = 0.543 / 2;
+  CHECK(tire.road_level() == Approx(-r_outer).margin(0.001));  // the layer's outer face, inflated
+
+  std::ostringstream expected;
+  expected.precision(17);
+  expected << tire.road_level();
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("level_deck.lua", R"(
+local model = tirefe.model{ title = "level" }
+local tire, level = require("tire_on_road").inflated(model, require("tires.145SR12_tread_layer"))
+tirefe.check{ name = "the deck module's road level = TireOnRoad's [m]", value = level, expected = )" +
+                                                                expected.str() + R"(, tolerance = 1e-7 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 1);
+}
