@@ -320,9 +320,6 @@ std::string MacroArguments::string_or(const std::string& key, const std::string&
 bool MacroArguments::boolean(const std::string& key) const {
   return read<bool>(key, ValueType::Boolean, nullptr, [](lua_State* L, int i) { return lua_toboolean(L, i) != 0; });
 }
-bool MacroArguments::boolean_or(const std::string& key, bool fallback) const {
-  return read<bool>(key, ValueType::Boolean, &fallback, [](lua_State* L, int i) { return lua_toboolean(L, i) != 0; });
-}
 std::vector<double> MacroArguments::number_list(const std::string& key) const {
   return read<std::vector<double>>(key, ValueType::NumberList, nullptr, to_number_list);
 }

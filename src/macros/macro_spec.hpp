@@ -70,7 +70,6 @@ class MacroArguments {
   std::string string(const std::string& key) const;
   std::string string_or(const std::string& key, const std::string& fallback) const;
   bool boolean(const std::string& key) const;
-  bool boolean_or(const std::string& key, bool fallback) const;
   std::vector<double> number_list(const std::string& key) const;
   std::vector<long long> integer_list(const std::string& key) const;
   std::vector<std::vector<double>> number_matrix(const std::string& key) const;
