@@ -182,9 +182,9 @@ Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec
 std::string unknown_key_message(const MacroSpec& spec, const std::string& key) {
   std::vector<std::string> known;
   for (const auto& p : spec.parameters) known.push_back(p.key);
-  const std::string best = closest_name(key, known);
-  const std::string hint = best.empty() ? "" : "did you mean '" + best + "'?; ";
-  return "macro '" + spec.name + "': unknown key '" + key + "' (" + hint + "known keys: " + join(known) + ")";
+  const std::string hint = did_you_mean(key, known);
+  return "macro '" + spec.name + "': unknown key '" + key + "' (" + (hint.empty() ? "" : hint + "; ") +
+         "known keys: " + join(known) + ")";
 }
 
 int push_field(lua_State* L, int table, const std::string& key) {
