@@ -103,7 +103,6 @@ class NodeSurfaceContact : public KernelShape<1, ContactHistory> {
   bool augment(History& base, const History& trial) const;
 
   const RigidSurface& surface() const { return *surface_; }
-  const std::shared_ptr<const RigidSurface>& surface_pointer() const { return surface_; }
   const ContactParameters& parameters() const { return parameters_; }
 
  private:

@@ -18,7 +18,6 @@ class DofMap {
     equation_of_dof_.assign(dof_count, kPrescribed);
     dof_of_equation_.clear();
     for (int pass = 0; pass < 2; ++pass) {
-      if (pass == 1) first_condensed_equation_ = static_cast<int>(dof_of_equation_.size());
       for (int dof = 0; dof < dof_count; ++dof) {
         if (prescribed[dof] || condensed[dof] != (pass == 1)) continue;
         equation_of_dof_[dof] = static_cast<int>(dof_of_equation_.size());
@@ -31,14 +30,11 @@ class DofMap {
   int dof(int equation) const { return dof_of_equation_[equation]; }
   int equation_count() const { return static_cast<int>(dof_of_equation_.size()); }
   int dof_count() const { return static_cast<int>(equation_of_dof_.size()); }
-  /// Equations [first_condensed_equation(), equation_count()) belong to condensed nodes.
-  int first_condensed_equation() const { return first_condensed_equation_; }
   bool is_prescribed(int dof) const { return equation_of_dof_[dof] == kPrescribed; }
 
  private:
   std::vector<int> equation_of_dof_;
   std::vector<int> dof_of_equation_;
-  int first_condensed_equation_ = 0;
 };
 
 }  // namespace tirefe

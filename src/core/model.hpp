@@ -58,7 +58,6 @@ class Model {
 
   /// Numbers the equations; returns true if the numbering changed.
   bool finalize();
-  bool is_finalized() const { return !structure_changed_; }
   int structure_version() const { return structure_version_; }
 
   /// Sum of nodal loads at time t, one entry per DOF.
@@ -66,7 +65,6 @@ class Model {
   /// Sets the prescribed DOFs of 'state' to their values at time t.
   void apply_prescribed_displacements(double time, State& state) const;
   const std::vector<ScaledDofValue>& prescribed_dofs() const { return prescribed_; }
-  const std::vector<ScaledDofValue>& nodal_loads() const { return nodal_loads_; }
 
   void commit_history();
   void revert_history();

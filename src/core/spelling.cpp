@@ -39,4 +39,9 @@ std::string closest_name(const std::string& name, const std::vector<std::string>
   return best ? *best : std::string();
 }
 
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& known) {
+  const std::string best = closest_name(name, known);
+  return best.empty() ? best : "did you mean '" + best + "'?";
+}
+
 }  // namespace tirefe

@@ -11,4 +11,8 @@ namespace tirefe {
 /// the further apart the letters are, so that neighbours (EJ -> EI rather than EA) win ties.
 std::string closest_name(const std::string& name, const std::vector<std::string>& known);
 
+/// "did you mean 'x'?" with x the closest_name, or "" when no known name is close: the one
+/// wording of a suggestion, for every message that names an unknown key, macro, unit or section.
+std::string did_you_mean(const std::string& name, const std::vector<std::string>& known);
+
 }  // namespace tirefe

@@ -27,7 +27,6 @@ class PressureSchedule {
   }
 
   double at(double time) const { return pressure_ * ramp_(time); }
-  double nominal() const { return pressure_; }
 
  private:
   double pressure_;

@@ -44,7 +44,6 @@ class TreadBeam : public KernelShape<2> {
     double axial, shear, curvature;
   };
   Strains strains(const Vector& displacement) const;
-  double reference_length() const { return length_; }
   const BeamSection& section() const { return section_; }
 
  private:

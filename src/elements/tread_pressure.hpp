@@ -32,8 +32,6 @@ class TreadPressure : public KernelShape<2> {
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
 
-  double width() const { return width_; }
-
  private:
   Eigen::Vector2d reference_chord_;
   double width_;

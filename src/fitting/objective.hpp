@@ -33,7 +33,6 @@ class Objective {
 
   int parameter_count() const { return static_cast<int>(problem_.parameters.size()); }
   int data_count() const { return static_cast<int>(problem_.data.size()); }
-  const FitOptions& options() const { return options_; }
 
   Eigen::VectorXd initial() const;  // internal coordinates
   Eigen::VectorXd physical(const Eigen::VectorXd& z) const;

@@ -84,7 +84,6 @@ class ResultFile {
   /// Writes fields at the first accepted step at or after every multiple of 'interval'
   /// seconds (0: never), whatever the step sizes.
   void set_field_time_interval(double interval) { field_time_interval_ = interval; }
-  int field_interval() const { return field_interval_; }
 
   /// A tire's rim: its spindle node and the nodes the tire carries (for /fields/deformation).
   /// Rims and node sets given after the mesh was written are ignored.

@@ -204,11 +204,11 @@ std::optional<std::string> UnitSystem::set(const std::string& quantity, const st
   std::vector<std::string> every;
   for (const KnownUnit& known : known_units())
     if (known.quantity == key) every.insert(every.end(), known.names.begin(), known.names.end());
-  const std::string best = closest_name(unit, every);
+  const std::string hint = did_you_mean(unit, every);
   std::string word = quantity;
   std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return std::tolower(c); });
   return quantity + " = '" + unit + "' is not a known " + word + " unit (" +
-         (best.empty() ? "" : "did you mean '" + best + "'?; ") + "known: " + join(names) + ")";
+         (hint.empty() ? "" : hint + "; ") + "known: " + join(names) + ")";
 }
 
 double UnitSystem::to_si(double value, const Dimension& dimension) const {
@@ -444,8 +444,8 @@ void TeimOrbitReader::finish() const {
     return names;
   };
   auto hint = [](const std::string& name, const std::vector<std::string>& known, const char* kind) {
-    const std::string best = closest_name(name, known);
-    return " (" + (best.empty() ? std::string() : "did you mean '" + best + "'?; ") + "known " + kind + ": " +
+    const std::string suggestion = did_you_mean(name, known);
+    return " (" + (suggestion.empty() ? suggestion : suggestion + "; ") + "known " + kind + ": " +
            (known.empty() ? std::string("none") : join(known)) + ")";
   };
   int first_line = 0;

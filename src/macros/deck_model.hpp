@@ -106,8 +106,6 @@ class DeckModel {
   void schedule_checkpoints(const std::string& file, int steps, double minutes);
   /// Refuses 'what' while a restart is skipping time whose state it does not have.
   void require_state(const std::string& what) const;
-  /// True while a restart skips the time before its checkpoint.
-  bool restarting() const { return restart_ != nullptr; }
 
   /// A tire's heading (model:tire{ heading }), by its spindle node: the wheel axes of its
   /// spindle forces. One result file states one heading, so a model's tires share it.

@@ -95,7 +95,6 @@ class LuaSandbox {
   static void stop_hook(lua_State* L, lua_Debug* ar);
   static int message_handler(lua_State* L);
   void open_safe_libraries();
-  void ensure_tirefe_table();
 
   MemoryAccount memory_;
   std::string lua_dir_;

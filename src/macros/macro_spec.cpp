@@ -182,9 +182,9 @@ Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec
 std::string unknown_key_message(const MacroSpec& spec, const std::string& key) {
   std::vector<std::string> known;
   for (const auto& p : spec.parameters) known.push_back(p.key);
-  const std::string best = closest_name(key, known);
-  const std::string hint = best.empty() ? "" : "did you mean '" + best + "'?; ";
-  return "macro '" + spec.name + "': unknown key '" + key + "' (" + hint + "known keys: " + join(known) + ")";
+  const std::string hint = did_you_mean(key, known);
+  return "macro '" + spec.name + "': unknown key '" + key + "' (" + (hint.empty() ? "" : hint + "; ") +
+         "known keys: " + join(known) + ")";
 }
 
 int push_field(lua_State* L, int table, const std::string& key) {
@@ -319,9 +319,6 @@ std::string MacroArguments::string_or(const std::string& key, const std::string&
 }
 bool MacroArguments::boolean(const std::string& key) const {
   return read<bool>(key, ValueType::Boolean, nullptr, [](lua_State* L, int i) { return lua_toboolean(L, i) != 0; });
-}
-bool MacroArguments::boolean_or(const std::string& key, bool fallback) const {
-  return read<bool>(key, ValueType::Boolean, &fallback, [](lua_State* L, int i) { return lua_toboolean(L, i) != 0; });
 }
 std::vector<double> MacroArguments::number_list(const std::string& key) const {
   return read<std::vector<double>>(key, ValueType::NumberList, nullptr, to_number_list);

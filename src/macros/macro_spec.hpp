@@ -70,15 +70,12 @@ class MacroArguments {
   std::string string(const std::string& key) const;
   std::string string_or(const std::string& key, const std::string& fallback) const;
   bool boolean(const std::string& key) const;
-  bool boolean_or(const std::string& key, bool fallback) const;
   std::vector<double> number_list(const std::string& key) const;
   std::vector<long long> integer_list(const std::string& key) const;
   std::vector<std::vector<double>> number_matrix(const std::string& key) const;
   std::vector<std::string> string_list(const std::string& key) const;
   // Pushes the raw value (nil when absent), e.g. for Function and Table keys.
   void push_value(const std::string& key) const;
-
-  const MacroSpec& spec() const { return spec_; }
 
  private:
   const ParameterSpec& parameter(const std::string& key) const;

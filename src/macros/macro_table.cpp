@@ -5,33 +5,13 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/spelling.hpp"
 #include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
 
 namespace tirefe::macros {
 
 namespace {
-
-/// " (did you mean 'x'?)" for the closest known name, or "".
-std::string suggestion(const std::string& name, const std::vector<std::string>& known) {
-  std::string best;
-  size_t best_distance = 3;  // suggest only close names
-  for (const auto& candidate : known) {
-    std::vector<size_t> row(candidate.size() + 1), next(candidate.size() + 1);
-    for (size_t j = 0; j <= candidate.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= name.size(); ++i) {
-      next[0] = i;
-      for (size_t j = 1; j <= candidate.size(); ++j)
-        next[j] = std::min({row[j] + 1, next[j - 1] + 1, row[j - 1] + (name[i - 1] == candidate[j - 1] ? 0 : 1)});
-      std::swap(row, next);
-    }
-    if (row.back() < best_distance) {
-      best_distance = row.back();
-      best = candidate;
-    }
-  }
-  return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
 
 constexpr const char* kModelMetatable = "tirefe.model";
 constexpr const char* kSessionKey = "tirefe.session";
@@ -107,8 +87,9 @@ int unknown_macro(lua_State* L) {
     if (lua_type(L, -2) == LUA_TSTRING) known.push_back(lua_tostring(L, -2));
     lua_pop(L, 1);
   }
+  const std::string hint = did_you_mean(name, known);
   raise_deck_error(L, std::string(on_model ? "models have no macro '" : "tirefe has no macro '") + name + "'" +
-                          suggestion(name, known));
+                          (hint.empty() ? "" : " (" + hint + ")"));
 }
 
 /// What a model userdata holds. Lua frees the userdata's memory itself; its finaliser only

@@ -30,7 +30,6 @@ class ProgressLine {
 
   /// Draws on 'stream' from now on (nullptr: never, the default), at most every 'interval'.
   void draw_on(std::FILE* stream, Clock::duration interval = std::chrono::milliseconds(250));
-  bool drawing() const { return stream_ != nullptr; }
   /// The simulated time the deck ends at: the estimate of the wall time left needs it.
   void set_end_time(double end_time);
   /// An accepted step of any of the deck's models (tires may step on their own threads).

@@ -19,7 +19,6 @@ struct SignalWindow {
   double peak_to_peak = 0.0;  // of the raw samples in the window
   int raw_samples = 0;
 
-  double duration() const { return step * static_cast<double>(value.size() - 1); }
   double nyquist() const { return 0.5 / step; }
 };
 

@@ -30,12 +30,6 @@ void Analysis::prefer_ring_solver(std::vector<int> ring_nodes, std::vector<int> 
   analyzed_pattern_ = -1;  // chosen at the next step
 }
 
-void Analysis::use_klu_solver() {
-  ring_use_ = RingUse::Never;
-  select_solver(klu_);
-  analyzed_pattern_ = -1;
-}
-
 void Analysis::select_solver(LinearSolver& solver) {
   if (linear_solver_ != &solver) driven_solver_.reset();  // it wrapped the other one
   linear_solver_ = &solver;

@@ -150,8 +150,6 @@ class Analysis : private StepEquations {
   /// (checked at every change of pattern), with KLU otherwise: a lone tire on its road
   /// gets the structured solver, a tire with more structure attached the general one.
   void prefer_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes);
-  /// Back to the general sparse solver.
-  void use_klu_solver();
   /// The RingSolver in use, for its border Schur complement; null while KLU solves.
   RingSolver* ring_solver() { return linear_solver_ == ring_.get() ? ring_.get() : nullptr; }
 
@@ -161,7 +159,6 @@ class Analysis : private StepEquations {
   /// residuals are the forces that hold them there. At most one node's DOFs, dynamic
   /// integrators only (the tangent must be regular). An empty list ends the driving.
   void drive_dofs(std::vector<int> dofs);
-  const std::vector<int>& driven_dofs() const { return driven_dofs_; }
   /// Displacements of the driven DOFs at the end of the next step, in drive_dofs' order.
   void set_driven_displacements(const Eigen::Ref<const Eigen::VectorXd>& values);
 
@@ -177,7 +174,6 @@ class Analysis : private StepEquations {
   void record_trial_step();
   /// Forgets the trial step.
   void discard_trial_step();
-  bool has_trial_step() const { return trial_pending_; }
   /// The trial state of the last solve_trial_step().
   const State& trial_state() const { return trial_; }
   /// Residuals at the driven DOFs of the converged trial step: the forces that hold

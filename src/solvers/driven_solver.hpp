@@ -50,7 +50,6 @@ class DrivenDofSolver final : public LinearSolver {
   /// H = A_ss - A_su A_uu^-1 A_us over the driven equations, in their given order,
   /// of the last factorized matrix.
   const SmallMatrix& schur_complement() const { return schur_; }
-  const std::vector<int>& driven_equations() const { return driven_; }
 
  private:
   /// Maps the driven equations into the RingSolver's border; false if they do not all lie there.

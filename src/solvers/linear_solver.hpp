@@ -9,8 +9,8 @@
 // analyze() runs KLU's symbolic ordering once per sparsity pattern. factorize() calls
 // klu_factor the first time and klu_refactor (same pivots, cheaper) afterwards,
 // falling back to a fresh pivoting factorization when the reused pivots leave a pivot
-// below 1e-12 of the largest. No heap allocation happens in factorize() or solve() after
-// the first factorization. The structured RingSolver (ring_solver.hpp) is the fast one
+// below 1e-12 of the largest. Refactorizations and solves allocate no memory; only a fresh
+// factorization allocates KLU's numeric factors. The structured RingSolver (ring_solver.hpp) is the fast one
 // for a ring of nodes plus a border (the tire); docs/kernel.md says when to use which.
 #pragma once
 

@@ -109,7 +109,7 @@ class RingSolver final : public LinearSolver {
 
   /// Equation numbers of H's rows and columns and of f_b's entries: the border nodes in
   /// the given order, their free components ux, uy, rz in order (prescribed ones skipped).
-  /// With the spindle condensed these are first_condensed_equation() ... equation_count()-1.
+  /// With the spindle condensed these are the last equations (DofMap numbers condensed nodes last).
   const std::vector<int>& border_equations() const { return border_equations_; }
   int border_size() const { return static_cast<int>(border_equations_.size()); }
 

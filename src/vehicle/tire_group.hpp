@@ -27,7 +27,6 @@ class TireGroup final : public TireExchange {
   TireGroup(std::vector<TireSpindle*> tires, bool concurrent, int lanes = 0);
   ~TireGroup() override;
 
-  bool concurrent() const { return concurrent_; }
   int lanes() const { return lanes_; }
 
   void serve(const std::vector<SpindleRequest>& requests, std::vector<SpindleReply>& replies) override;

@@ -68,14 +68,6 @@ Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, Ve
   spindle_jacobians_.assign(corners_.size(), Eigen::Matrix2d::Zero());
 }
 
-void Vehicle::set_initial_state(const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity) {
-  if (started_) throw ModelError("initial conditions are set before the first step");
-  if (displacement.size() != dof_count() || velocity.size() != dof_count())
-    throw ModelError("initial state: expected " + std::to_string(dof_count()) + " values");
-  committed_.displacement = displacement;
-  committed_.velocity = velocity;
-}
-
 double Vehicle::jounce(int corner) const { return attachment(corner).dot(committed_.displacement); }
 
 void Vehicle::suspension_forces(const State& state, Eigen::VectorXd& forces) const {

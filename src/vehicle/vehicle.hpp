@@ -79,7 +79,7 @@ class Vehicle {
  public:
   /// Corner i rides on tires.tire(i) (spin free), whose current spindle position is the
   /// design position; the tires may be solved in threads or on other MPI ranks. A single corner makes a quarter car (heave only); more add pitch
-  /// and roll. Starts at rest at the design position unless set_initial_state() says otherwise.
+  /// and roll. Starts at rest at the design position.
   Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, VehicleSettings settings);
 
   int dof_count() const { return static_cast<int>(mass_.size()); }
@@ -88,9 +88,6 @@ class Vehicle {
   /// z_w and x_w follow the body's.
   int wheel_vertical_dof(int corner) const { return body_dofs_ + 2 * corner; }
   int wheel_fore_aft_dof(int corner) const { return body_dofs_ + 2 * corner + 1; }
-
-  /// Displacements and velocities before the first step (accelerations follow from equilibrium).
-  void set_initial_state(const Eigen::VectorXd& displacement, const Eigen::VectorXd& velocity);
 
   /// Advances by one step h (cut into halves if the corrector fails; throws StepFailure).
   void step(double h);
