@@ -77,6 +77,8 @@ class MacroArguments {
   // Pushes the raw value (nil when absent), e.g. for Function and Table keys.
   void push_value(const std::string& key) const;
 
+  const MacroSpec& spec() const { return spec_; }
+
  private:
   const ParameterSpec& parameter(const std::string& key) const;
   template <class T>
