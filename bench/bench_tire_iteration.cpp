@@ -1,10 +1,12 @@
-// Cost of one Newton iteration on the 100-element 145 SR-12 tire (303 DOFs), split into
-// assembly (all element kernels), factorisation and triangular solves, for the general
-// KLU solver and the structured RingSolver side by side, plus the RingSolver's spindle
-// condensation (Schur complement H and condensed right-hand side f_b). The tire is
-// inflated quasi-statically, then the effective tangent of a Newmark step of 1e-4 s is
-// timed, for the spindle free (3 border equations), a dead axle (ux, uy fixed: 1) and a
-// fixed spindle (0). The spindle is condensed (numbered last).
+// Cost of one Newton iteration on the 100-element 145 SR-12 tire, the paper's (303 DOFs)
+// and the calibrated one with a tread layer (503: a contact node on each belt node, a
+// satellite of it for the RingSolver), split into assembly (all element kernels),
+// factorisation and triangular solves, for the general KLU solver and the structured
+// RingSolver side by side, plus the RingSolver's spindle condensation (Schur complement
+// H and condensed right-hand side f_b). The tire is inflated quasi-statically, then the
+// effective tangent of a Newmark step of 1e-4 s is timed, for the spindle free (3 border
+// equations), a dead axle (ux, uy fixed: 1) and a fixed spindle (0). The spindle is
+// condensed (numbered last).
 //   build/bench_tire_iteration [repetitions]
 #include <chrono>
 #include <cstdio>
@@ -38,9 +40,9 @@ struct Timings {
   double difference = 0;  // |x_ring - x_klu| / |x_klu|
 };
 
-Timings time_tire(int fixed_components, int repetitions) {
+Timings time_tire(const char* tire_set, int fixed_components, int repetitions) {
   Model model;
-  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
+  const Tire tire = build_tire(model, macros::load_tire_parameters(tire_set), LoadFunction::linear());
   for (int c = 0; c < fixed_components; ++c) model.fix(tire.spindle, c);
   model.condense_node(tire.spindle);
   Analysis analysis(model);
@@ -111,16 +113,9 @@ Timings time_tire(int fixed_components, int repetitions) {
   return timings;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const int repetitions = argc > 1 ? std::atoi(argv[1]) : 2000;
+void print_table(const char* title, const Timings (&all)[3], int repetitions) {
   const char* cases[] = {"spindle free", "dead axle", "spindle fixed"};
-  const int fixed[] = {0, 2, 3};
-  Timings all[3];
-  for (int i = 0; i < 3; ++i) all[i] = time_tire(fixed[i], repetitions);
-
-  std::printf("145 SR-12, 100 elements, Newmark effective tangent (h = 1e-4 s), %d repetitions, times in us\n",
+  std::printf("%s, 100 elements, Newmark effective tangent (h = 1e-4 s), %d repetitions, times in us\n", title,
               repetitions);
   std::printf("%-40s %14s %14s %14s\n", "", cases[0], cases[1], cases[2]);
   auto row = [&](const char* label, double Timings::*field, const char* format = "%14.1f") {
@@ -150,5 +145,20 @@ int main(int argc, char** argv) {
   for (const Timings& t : all) std::printf("%14.1f", t.ring_factorize + t.ring_solve);
   std::printf("\n");
   row("|x_ring - x_KLU| / |x_KLU|", &Timings::difference, "%14.1e");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int repetitions = argc > 1 ? std::atoi(argv[1]) : 2000;
+  const char* tires[][2] = {{"tires.145SR12", "145 SR-12 (the paper's)"},
+                            {"tires.145SR12_tread_layer", "145 SR-12 calibrated (tread layer)"}};
+  const int fixed[] = {0, 2, 3};
+  for (const auto& tire : tires) {
+    Timings all[3];
+    for (int i = 0; i < 3; ++i) all[i] = time_tire(tire[0], fixed[i], repetitions);
+    print_table(tire[1], all, repetitions);
+    std::printf("\n");
+  }
   return 0;
 }

@@ -54,7 +54,8 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const Tire tire = build_tire(deck.model(), parameters,
                                deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))),
                                name);
-  // Spindle equations last, as the spindle-force condensation and the RingSolver's border want them.
+  // Spindle equations last, as the spindle-force condensation and the RingSolver's border
+  // want them; a tread layer's contact nodes join the RingSolver as satellites of the belt.
   deck.model().condense_node(tire.spindle);
   deck.analysis().prefer_ring_solver(tire.tread_nodes, {tire.spindle});
   // The result file takes the rim's rigid motion out of the tire's nodes (/fields/deformation)

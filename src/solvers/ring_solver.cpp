@@ -77,7 +77,17 @@ RingSolver::RingSolver(const DofMap& dofs, std::vector<int> ring_nodes, std::vec
 }
 
 int RingSolver::entry_offset(int row, int column) const {
-  // Blocks are stored column-major: D, U, L 3x3; W 3 x e; V e x 3; S e x e.
+  // Blocks are stored column-major: D, U, L 3x3; W 3 x e; V e x 3; S e x e; a satellite's 3x3.
+  if (row >= satellite_start_ || column >= satellite_start_) {
+    const int within = row % 3 + 3 * (column % 3), row_block = row - row % 3, column_block = column - column % 3;
+    const int row_satellite = (row - satellite_start_) / 3, column_satellite = (column - satellite_start_) / 3;
+    if (row_block == column_block) return satellite_offset(row_satellite) + within;
+    if (row >= satellite_start_ && satellite_hosts_[row_satellite] == column_block)
+      return satellite_offset(row_satellite) + 9 + within;
+    if (column >= satellite_start_ && satellite_hosts_[column_satellite] == row_block)
+      return satellite_offset(column_satellite) + 18 + within;
+    return -1;  // a satellite and a node other than its host
+  }
   const int border_start = 3 * chain_;
   if (row < border_start && column < border_start) {
     const int row_node = row / 3, column_node = column / 3, within = row % 3 + 3 * (column % 3);
@@ -101,6 +111,12 @@ int RingSolver::entry_offset(int row, int column) const {
 }
 
 std::string RingSolver::describe_node(int position) const {
+  if (position >= satellite_start_) {
+    const int i = (position - satellite_start_) / 3, host = satellite_hosts_[i];
+    const std::string node = "node " + std::to_string(satellite_nodes_[i]);
+    return host < 0 ? node + " (in neither the ring nor the border list)"
+                    : "satellite " + node + " (of " + describe_node(host) + ")";
+  }
   const int border_start = 3 * chain_;
   const int ring_size = static_cast<int>(ring_nodes_.size());
   if (position >= border_start + 3)
@@ -119,7 +135,7 @@ void RingSolver::analyze(const Matrix& pattern) {
                      " free equations (analyse the assembled, compressed tangent after Model::finalize)");
   chain_ = static_cast<int>(ring_nodes_.size()) - 1;
   width_ = 3 + 3 * static_cast<int>(border_nodes_.size());
-  padded_size_ = 3 * chain_ + width_;
+  satellite_start_ = 3 * chain_ + width_;
 
   // Equations -> padded positions; DOFs without an equation become identity padding.
   position_of_equation_.assign(equations, -1);
@@ -146,14 +162,18 @@ void RingSolver::analyze(const Matrix& pattern) {
   for (int k = 0; k < chain_; ++k) place(ring_nodes_[k + 1], 3 * k, false);
   place(ring_nodes_[0], 3 * chain_, false);
   for (size_t j = 0; j < border_nodes_.size(); ++j) place(border_nodes_[j], 3 * chain_ + 3 + 3 * static_cast<int>(j), true);
+  // The nodes of the remaining equations are satellites, if find_hosts() finds them a host.
+  satellite_nodes_.clear();
+  satellite_hosts_.clear();
   for (int equation = 0; equation < equations; ++equation)
     if (position_of_equation_[equation] < 0) {
-      const int dof = dofs_.dof(equation);
-      throw ModelError("ring solver: equation " + std::to_string(equation) + " (node " +
-                       std::to_string(dof / kDofsPerNode) + ", " + kComponentNames[dof % kDofsPerNode] +
-                       ") belongs to neither a ring nor a border node; the ring solver takes models made of "
-                       "one ring of nodes plus border nodes only (use the KLU solver for this one)");
+      satellite_nodes_.push_back(dofs_.dof(equation) / kDofsPerNode);
+      satellite_hosts_.push_back(-1);
+      place(satellite_nodes_.back(), satellite_position(static_cast<int>(satellite_nodes_.size()) - 1), false);
     }
+  const int satellites = static_cast<int>(satellite_nodes_.size());
+  padded_size_ = satellite_start_ + 3 * satellites;
+  find_hosts(pattern);
 
   // Every stored entry must land in a block of the structure.
   destination_.resize(pattern.nonZeros());
@@ -174,11 +194,42 @@ void RingSolver::analyze(const Matrix& pattern) {
   pattern_starts_.assign(starts, starts + equations + 1);
   pattern_rows_.assign(rows, rows + pattern.nonZeros());
 
-  blocks_.assign(border_block_offset() + width_ * width_, 0.0);
+  blocks_.assign(satellite_offset(satellites), 0.0);
   row_scale_.assign(padded_size_, 0.0);
   swaps_.assign(padded_size_, 0);
   border_schur_.setZero(border_size(), border_size());
   work_.setZero(padded_size_);
+}
+
+void RingSolver::find_hosts(const Matrix& pattern) {
+  const int ring_end = 3 * chain_ + 3;  // the ring's padded positions come first
+  auto couple = [&](int satellite, int other) {
+    const int i = (satellite - satellite_start_) / 3, other_block = other - other % 3;
+    int& host = satellite_hosts_[i];
+    if (other_block == satellite - satellite % 3 || other_block == host) return;
+    if (other_block < ring_end && host < 0) {
+      host = other_block;
+      return;
+    }
+    throw ModelError("ring solver: node " + std::to_string(satellite_nodes_[i]) +
+                     " belongs to neither a ring nor a border node and is coupled to " +
+                     (host < 0 ? "" : describe_node(host) + " and to ") + describe_node(other_block) +
+                     "; a node outside the lists may be coupled to one ring node only (a satellite, as a tread "
+                     "layer's contact node): give it as a ring or border node, or use the KLU solver");
+  };
+  const int* starts = pattern.outerIndexPtr();
+  const int* rows = pattern.innerIndexPtr();
+  for (int column = 0; column < pattern.cols(); ++column)
+    for (int entry = starts[column]; entry < starts[column + 1]; ++entry) {
+      const int row_position = position_of_equation_[rows[entry]], column_position = position_of_equation_[column];
+      if (row_position >= satellite_start_) couple(row_position, column_position);
+      if (column_position >= satellite_start_) couple(column_position, row_position);
+    }
+  for (size_t i = 0; i < satellite_hosts_.size(); ++i)
+    if (satellite_hosts_[i] < 0)
+      throw ModelError("ring solver: node " + std::to_string(satellite_nodes_[i]) +
+                       " belongs to neither a ring nor a border node and is coupled to no ring node; give it as a "
+                       "ring or border node, or use the KLU solver");
 }
 
 void RingSolver::check_same_pattern(const Matrix& matrix) const {
@@ -233,6 +284,7 @@ void RingSolver::factorize_interior(const Matrix& matrix) {
     row_scale_[position] = 1.0;
   }
 
+  eliminate_satellites();
   with_width([this](auto width) { eliminate_chain<decltype(width)::value>(); });
   eliminate_first_ring_node();
   Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
@@ -240,6 +292,40 @@ void RingSolver::factorize_interior(const Matrix& matrix) {
     for (int j = 0; j < border_size(); ++j) border_schur_(i, j) = s(3 + border_slots_[i], 3 + border_slots_[j]);
   interior_factored_ = true;
   ++fresh_factorizations_;
+}
+
+Eigen::Map<Eigen::Matrix3d, 0, Eigen::OuterStride<>> RingSolver::host_block(int i) {
+  const int host = satellite_hosts_[i];
+  return Eigen::Map<Eigen::Matrix3d, 0, Eigen::OuterStride<>>(blocks_.data() + entry_offset(host, host),
+                                                              Eigen::OuterStride<>(host < 3 * chain_ ? 3 : width_));
+}
+
+void RingSolver::eliminate_satellites() {
+  double* base = blocks_.data();
+  for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
+    const int position = satellite_position(i);
+    Block d(base + satellite_offset(i)), to_host(base + satellite_offset(i) + 9);
+    const int failed = lu_factor(d, &swaps_[position], &row_scale_[position]);
+    if (failed >= 0) throw_singular(position + failed, d(failed, failed), row_scale_[position + failed]);
+    lu_solve(d, &swaps_[position], to_host);
+    host_block(i) -= ConstBlock(base + satellite_offset(i) + 18).lazyProduct(to_host);
+  }
+}
+
+void RingSolver::forward_satellites(double* y) const {
+  const double* base = blocks_.data();
+  for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
+    Vector3 z(y + satellite_position(i));
+    lu_solve(ConstBlock(base + satellite_offset(i)), &swaps_[satellite_position(i)], z);
+    Vector3(y + satellite_hosts_[i]) -= ConstBlock(base + satellite_offset(i) + 18).lazyProduct(z);
+  }
+}
+
+void RingSolver::back_satellites(double* x) const {
+  const double* base = blocks_.data();
+  for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i)
+    Vector3(x + satellite_position(i)) -=
+        ConstBlock(base + satellite_offset(i) + 9).lazyProduct(ConstVector3(x + satellite_hosts_[i]));
 }
 
 template <int Width>
@@ -305,6 +391,7 @@ void RingSolver::forward(double* y) const {
   using ConstRows = Eigen::Map<const Eigen::Matrix<double, Width, 3>>;
   const double* base = blocks_.data();
   Eigen::Map<Eigen::Matrix<double, Width, 1>> y_border(y + 3 * chain_, width_);
+  forward_satellites(y);
   for (int k = 0; k < chain_; ++k) {
     Vector3 z(y + 3 * k);
     if (k > 0) z -= ConstBlock(base + lower_offset(k - 1)).lazyProduct(ConstVector3(y + 3 * k - 3));
@@ -333,6 +420,7 @@ void RingSolver::back(double* x) const {
     xk -= ConstColumns(base + border_column_offset(k), 3, width_).lazyProduct(x_border);
     if (k + 1 < chain_) xk -= ConstBlock(base + upper_offset(k)).lazyProduct(ConstVector3(x + 3 * k + 3));
   }
+  back_satellites(x);
 }
 
 void RingSolver::solve_in_place(double* values) const {

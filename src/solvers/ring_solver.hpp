@@ -7,7 +7,14 @@
 // the border nodes (the spindle: condensed, numbered last by the DofMap) may be coupled
 // to everything. analyze() verifies that the sparsity pattern has exactly this form and
 // throws ModelError otherwise, so a model that does not fit fails loudly and never gets
-// wrong answers. Every free equation must belong to a ring or a border node.
+// wrong answers. Every free equation must belong to a ring, a border or a satellite node.
+//
+// Satellites. A node in neither list whose equations couple only to themselves and to one
+// ring node, its host (a tread layer's contact node hangs on its belt node so), is found
+// by analyze() from the pattern and eliminated first, by static condensation into its
+// host's diagonal block: D_h -= A(h,s) D_s^-1 A(s,h). Forward, z_s = D_s^-1 y_s and
+// y_h -= A(h,s) z_s; back, x_s = z_s - (D_s^-1 A(s,h)) x_h. A node in neither list that
+// couples to two ring nodes, to the border or to another satellite is refused.
 //
 // Padding. Every block is padded to 3x3: a prescribed DOF's slot gets a 1 on the
 // diagonal and zeros elsewhere (right-hand side 0), an exact decoupled identity, so all
@@ -44,8 +51,9 @@
 //     border    x_b = H^-1 y_b
 //     back      x_0 = z_0 - (S_00^-1 S_0b) x_b,   x_k = z_k - X_k x_{k+1} - Y_k x_E  (k = m-1..0)
 //
-// Cost: about 350 multiply-adds per ring node with a one-node border, no sparse
-// bookkeeping: ~13 us to factor the 100-element tire, 4 us to solve (bench_tire_iteration).
+// Cost: about 350 multiply-adds per ring node with a one-node border and about 80 per
+// satellite, no sparse bookkeeping: ~13 us to factor the 100-element tire, 4 us to solve
+// (bench_tire_iteration).
 //
 // A pivot not above kPivotTolerance times the largest entry of its row in the assembled
 // matrix throws SingularMatrix, which Newton turns into a step cut. Rows are compared
@@ -77,13 +85,15 @@ class RingSolver final : public LinearSolver {
   static constexpr double kPivotTolerance = 1e-11;
 
   /// ring_nodes in ring order (each coupled to the next, the last to the first);
-  /// border_nodes coupled to anything (the spindle). The DofMap is read by analyze(), so
+  /// border_nodes coupled to anything (the spindle); any other node with equations must be
+  /// a satellite of one ring node (found by analyze()). The DofMap is read by analyze(), so
   /// the equations may be renumbered after construction; it must outlive the solver.
   RingSolver(const DofMap& dofs, std::vector<int> ring_nodes, std::vector<int> border_nodes);
 
-  /// Maps the equations to the ring and border blocks and verifies that every nonzero of
-  /// the pattern lies within a node's block, between ring neighbours, or in a border row
-  /// or column; throws ModelError naming the first equation or coupling that does not fit.
+  /// Maps the equations to the ring, border and satellite blocks and verifies that every
+  /// nonzero of the pattern lies within a node's block, between ring neighbours, between a
+  /// satellite and its host, or in a border row or column; throws ModelError naming the
+  /// first equation or coupling that does not fit.
   void analyze(const Matrix& pattern) override;
   /// factorize_interior() and the LU factorization of H: ready for solve().
   void factorize(const Matrix& matrix) override;
@@ -114,6 +124,10 @@ class RingSolver final : public LinearSolver {
   int border_size() const { return static_cast<int>(border_equations_.size()); }
 
  private:
+  void eliminate_satellites();
+  void forward_satellites(double* padded) const;
+  void back_satellites(double* padded) const;
+  void find_hosts(const Matrix& pattern);
   template <int Width>
   void eliminate_chain();
   void eliminate_first_ring_node();
@@ -134,6 +148,11 @@ class RingSolver final : public LinearSolver {
   int border_column_offset(int k) const { return 27 * chain_ + 3 * width_ * k; }
   int border_row_offset(int k) const { return 27 * chain_ + 3 * width_ * (chain_ + k); }
   int border_block_offset() const { return 27 * chain_ + 6 * width_ * chain_; }
+  // Satellite i's blocks: D_s, A(s,h) (then D_s^-1 A(s,h)), A(h,s).
+  int satellite_offset(int i) const { return border_block_offset() + width_ * width_ + 27 * i; }
+  int satellite_position(int i) const { return satellite_start_ + 3 * i; }
+  // The host's diagonal block: D_k in the chain, or S's top-left corner for r_0.
+  Eigen::Map<Eigen::Matrix3d, 0, Eigen::OuterStride<>> host_block(int i);
 
   int entry_offset(int row_position, int column_position) const;
   std::string describe_node(int position) const;
@@ -144,10 +163,13 @@ class RingSolver final : public LinearSolver {
   std::vector<int> ring_nodes_, border_nodes_;
 
   // From analyze(). Padded positions: chain node k at 3k + c, r_0 at 3m + c, border
-  // node j at 3m + 3 + 3j + c.
-  int chain_ = 0;  // m = ring nodes - 1
-  int width_ = 0;  // e = 3 + 3 * border nodes
+  // node j at 3m + 3 + 3j + c, satellite i at 3m + e + 3i + c.
+  int chain_ = 0;            // m = ring nodes - 1
+  int width_ = 0;            // e = 3 + 3 * border nodes
+  int satellite_start_ = 0;  // 3m + e
   int padded_size_ = 0;
+  std::vector<int> satellite_nodes_;
+  std::vector<int> satellite_hosts_;  // padded position of each satellite's host (3k or 3m)
   std::vector<int> position_of_equation_;
   std::vector<int> padding_;      // padded positions without an equation: identity rows
   std::vector<int> destination_;  // offset in blocks_ of each stored entry of the pattern
@@ -158,7 +180,7 @@ class RingSolver final : public LinearSolver {
   // From factorize().
   std::vector<double> blocks_;     // D, U (then X), L, W (then Y), V, S (then its factors)
   std::vector<double> row_scale_;  // largest |entry| of each padded row (permuted with the pivots)
-  std::vector<int> swaps_;         // row interchanges: 3 per chain node, 3 for r_0, then H's
+  std::vector<int> swaps_;         // row interchanges: 3 per chain node, 3 for r_0, H's, 3 per satellite
   Eigen::MatrixXd border_schur_;
   mutable Eigen::VectorXd work_;  // a padded right-hand side
   bool interior_factored_ = false;

@@ -13,9 +13,9 @@ TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, 
   model_.condense_node(tire_.spindle);
   for (int c = 0; c < kDofsPerNode; ++c) model_.fix(tire_.spindle, c);
   analysis_ = std::make_unique<Analysis>(model_);
-  // The ring solver takes one ring of nodes plus the spindle: a tread layer's nodes are a
-  // second ring, which the default (KLU) solver takes instead.
-  if (tire_.contact_nodes == tire_.tread_nodes) analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
+  // The ring of tread nodes and the spindle; a tread layer's contact nodes are satellites
+  // of their belt nodes, and the road (a rigid surface) couples each to itself only.
+  analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
   analysis_->set_time_step(0.25);
   analysis_->advance(1.0);
 

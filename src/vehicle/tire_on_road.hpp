@@ -4,8 +4,9 @@
 // inflated tire, touching its lowest contact node (Tire::contact_nodes: the tread layer's
 // nodes, or the tread nodes without a layer), and adds Coulomb contact on those with the
 // structure's default penalties (node_contact.hpp). The spindle is condensed and the
-// RingSolver solves (KLU for a tire with a tread layer). press() then loads it quasi-statically, and drive() makes it
-// dynamic and hands the spindle to a TireSpindle for a host.
+// RingSolver solves (a tread layer's contact nodes as satellites of the belt nodes).
+// press() then loads it quasi-statically, and drive() makes it dynamic and hands the
+// spindle to a TireSpindle for a host.
 #pragma once
 
 #include <functional>
