@@ -187,9 +187,12 @@ SidewallWedge::Kinematics SidewallWedge::kinematics(const Vector& u, int q, doub
   k.chord = k.cord.norm();
   k.e_y = k.cord / k.chord;
   k.e_x = perpendicular(k.e_y);
-  // gamma: from the rotated reference cord -rho (atan2 needs no normalisation) to e_y.
+  // gamma: from the rotated reference cord -rho (length r_rim) to e_y. Within 45 degrees
+  // its sine is well conditioned (d gamma = d sin / cos gamma) and asin costs a fraction
+  // of atan2, which takes over beyond.
   const Eigen::Vector2d reference = -k.rim_offset;
-  k.shear_angle = std::atan2(reference.x() * k.e_y.y() - reference.y() * k.e_y.x(), reference.dot(k.e_y));
+  const double cross = reference.x() * k.e_y.y() - reference.y() * k.e_y.x(), dot = reference.dot(k.e_y);
+  k.shear_angle = std::abs(cross) <= dot ? std::asin(cross / law_.properties().rim_radius) : std::atan2(cross, dot);
   return k;
 }
 
