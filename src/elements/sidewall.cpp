@@ -226,8 +226,8 @@ void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationCon
   Eigen::Vector2d spindle_force = Eigen::Vector2d::Zero(), force_a = Eigen::Vector2d::Zero(),
                   force_b = Eigen::Vector2d::Zero();
   double spin_moment = 0.0;
-  // The same for the tangent, K = sum_q B^T D_q (+ the spin's geometric term), where the
-  // 2 x 9 D_q is the derivative of the weighted traction l w_q t_q by the element's DOFs.
+  // The same for the tangent, K = sum_q B^T J_q (+ the spin's geometric term), where the
+  // 2 x 9 J_q is the derivative of the weighted traction l w_q t_q by the element's DOFs.
   Eigen::Matrix<double, 2, kDofs> spindle_rows, rows_a, rows_b;
   Eigen::Matrix<double, 1, kDofs> spin_row;
   double spin_geometric = 0.0;
@@ -280,20 +280,20 @@ void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationCon
       G += f.tangent_damping * C_d;
       spin_column -= (f.tangent_damping * c_t * k.chord) * k.e_x;
     }
-    // D_q = l w_q (G B + spin_column e_theta_S^T) + w_q traction dl/du, dl/du = (0, -t, t).
+    // J_q = l w_q (G B + spin_column e_theta_S^T) + w_q traction dl/du, dl/du = (0, -t, t).
     const Eigen::Matrix2d weighted_G = length_weight * G;
     const Eigen::Vector2d chord_force = kGaussWeight * traction;
-    Eigen::Matrix<double, 2, kDofs> D;
-    D.leftCols<2>() = weighted_G;
-    D.col(2) = weighted_G * rim_perpendicular + length_weight * spin_column;
-    D.middleCols<2>(3) = -shape_a * weighted_G - chord_force * chord_direction.transpose();
-    D.col(5).setZero();
-    D.middleCols<2>(6) = -shape_b * weighted_G + chord_force * chord_direction.transpose();
-    D.col(8).setZero();
-    spindle_rows += D;
-    rows_a += shape_a * D;
-    rows_b += shape_b * D;
-    spin_row += rim_perpendicular.transpose() * D;
+    Eigen::Matrix<double, 2, kDofs> J;
+    J.leftCols<2>() = weighted_G;
+    J.col(2) = weighted_G * rim_perpendicular + length_weight * spin_column;
+    J.middleCols<2>(3) = -shape_a * weighted_G - chord_force * chord_direction.transpose();
+    J.col(5).setZero();
+    J.middleCols<2>(6) = -shape_b * weighted_G + chord_force * chord_direction.transpose();
+    J.col(8).setZero();
+    spindle_rows += J;
+    rows_a += shape_a * J;
+    rows_b += shape_b * J;
+    spin_row += rim_perpendicular.transpose() * J;
     spin_geometric -= length_weight * k.rim_offset.dot(traction);  // d rho_perp / d theta_S = -rho
   }
 
