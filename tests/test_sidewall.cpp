@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <memory>
 #include <random>
 #include <vector>
@@ -366,6 +367,29 @@ TEST_CASE("k_gamma is restoring: windup stiffness k_gamma r_rim R l / L", "[side
   }
   CHECK(force.norm() <= 1e-12 * residual.norm());
   CHECK(moment == Approx(expected).epsilon(1e-10));
+}
+
+TEST_CASE("shear angle gamma: from the turned reference cord to the deformed cord, windups up to 170 degrees",
+          "[sidewall]") {
+  // The spindle turns by w with the tread held: the rim point swings round the spindle and
+  // gamma is the angle from -R(w) e_r to P = x_r - x_t, measured here with complex numbers.
+  const WedgeGeometry geometry;
+  const SidewallWedge wedge = geometry.wedge(test_properties(), kPressure);
+  const double gauss_points[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  for (double windup : {-2.95, -1.9, -0.8, -0.3, -1e-3, 0.0, 2e-3, 0.25, 0.7, 0.9, 1.6, 2.95}) {
+    SidewallWedge::Vector u = SidewallWedge::Vector::Zero();
+    u[2] = windup;
+    for (int q = 0; q < SidewallWedge::kQuadraturePoints; ++q) {
+      const Eigen::Vector2d tread = (1.0 - gauss_points[q]) * geometry.tread_a + gauss_points[q] * geometry.tread_b;
+      const Eigen::Vector2d radial = (tread - geometry.spindle).normalized();
+      const Eigen::Vector2d rim_offset = Eigen::Rotation2Dd(windup) * (kRimRadius * radial);
+      const Eigen::Vector2d cord = geometry.spindle + rim_offset - tread;
+      const std::complex<double> turned_reference(-rim_offset.x(), -rim_offset.y()), deformed(cord.x(), cord.y());
+      const double expected = std::arg(deformed / turned_reference);
+      INFO("windup " << windup << " rad, q = " << q << ", gamma = " << expected);
+      CHECK(std::abs(wedge.cord_state(u, q).shear_angle - expected) <= 1e-14);
+    }
+  }
 }
 
 TEST_CASE("sidewall rejects impossible geometry and parameters", "[sidewall]") {

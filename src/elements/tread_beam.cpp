@@ -33,11 +33,11 @@ TreadBeam::TreadBeam(const Eigen::Vector2d& start, const Eigen::Vector2d& end, c
   length_ = chord.norm();
   if (!(length_ > 0.0)) throw ModelError("beam element with coincident nodes (zero length)");
   reference_angle_ = std::atan2(chord.y(), chord.x());
+  reference_direction_ = chord / length_;
 }
 
 TreadBeam::Strains TreadBeam::strains(const Vector& d) const {
-  const Eigen::Vector2d stretch = (Eigen::Vector2d(length_ * std::cos(reference_angle_), length_ * std::sin(reference_angle_)) +
-                                   d.segment<2>(3) - d.segment<2>(0)) / length_;
+  const Eigen::Vector2d stretch = reference_direction_ + (d.segment<2>(3) - d.segment<2>(0)) / length_;
   const double beta = reference_angle_ + 0.5 * (d[2] + d[5]);
   const double c = std::cos(beta), s = std::sin(beta);
   return {stretch.x() * c + stretch.y() * s - 1.0, -stretch.x() * s + stretch.y() * c, (d[5] - d[2]) / length_};
@@ -46,11 +46,10 @@ TreadBeam::Strains TreadBeam::strains(const Vector& d) const {
 void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
                          History&, Vector& residual, Matrix* tangent) const {
   const Vector& d = local.displacement;
-  const double cos0 = std::cos(reference_angle_), sin0 = std::sin(reference_angle_);
-  const Eigen::Vector2d stretch =
-      Eigen::Vector2d(cos0, sin0) + (d.segment<2>(3) - d.segment<2>(0)) / length_;  // x'
+  const Eigen::Vector2d stretch = reference_direction_ + (d.segment<2>(3) - d.segment<2>(0)) / length_;  // x'
   const double beta = reference_angle_ + 0.5 * (d[2] + d[5]);
-  const Eigen::Vector2d t(std::cos(beta), std::sin(beta)), n(-std::sin(beta), std::cos(beta));
+  const double cos_beta = std::cos(beta), sin_beta = std::sin(beta);
+  const Eigen::Vector2d t(cos_beta, sin_beta), n(-sin_beta, cos_beta);
   const double axial = stretch.dot(t) - 1.0, shear = stretch.dot(n), curvature = (d[5] - d[2]) / length_;
   const double N = section_.axial_stiffness * axial, V = section_.shear_stiffness * shear,
                M = section_.bending_stiffness * curvature;
@@ -70,14 +69,17 @@ void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext
   if (!tangent) return;
 
   Matrix& K = *tangent;
-  K.noalias() = (section_.axial_stiffness * d_axial) * d_axial.transpose();
-  K.noalias() += (section_.shear_stiffness * d_shear) * d_shear.transpose();
-  K.noalias() += (section_.bending_stiffness * d_curvature) * d_curvature.transpose();
+  const double scale = f.tangent_stiffness * length_;
+  K.noalias() = (scale * section_.axial_stiffness * d_axial) * d_axial.transpose();
+  K.noalias() += (scale * section_.shear_stiffness * d_shear) * d_shear.transpose();
+  // Bending and curvature damping couple the two rotations alone (d_curvature = (-h, h) there).
+  double bending = scale * section_.bending_stiffness * h * h;
+  if (f.tangent_damping != 0.0) bending += f.tangent_damping * section_.curvature_damping * length_ * h * h;
   // Geometric stiffness: N d2(eps) + V d2(gam). Only translation-rotation and
   // rotation-rotation couplings are non-zero since x' is linear in u and beta in theta.
   // d2(eps) = Bx^T n b^T + b n^T Bx - (1+eps) b b^T,  d2(gam) = -Bx^T t b^T - b t^T Bx - gam b b^T.
-  const Eigen::Vector2d coupling = 0.5 * h * (N * n - V * t);  // per unit of dx'/du sign
-  const double rotation_rotation = 0.25 * (-N * (1.0 + axial) - V * shear);
+  const Eigen::Vector2d coupling = (0.5 * h * scale) * (N * n - V * t);  // per unit of dx'/du sign
+  const double rotation_rotation = 0.25 * scale * (-N * (1.0 + axial) - V * shear);
   const int translations[2] = {0, 3};
   const double signs[2] = {-1.0, 1.0};
   const int rotations[2] = {2, 5};
@@ -88,11 +90,7 @@ void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext
         K(rot, translations[a] + c) += signs[a] * coupling[c];
       }
   for (int r1 : rotations)
-    for (int r2 : rotations) K(r1, r2) += rotation_rotation;
-  K *= f.tangent_stiffness * length_;
-
-  if (f.tangent_damping != 0.0 && section_.curvature_damping != 0.0)
-    K.noalias() += (f.tangent_damping * section_.curvature_damping * length_) * d_curvature * d_curvature.transpose();
+    for (int r2 : rotations) K(r1, r2) += rotation_rotation + (r1 == r2 ? bending : -bending);
   if (f.tangent_mass != 0.0) add_mass(f.tangent_mass, K);
 }
 

@@ -54,6 +54,7 @@ class TreadBeam : public KernelShape<2> {
   BeamSection section_;
   double length_;
   double reference_angle_;
+  Eigen::Vector2d reference_direction_;  // (cos phi0, sin phi0)
 };
 
 }  // namespace tirefe

@@ -48,14 +48,20 @@ class TreadLayer : public KernelShape<2> {
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
 
  private:
-  static Eigen::Matrix2d in_frame(const Eigen::Matrix2d& reference, const Eigen::Matrix2d& rotation);
-  void add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, const Eigen::Matrix2d& rotation,
+  /// Radial/circumferential values a_r, a_t in the frame turned to the radial direction e:
+  /// a_t I + (a_r - a_t) e e^T (= R (a_r E_r E_r^T + a_t E_t E_t^T) R^T).
+  static Eigen::Matrix2d in_frame(double radial, double circumferential, const Eigen::Vector2d& e);
+  /// (J A - A J) x for that A: its rate as the frame turns, (a_r - a_t)(J e (e.x) + e (J e . x)).
+  static Eigen::Vector2d turning_rate(double radial, double circumferential, const Eigen::Vector2d& e,
+                                      const Eigen::Vector2d& x);
+  /// The outward radial direction R(theta_b) E_r of the belt node's turned frame.
+  Eigen::Vector2d turned_radial(double angle) const;
+  void add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, const Eigen::Vector2d& e,
                    Vector& residual, Matrix* tangent) const;
 
-  Eigen::Matrix2d reference_stiffness_;  // k_r E_r E_r^T + k_t E_t E_t^T
-  Eigen::Matrix2d reference_damping_;    // c_r E_r E_r^T + c_t E_t E_t^T
+  Eigen::Vector2d radial_;  // E_r, unit
+  TreadLayerProperties properties_;
   bool damped_ = false;
-  double mass_;
 };
 
 }  // namespace tirefe
