@@ -22,10 +22,10 @@
 //                                 datasets (virtual: no copies), for the XDMF index
 // Field rows are compressed. <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
 // The file is published (Hdf5File::create_published): whole at every instant. Rows wait
-// in memory and are flushed once a second of wall time (less often for a file so big that
-// its flush, which copies it whole, takes over 50 ms) and when the file closes, so a run
-// that fails leaves a file readable up to its last step and a killed run one readable up
-// to its last flush, at most a second before the kill. The index is rewritten (whole, by
+// in memory and are flushed every quarter second of wall time (less often for a file so
+// big that its flush, which copies it whole, takes over 12 ms) and when the file closes, so
+// a run that fails leaves a file readable up to its last step and a killed run one readable
+// up to its last flush, at most a quarter second before the kill. The index is rewritten (whole, by
 // a rename) after a flush that brought frames: at every such flush while it is small, at
 // most once a second beyond 1 MB, and at the close.
 //
@@ -113,11 +113,11 @@ class ResultFile {
   /// A restart's count of the rows refilled from its checkpoint.
   void set_steps_recorded(int steps) { steps_recorded_ = steps; }
   void flush();
-  /// Flushes if a second of wall time has passed since the last flush (and twenty times
+  /// Flushes if a quarter second of wall time has passed since the last flush (and twenty times
   /// that flush's own time): what a kill can lose is bounded, what flushing costs too.
   void flush_if_due();
   /// The wall time between flushes while rows arrive.
-  static constexpr std::chrono::seconds kFlushInterval{1};
+  static constexpr std::chrono::milliseconds kFlushInterval{250};
 
  private:
   struct HistoryChannel {
