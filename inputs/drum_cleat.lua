@@ -42,7 +42,7 @@ local p = tirefe.parameters{
   alpha = { -0.1, "HHT alpha" },
   dt = { 5e-4, "time step at full speed away from the cleat", unit = "s" },
   dt_max = { 2e-3, "largest time step, during the spin-up (dt grows as 1 / speed)", unit = "s" },
-  dt_cleat = { 2.5e-4, "time step from just before the cleat until ring_time after it", unit = "s" },
+  dt_cleat = { 2.5e-4, "time step through a full-speed passage and the one before: from 10 ms before the cleat until ring_time after it", unit = "s" },
   ring_time = { 0.15, "fine steps after the cleat left the tire (past the last ringing window)", unit = "s" },
   fields_interval = { 0.005, "time between deformed-shape frames", unit = "s" },
   output = { "drum_cleat.h5", "result file (in the output folder)" },
@@ -58,8 +58,9 @@ if p.cleat_height < 0 then error("parameter cleat_height must not be negative") 
 if p.end_time <= 2.0 + p.dt then error("parameter end_time must be later than the 2 s of inflation and pressing") end
 
 -- The rig (lua/drum.lua): the drum's turn, the cleat's passages under the tire and the
--- time steps, fine from shortly before a passage until ring_time after it, elsewhere
--- steps in which a tread node travels the same distance at any speed (up to dt_max).
+-- time steps, fine from shortly before a passage at full speed (and the one before them)
+-- until ring_time after it, elsewhere steps in which a tread node travels the same
+-- distance at any speed (up to dt_max), the slow passages of the spin-up included.
 local rig = require("drum").rig{ diameter = p.drum_diameter, speed = p.speed_kmh / 3.6, start = 2.0,
                                  spin_up_time = p.spin_up_time }
 local cleat = { cleat_angle = math.rad(p.cleat_start_deg), cleat_length = p.cleat_length, end_time = p.end_time }

@@ -335,6 +335,33 @@ TEST_CASE("long road profiles are searched in a window and give the same project
   }
 }
 
+TEST_CASE("a drum's projection skips the pieces that cannot be nearer and gives the nearest", "[contact][surface]") {
+  // Points all round a drum with a rounded cleat, on the drum and up to 40 mm off it, near
+  // the cleat's faces and fillets: the projection's point is the one of the nearest piece,
+  // found by projecting on every piece.
+  Cleat cleat;
+  cleat.height = 0.025;
+  cleat.arc_length = 0.66;
+  cleat.angle = 0.5 * kPi;
+  cleat.edge_radius = 0.005;
+  const Drum drum(1.7, Eigen::Vector2d(0.1, -0.2), MotionFunction(), cleat);
+  int near_cleat = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const double angle = 2.0 * kPi * k / 4000.0, lift = -0.005 + 0.045 * ((k * 37) % 101) / 100.0;
+    const Eigen::Vector2d x = drum.centre() + (0.85 + lift) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    const SurfaceProjection p = drum.project(x, 0.0);
+    double nearest = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    for (const auto& piece : drum.curve().pieces()) {
+      const Eigen::Vector2d candidate = piece.point(piece.closest(x));
+      if ((x - candidate).squaredNorm() < nearest) nearest = (x - candidate).squaredNorm(), point = candidate;
+    }
+    CHECK((p.point - point).norm() <= 1e-15);
+    near_cleat += std::abs(std::remainder(angle - cleat.angle, 2.0 * kPi)) < 0.5 ? 1 : 0;
+  }
+  CHECK(near_cleat > 500);
+}
+
 // ======================================================================================
 // The kernel's tangent
 // ======================================================================================

@@ -42,7 +42,21 @@ tirefe.check{ name = "first full-speed passage ends [s]", value = rig:first_full
 local step = rig:time_step{ passages = passages, dt = 5e-4, dt_max = 2e-3, dt_cleat = 2.5e-4, ring_time = 0.15 }
 tirefe.check{ name = "slow drum: dt_max [s]", value = step(2.1), expected = 2e-3, tolerance = 0 }
 tirefe.check{ name = "spin-up: dt x full speed / speed [s]", value = step(2.2), expected = 1.25e-3, relative = 1e-12 }
-tirefe.check{ name = "10 ms before a passage: dt_cleat [s]", value = step(2.3955), expected = 2.5e-4, tolerance = 0 }
+tirefe.check{ name = "10 ms before the passage before full speed: dt_cleat [s]", value = step(2.3955),
+              expected = 2.5e-4, tolerance = 0 }
+tirefe.check{ name = "10 ms before a full-speed passage: dt_cleat [s]", value = step(2.7795), expected = 2.5e-4,
+              tolerance = 0 }
+-- The 4 s spin-up: five passages in it (from 3.146 s), the last at 5.648-5.698 s.
+local slow = require("drum").rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 4.0 }
+local slow_passages = slow:passages{ cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 8.0 }
+local slow_step = slow:time_step{ passages = slow_passages, dt = 5e-4, dt_max = 2e-3, dt_cleat = 2.5e-4, ring_time = 0.15 }
+tirefe.check{ name = "first passage of the spin-up: dt x full speed / speed [s]", value = slow_step(3.2),
+              expected = 5e-4 * 4.0 / 1.2, relative = 1e-12 }
+tirefe.check{ name = "fourth passage of the spin-up: dt x full speed / speed [s]", value = slow_step(5.22),
+              expected = 5e-4 * 4.0 / 3.22, relative = 1e-12 }
+tirefe.check{ name = "the passage before full speed: dt_cleat [s]", value = slow_step(5.66), expected = 2.5e-4,
+              tolerance = 0 }
+tirefe.check{ name = "its ringing: dt_cleat [s]", value = slow_step(5.84), expected = 2.5e-4, tolerance = 0 }
 tirefe.check{ name = "ring_time after a passage: dt_cleat [s]", value = step(2.98), expected = 2.5e-4, tolerance = 0 }
 tirefe.check{ name = "full speed between passages: dt [s]", value = step(3.1), expected = 5e-4, relative = 1e-14 }
 local last = rig:last_full_speed_passage(passages, 0.15, 3.2)
@@ -62,7 +76,7 @@ tirefe.check{ name = "impact period from the Fz peaks [s]", value = period, expe
               tolerance = 1e-3 }
 tirefe.check{ name = "full-speed passages read", value = count, expected = 2, tolerance = 0 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 22);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 27);
 }
 
 TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, means, rolling radius", "[lua][modules]") {

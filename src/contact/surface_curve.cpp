@@ -304,6 +304,16 @@ void SurfaceCurve::number_arc_length() {
     x_min_[i] = low;
     x_max_[i] = high;
   }
+  // Balls around the bounded pieces: a segment's middle and half its length; an arc's
+  // middle and its chord to either end, 2 r sin(sweep / 4).
+  balls_.assign(count, Ball{});
+  for (int i = 0; i < count; ++i) {
+    const Piece& p = pieces_[i];
+    if (!std::isfinite(p.begin_) || !std::isfinite(p.end_)) continue;
+    balls_[i].centre = p.point(0.5 * (p.begin_ + p.end_));
+    balls_[i].radius = p.arc_ ? 2.0 * p.radius_ * std::sin(std::min(p.length() / p.radius_, 2.0 * kPi) / 4.0)
+                              : 0.5 * p.length();
+  }
   x_monotone_ = !closed_;
   for (int i = 1; i < count && x_monotone_; ++i) x_monotone_ = x_min_[i] >= x_min_[i - 1] && x_max_[i] >= x_max_[i - 1];
 }
@@ -337,12 +347,23 @@ void SurfaceCurve::candidate_range(const Eigen::Vector2d& x, int& first, int& la
   last = std::clamp(last, below, count - 1);
 }
 
+double SurfaceCurve::distance_bound(int i, const Eigen::Vector2d& x) const {
+  const Piece& piece = pieces_[i];
+  const double outside_ball = (x - balls_[i].centre).norm() - balls_[i].radius;
+  // Every point of an arc lies on its circle: |x - y| >= | |x - c| - r |.
+  return piece.arc_ ? std::max(outside_ball, std::abs((x - piece.origin_).norm() - piece.radius_)) : outside_ball;
+}
+
 SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
   int first = 0, last = 0;
   candidate_range(x, first, last);
   int nearest = first;
   double nearest_l = 0.0, nearest_distance = kInfinity;
   for (int i = first; i <= last; ++i) {
+    // A piece that cannot come nearer than the nearest so far is not projected on (a drum's
+    // cleat, away from it: its arcs' arctangents are most of a projection's cost). The
+    // margin keeps round-off in the bound from skipping a piece as near.
+    if (nearest_distance < kInfinity && distance_bound(i, x) > std::sqrt(nearest_distance) + 1e-9 * scale_) continue;
     const double l = pieces_[i].closest(x);
     const double distance = (x - pieces_[i].point(l)).squaredNorm();
     if (distance < nearest_distance) {

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <limits>
 #include <vector>
 
 namespace tirefe {
@@ -126,11 +127,19 @@ class SurfaceCurve {
   const Joint* joint_after(int piece) const;
   const Joint* joint_before(int piece) const;
   void candidate_range(const Eigen::Vector2d& x, int& first, int& last) const;
+  /// A lower bound of the distance from x to piece i, without trigonometry (-infinity for
+  /// a ray or a line).
+  double distance_bound(int i, const Eigen::Vector2d& x) const;
 
   std::vector<Piece> pieces_;
   std::vector<Joint> joints_;  // joints_[i] follows pieces_[i]; the last one only when closed
   std::vector<Corner> corners_;
   std::vector<double> x_min_, x_max_;  // per piece, for the search window of x-monotone curves
+  struct Ball {  // holds a bounded piece: its middle and the distance from there to its ends
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    double radius = std::numeric_limits<double>::infinity();
+  };
+  std::vector<Ball> balls_;  // per piece
   bool closed_ = false;
   bool x_monotone_ = false;
   double length_ = 0.0;

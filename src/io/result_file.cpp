@@ -401,7 +401,7 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   for (Surface& surface : surfaces_) append_outline(surface, state.time);
   write_views(frame);
   unflushed_frames_.push_back(state.time);
-  flush_if_due(true);
+  flush_if_due();
 }
 
 void ResultFile::start(const Analysis& analysis) {
@@ -421,11 +421,10 @@ void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
   const bool frame_due = (field_interval_ > 0 && record.step % field_interval_ == 0) ||
                          (field_time_interval_ > 0.0 && record.time >= next_field_time_);
   if (frame_due) {
-    write_fields(analysis, record.step);  // flushes
+    write_fields(analysis, record.step);
     schedule_next_frame(record.time);
   }
-  else
-    flush_if_due(false);
+  flush_if_due();
 }
 
 void ResultFile::schedule_next_frame(double frame_time) {
@@ -435,12 +434,13 @@ void ResultFile::schedule_next_frame(double frame_time) {
   next_field_time_ = (std::floor((frame_time + margin) / field_time_interval_) + 1.0) * field_time_interval_ - margin;
 }
 
-void ResultFile::flush_if_due(bool frame) {
-  // A flush copies the whole file (a millisecond per few MB). A field frame is flushed at
-  // once, other rows after a quarter second of wall time, but never before twenty times
-  // the last flush's own time has passed: flushing takes at most some 5% of the run.
+void ResultFile::flush_if_due() {
+  // A flush writes the rows waiting in memory and copies the whole file (a millisecond per
+  // few MB): every quarter second of wall time, field frames or not, and never before
+  // twenty times the last flush's own time has passed: flushing takes at most some 5% of
+  // the run.
   const auto since = std::chrono::steady_clock::now() - last_flush_;
-  if ((!frame && since < std::chrono::milliseconds(250)) || since < 20 * last_flush_cost_) return;
+  if (since < kFlushInterval || since < 20 * last_flush_cost_) return;
   flush();
 }
 

@@ -21,12 +21,13 @@
 //   /fields/frames/<k>/..., /surfaces/<name>/frames/<k>   frame k of the above as whole
 //                                 datasets (virtual: no copies), for the XDMF index
 // Field rows are compressed. <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
-// The file is published (Hdf5File::create_published): whole at every instant. Rows are
-// flushed at field frames and at least every quarter second of wall time (less often for
-// a big file, whose flush copies it whole) and when the file closes, so a run that fails leaves a file
-// readable up to its last step and a killed run one readable up to its last flush. The
-// index is rewritten (whole, by a rename) after a flush that brought frames: at every
-// such flush while it is small, at most once a second beyond 1 MB, and at the close.
+// The file is published (Hdf5File::create_published): whole at every instant. Rows wait
+// in memory and are flushed every quarter second of wall time (less often for a file so
+// big that its flush, which copies it whole, takes over 12 ms) and when the file closes, so
+// a run that fails leaves a file readable up to its last step and a killed run one readable
+// up to its last flush, at most a quarter second before the kill. The index is rewritten (whole, by
+// a rename) after a flush that brought frames: at every such flush while it is small, at
+// most once a second beyond 1 MB, and at the close.
 //
 // Deformation: a tire's displacement with the rigid motion of its rim taken out. With X
 // the reference position of a node, x = X + u, s the spindle and R = R(theta_s),
@@ -112,6 +113,11 @@ class ResultFile {
   /// A restart's count of the rows refilled from its checkpoint.
   void set_steps_recorded(int steps) { steps_recorded_ = steps; }
   void flush();
+  /// Flushes if a quarter second of wall time has passed since the last flush (and twenty times
+  /// that flush's own time): what a kill can lose is bounded, what flushing costs too.
+  void flush_if_due();
+  /// The wall time between flushes while rows arrive.
+  static constexpr std::chrono::milliseconds kFlushInterval{250};
 
  private:
   struct HistoryChannel {
@@ -147,7 +153,6 @@ class ResultFile {
   /// Shapes as modes x (3 nodes), like the displacement fields.
   void write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes);
   void start_history();
-  void flush_if_due(bool frame);
   /// With frames by time: the first step at or after the next multiple of the interval.
   void schedule_next_frame(double frame_time);
 

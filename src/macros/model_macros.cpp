@@ -348,7 +348,7 @@ int result_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
   output.file().write_attribute("/results", name, arguments.number("value"));
   if (arguments.has("unit")) output.file().write_attribute("/results", name + "_unit", arguments.string("unit"));
-  output.flush();
+  output.flush_if_due();
   return 0;
 }
 
