@@ -24,6 +24,7 @@
 
 #include "core/assembler.hpp"
 #include "core/model.hpp"
+#include "solvers/carried_state.hpp"
 #include "solvers/driven_solver.hpp"
 #include "solvers/integrator.hpp"
 #include "solvers/linear_solver.hpp"
@@ -52,15 +53,6 @@ struct StepControl {
   int step_budget = 100;
 };
 
-/// Energies at the end of an accepted step; initial + external_work = kinetic + strain + dissipated.
-struct EnergyRecord {
-  double kinetic = 0.0;        // v.M v / 2
-  double strain = 0.0;         // sum of the element blocks' stored energy
-  double external_work = 0.0;  // of nodal loads and support reactions since the start
-  double initial = 0.0;        // kinetic + strain at the start of the analysis
-  double dissipated = 0.0;     // initial + external_work - kinetic - strain
-};
-
 struct StepRecord {
   int step = 0;           // accepted steps since the start
   double time = 0.0;      // at the end of the step
@@ -72,19 +64,6 @@ struct StepRecord {
   EnergyRecord energy;    // at the end of the step
 };
 
-/// Everything an Analysis carries from one accepted step to the next (checkpoints): with
-/// the element histories and the deck's settings it continues a run bit for bit.
-struct AnalysisSnapshot {
-  State state;
-  double nominal_step = 0.0, current_step = 0.0;
-  Eigen::VectorXd external_old, old_internal_forces, reactions;
-  bool old_forces_valid = false, acceleration_pending = false, reactions_valid = false, energy_started = false;
-  EnergyRecord energy;
-  int accepted_steps = 0;
-  int integrator_kind = 0;  // Integrator::Kind, with its parameters: checked on restore
-  double beta = 0.0, gamma = 0.0, alpha = 0.0;
-};
-
 class Analysis : private StepEquations {
  public:
   explicit Analysis(Model& model);
@@ -94,7 +73,7 @@ class Analysis : private StepEquations {
   void set_integrator(const Integrator& integrator);
   const Integrator& integrator() const { return integrator_; }
   void set_time_step(double step);
-  double time_step() const { return nominal_step_; }
+  double time_step() const { return carried_.steps.nominal; }
   NewtonSettings& newton_settings() { return newton_.settings(); }
   StepControl& step_control() { return control_; }
   void set_log(std::ostream* log);
@@ -107,9 +86,9 @@ class Analysis : private StepEquations {
 
   /// The state between steps, for a checkpoint. Taking one also drops the linear
   /// solver's reused pivots, as a restore does, so that the run goes on as a restarted one would.
-  AnalysisSnapshot snapshot();
+  CarriedState snapshot();
   /// Continues from a snapshot (with the same integrator; throws ModelError otherwise).
-  void restore(const AnalysisSnapshot& snapshot);
+  void restore(const CarriedState& snapshot);
 
   /// Solves M a = F - f_int - C v for the accelerations at the current time. Called by
   /// advance() when the analysis enters dynamics or after new initial conditions.
@@ -124,17 +103,17 @@ class Analysis : private StepEquations {
   void set_initial_displacement(const Eigen::VectorXd& displacement);
   void set_initial_velocity(const Eigen::VectorXd& velocity);
 
-  const State& state() const { return committed_; }
-  State& mutable_state() { return committed_; }
+  const State& state() const { return carried_.state; }
+  State& mutable_state() { return carried_.state; }
   /// Reactions at prescribed DOFs (zero elsewhere), from the last converged step.
-  const Eigen::VectorXd& reactions() const { return reactions_; }
+  const Eigen::VectorXd& reactions() const { return carried_.reactions; }
   const Eigen::VectorXd& external_forces() const { return external_new_; }
   /// Energy balance as of the last accepted step (all zero before the first).
-  const EnergyRecord& energy() const { return energy_; }
+  const EnergyRecord& energy() const { return carried_.energy; }
   /// Starts the balance afresh at the current state (after a static preload, say):
   /// initial = kinetic + strain now, no external work yet.
   void restart_energy_balance();
-  int accepted_steps() const { return accepted_steps_; }
+  int accepted_steps() const { return carried_.accepted_steps; }
   const NewtonReport& last_newton_report() const { return newton_.last_report(); }
   Assembler& assembler() { return assembler_; }
   /// The solver of the Newton iterations (KLU by default).
@@ -225,19 +204,12 @@ class Analysis : private StepEquations {
   NewtonSolver newton_;
   Integrator integrator_ = Integrator::quasi_static();
   StepControl control_;
-  double nominal_step_ = 1.0;
-  double current_step_ = 1.0;
   std::ostream* log_ = nullptr;
   std::string last_failure_;
 
-  State committed_, trial_;
-  Eigen::VectorXd residual_all_, external_new_, external_old_, old_internal_forces_, reactions_;
-  bool old_forces_valid_ = false;
-  bool acceleration_pending_ = false;
-  bool reactions_valid_ = false;  // reactions_ belong to the committed state
-  bool energy_started_ = false;
-  EnergyRecord energy_;
-  int accepted_steps_ = 0;
+  CarriedState carried_;
+  State trial_;
+  Eigen::VectorXd residual_all_, external_new_;
   std::vector<StepRecord> records_;
   std::vector<int> driven_dofs_;
   Eigen::VectorXd driven_displacements_;
