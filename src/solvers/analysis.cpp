@@ -169,9 +169,7 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
   context.want_tangent = with_tangent;
   assembler_.assemble(context, trial_, residual_all_);
 
-  residual_all_ -= integrator_.new_force_weight() * external_new_;
-  if (integrator_.old_force_weight() != 0.0)
-    residual_all_ += integrator_.old_force_weight() * (carried_.old_internal_forces - carried_.external_old);
+  integrator_.add_load_terms(external_new_, carried_.old_internal_forces, carried_.external_old, residual_all_);
 
   const DofMap& dofs = model_.dof_map();
   free_residual.resize(dofs.equation_count());
@@ -210,11 +208,11 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     integrator_.update_rates(carried_.state, step, driven_dofs_[i], trial_);
   }
   model_.external_forces(trial_.time, external_new_);
-  if (integrator_.old_force_weight() != 0.0 && !carried_.old_forces_valid) {
+  if (integrator_.weights_old_forces() && !carried_.old_forces_valid) {
     // g_n = f_int(u_n) + C v_n at the committed state, for HHT's weighting.
     EvaluationContext context;
     context.time = carried_.state.time;
-    context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 0.0};
+    context.factors = Integrator::internal_force_factors();
     context.want_tangent = false;
     assembler_.assemble(context, carried_.state, carried_.old_internal_forces);
     model_.external_forces(carried_.state.time, carried_.external_old);
@@ -245,23 +243,18 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
 
 void Analysis::finish_step(double step) {
   // residual_all_ must hold the physical residual M a + g - F of the new state, whose
-  // prescribed entries are the reactions: the last Newton evaluation gives it unless
-  // HHT weighted the forces. Its HHT residual R = M a + (1+alpha) g_{n+1} - alpha g_n
-  // - (1+alpha) F_{n+1} + alpha F_n differs from the physical one by
-  // alpha [(g_{n+1} - F_{n+1}) - (g_n - F_n)], so one assembly of g_{n+1} (needed anyway
-  // for the next step's weighting) corrects it.
-  const bool weighted = integrator_.old_force_weight() != 0.0;
-  if (weighted) {
-    const double alpha = integrator_.alpha();
-    residual_all_ += alpha * (carried_.old_internal_forces - carried_.external_old);
-    EvaluationContext context;
-    context.time = trial_.time;
-    context.time_step = step;
-    context.want_tangent = false;
-    context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 0.0};
-    assembler_.assemble(context, trial_, carried_.old_internal_forces);
-    residual_all_ -= alpha * (carried_.old_internal_forces - external_new_);
-  }
+  // prescribed entries are the reactions: the last Newton evaluation's, as the integrator
+  // turns it.
+  integrator_.to_physical_residual(carried_.external_old, external_new_, carried_.old_internal_forces,
+                                   [this, step](Eigen::VectorXd& internal) {
+                                     EvaluationContext context;
+                                     context.time = trial_.time;
+                                     context.time_step = step;
+                                     context.want_tangent = false;
+                                     context.factors = Integrator::internal_force_factors();
+                                     assembler_.assemble(context, trial_, internal);
+                                   },
+                                   residual_all_);
   const double work = step_work();  // before the reactions and the state move on
   carried_.reactions.setZero(model_.mesh().dof_count());
   for (const auto& constraint : model_.prescribed_dofs()) carried_.reactions[constraint.dof] = residual_all_[constraint.dof];
@@ -270,7 +263,7 @@ void Analysis::finish_step(double step) {
   model_.commit_history();
   std::swap(carried_.state, trial_);
   carried_.external_old = external_new_;
-  carried_.old_forces_valid = weighted;
+  carried_.old_forces_valid = integrator_.weights_old_forces();
   ++carried_.accepted_steps;
 
   const ElementEnergy stored = stored_energy(carried_.state);
@@ -324,8 +317,7 @@ void Analysis::update_committed_reactions() {
   context.time = carried_.state.time;
   context.time_step = carried_.steps.current;
   context.want_tangent = false;
-  context.factors = integrator_.is_dynamic() ? IntegratorFactors{1.0, 1.0, 1.0, 0.0, 0.0, 0.0}
-                                             : IntegratorFactors{1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  context.factors = integrator_.physical_residual_factors();
   assembler_.assemble(context, carried_.state, residual_all_);
   model_.revert_history();  // an evaluation at the committed state must leave no trial history behind
   model_.external_forces(carried_.state.time, carried_.external_old);
@@ -522,7 +514,7 @@ void Analysis::initialize_acceleration() {
   prepare();
   EvaluationContext context;
   context.time = carried_.state.time;
-  context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 1.0};  // residual g, tangent M
+  context.factors = Integrator::initial_acceleration_factors();
   context.want_tangent = true;
   assembler_.assemble(context, carried_.state, residual_all_);
   model_.revert_history();

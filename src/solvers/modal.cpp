@@ -69,10 +69,10 @@ struct Linearisation {
     }
     {
       HistoryRevert revert{model};
-      stiffness = dense_tangent(assembler, state, {1.0, 0.0, 0.0, 1.0, 0.0, 0.0});
-      mass = dense_tangent(assembler, state, {0.0, 0.0, 0.0, 0.0, 0.0, 1.0});
+      stiffness = dense_tangent(assembler, state, IntegratorFactors::stiffness_matrix());
+      mass = dense_tangent(assembler, state, IntegratorFactors::mass_matrix());
       const int equations = model.dof_map().equation_count();
-      damping = with_damping ? dense_tangent(assembler, state, {0.0, 0.0, 0.0, 0.0, 1.0, 0.0})
+      damping = with_damping ? dense_tangent(assembler, state, IntegratorFactors::damping_matrix())
                              : Eigen::MatrixXd::Zero(equations, equations);
     }
     mass = 0.5 * (mass + mass.transpose());
@@ -126,19 +126,19 @@ class ForceProbe {
     const double step = 1e-7 / size;
     State shifted = state_;
     shifted.displacement = state_.displacement + step * direction;
-    const Eigen::VectorXd plus = forces(shifted, {1.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+    const Eigen::VectorXd plus = forces(shifted, IntegratorFactors::stiffness_force());
     shifted.displacement = state_.displacement - step * direction;
-    return (plus - forces(shifted, {1.0, 0.0, 0.0, 0.0, 0.0, 0.0})) / (2.0 * step);
+    return (plus - forces(shifted, IntegratorFactors::stiffness_force())) / (2.0 * step);
   }
   Eigen::VectorXd damping(const Eigen::VectorXd& direction) {
     State probe = state_;
     probe.velocity = direction;
-    return forces(probe, {0.0, 1.0, 0.0, 0.0, 0.0, 0.0});
+    return forces(probe, IntegratorFactors::damping_force());
   }
   Eigen::VectorXd mass(const Eigen::VectorXd& direction) {
     State probe = state_;
     probe.acceleration = direction;
-    return forces(probe, {0.0, 0.0, 1.0, 0.0, 0.0, 0.0});
+    return forces(probe, IntegratorFactors::inertia_force());
   }
   /// M_t d: the mass on the in-plane translations (theta_z entries of d and of M d dropped).
   Eigen::VectorXd translational_mass(const Eigen::VectorXd& direction) {

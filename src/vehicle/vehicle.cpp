@@ -157,7 +157,7 @@ void Vehicle::initialize_acceleration() {
 }
 
 bool Vehicle::try_step(double h) {
-  const double alpha = integrator_.alpha(), beta = integrator_.beta(), gamma = integrator_.gamma();
+  const IntegratorFactors factors = integrator_.factors(h);
   const double reference = weight_.sum();
   integrator_.predict(committed_, h, trial_);
   for (int iteration = 0;; ++iteration) {
@@ -179,7 +179,8 @@ bool Vehicle::try_step(double h) {
       }
     }
     suspension_forces(trial_, forces_);
-    residual_ = mass_.cwiseProduct(trial_.acceleration) + (1.0 + alpha) * forces_ - alpha * old_forces_ + weight_;
+    residual_ = mass_.cwiseProduct(trial_.acceleration) + integrator_.new_force_weight() * forces_ +
+                integrator_.old_force_weight() * old_forces_ + weight_;
     for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
       residual_[wheel_fore_aft_dof(i)] += replies_[i].force[0];
       residual_[wheel_vertical_dof(i)] += replies_[i].force[1];
@@ -196,8 +197,8 @@ bool Vehicle::try_step(double h) {
       last_failure_ = message.str();
       return false;
     }
-    jacobian_ = (mass_ / (beta * h * h)).asDiagonal();
-    suspension_tangent(trial_, 1.0 + alpha, (1.0 + alpha) * gamma / (beta * h), jacobian_);
+    jacobian_ = (factors.tangent_mass * mass_).asDiagonal();
+    suspension_tangent(trial_, factors.tangent_stiffness, factors.tangent_damping, jacobian_);
     for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
       const int dofs[2] = {wheel_fore_aft_dof(i), wheel_vertical_dof(i)};
       for (int r = 0; r < 2; ++r)
