@@ -225,7 +225,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     record.augmentations = 0;
     // Augmented Lagrangian: update the multipliers and solve again until the
     // constraints are met to their tolerance (or the augmentation budget is spent).
-    while (record.augmentations < control_.max_augmentations && model_.augment()) {
+    while (record.augmentations < controller_.settings().max_augmentations && model_.augment()) {
       ++record.augmentations;
       report = &newton_.solve(*this, linear_solver);
       record.newton_iterations += report->iterations;
@@ -378,17 +378,12 @@ void Analysis::start_steps() {
   if (!carried_.energy_started) start_energy_bookkeeping();
 }
 
-void Analysis::record_step(double step, StepRecord& record) {
+void Analysis::commit_step(double step, StepRecord& record) {
   finish_step(step);
   record.step = carried_.accepted_steps;
   record.time = carried_.state.time;
   record.step_size = step;
   record.energy = carried_.energy;
-}
-
-void Analysis::notify_step(const StepRecord& record) {
-  for (const auto& observer : observers_) observer(*this, record);
-  if (step_end_hook_) step_end_hook_(*this, record);
 }
 
 const StepRecord& Analysis::solve_trial_step(double step) {
@@ -407,14 +402,14 @@ const StepRecord& Analysis::solve_trial_step(double step) {
 void Analysis::accept_trial_step() {
   if (!trial_recorded_) record_trial_step();
   trial_recorded_ = false;
-  notify_step(trial_record_);
+  controller_.notify(trial_record_);
 }
 
 void Analysis::record_trial_step() {
   if (trial_recorded_) return;
   if (!trial_pending_) throw ModelError("there is no trial step to accept");
   trial_pending_ = false;
-  record_step(trial_step_size_, trial_record_);
+  commit_step(trial_step_size_, trial_record_);
   trial_recorded_ = true;
 }
 
@@ -431,59 +426,15 @@ const std::vector<StepRecord>& Analysis::advance(double duration) {
 
 const std::vector<StepRecord>& Analysis::advance_to(double target) {
   start_steps();
-  records_.clear();
-  const double duration = target - carried_.state.time;
-  const double time_round_off = 1e-12 * std::max(1.0, std::abs(target));
-  double step = std::min(carried_.steps.current, control_.max_step > 0.0 ? control_.max_step : carried_.steps.current);
-  records_.reserve(static_cast<size_t>(std::min(std::max(duration, 0.0) / step, 1e6)) + 16);
-  while (carried_.state.time < target - time_round_off) {
-    const double remaining = target - carried_.state.time;
-    // Take the rest in one step if a sliver would be left over; it ends on the target exactly.
-    const bool last = step >= remaining || remaining - step < 1e-6 * step;
-    step = last ? remaining : step;
-    // No step is cut below the nominal one halved 2 max_cuts times: otherwise a run that
-    // scrapes through with tiny steps, failing again after each, lets the step dwindle
-    // from cut to cut without ever stopping.
-    const double smallest =
-        std::max(control_.min_step, std::ldexp(std::min(carried_.steps.nominal, remaining), -2 * control_.max_cuts));
-    StepRecord record;
-    while (!try_step(step, last && record.cuts == 0 ? target : carried_.state.time + step, record)) {
-      ++record.cuts;
-      const double cut = 0.5 * step;
-      if (record.cuts > control_.max_cuts || cut < smallest * (1.0 - 1e-9)) {
-        std::ostringstream message;
-        message << "the step from t = " << carried_.state.time << " could not be solved after " << record.cuts - 1
-                << " cuts (smallest dt = " << step << "): " << last_failure_
-                << ". Use smaller steps, more cuts, or check the loads and supports.";
-        throw StepFailure(message.str());
-      }
-      step = cut;
-    }
-    record_step(step, record);
-    records_.push_back(record);
-    // Grow back toward the nominal step after an easy convergence (before the observers,
-    // so that a checkpoint taken by one holds the next step's size).
-    if (record.newton_iterations <= control_.easy_iterations)
-      step = std::min(carried_.steps.nominal, step * control_.growth);
-    carried_.steps.current = step;
-    notify_step(record);
-    if (carried_.state.time < target - time_round_off)
-      check_step_budget(static_cast<int>(records_.size()), duration / carried_.steps.nominal, record.step_size);
-  }
-  return records_;
+  return controller_.advance_to(*this, target);
 }
 
-void Analysis::check_step_budget(int steps_taken, double nominal_steps, double step) const {
-  if (control_.step_budget <= 0) return;
-  const double allowed = control_.step_budget * (std::ceil(nominal_steps - 1e-9) + 1.0);
-  if (steps_taken < allowed) return;
+std::string Analysis::failure_message(int cuts, double step) const {
   std::ostringstream message;
-  message << "the step budget ran out at t = " << carried_.state.time << ": " << steps_taken << " steps where dt = "
-          << carried_.steps.nominal << " asks for " << std::ceil(nominal_steps - 1e-9) << " (the last dt = " << step
-          << "); steps that converge only far below dt point to a model out of balance or too light "
-          << "(a tiny rotary inertia). Check the loads, supports and masses, or raise "
-          << "model:step_control{ step_budget = " << control_.step_budget << " }";
-  throw StepFailure(message.str());
+  message << "the step from t = " << carried_.state.time << " could not be solved after " << cuts
+          << " cuts (smallest dt = " << step << "): " << last_failure_
+          << ". Use smaller steps, more cuts, or check the loads and supports.";
+  return message.str();
 }
 
 CarriedState Analysis::snapshot() {

@@ -30,43 +30,15 @@
 #include "solvers/linear_solver.hpp"
 #include "solvers/newton.hpp"
 #include "solvers/ring_solver.hpp"
+#include "solvers/step_controller.hpp"
 
 namespace tirefe {
 
-/// Raised when a step cannot be completed even after the allowed cuts.
-class StepFailure : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-struct StepControl {
-  double min_step = 0.0;     // 0: no lower bound beyond max_cuts
-  double max_step = 0.0;     // 0: the nominal step
-  int max_cuts = 10;         // halvings of one step; and no step below nominal / 4^max_cuts
-  int easy_iterations = 4;   // grow the step after converging in this many iterations or fewer
-  double growth = 2.0;       // growth factor back toward the nominal step
-  int max_augmentations = 20;  // augmented-Lagrangian updates per step
-  // One advance may take at most step_budget steps per nominal step it spans (plus
-  // step_budget): a step that keeps converging only at a small fraction of the nominal one
-  // (an out-of-balance start, a tiny rotary inertia) stops the run instead of filling the
-  // disk with steps. 0: no budget.
-  int step_budget = 100;
-};
-
-struct StepRecord {
-  int step = 0;           // accepted steps since the start
-  double time = 0.0;      // at the end of the step
-  double step_size = 0.0;
-  int newton_iterations = 0;
-  int cuts = 0;           // cuts taken before this step converged
-  int augmentations = 0;  // augmented-Lagrangian multiplier updates
-  double residual = 0.0;  // final |R|
-  EnergyRecord energy;    // at the end of the step
-};
-
-class Analysis : private StepEquations {
+class Analysis : private StepEquations, private SteppedSystem {
  public:
   explicit Analysis(Model& model);
+  Analysis(const Analysis&) = delete;
+  Analysis& operator=(const Analysis&) = delete;
 
   Model& model() { return model_; }
   const Model& model() const { return model_; }
@@ -75,7 +47,7 @@ class Analysis : private StepEquations {
   void set_time_step(double step);
   double time_step() const { return carried_.steps.nominal; }
   NewtonSettings& newton_settings() { return newton_.settings(); }
-  StepControl& step_control() { return control_; }
+  StepControl& step_control() { return controller_.settings(); }
   void set_log(std::ostream* log);
 
   /// Advances by 'duration' (default: one nominal step) in as many accepted steps as
@@ -164,24 +136,27 @@ class Analysis : private StepEquations {
   const DrivenDofSolver::SmallMatrix& driven_tangent();
 
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
-    observers_.push_back(std::move(observer));
+    controller_.add_observer([this, observer = std::move(observer)](const StepRecord& record) { observer(*this, record); });
   }
   /// Runs after every observer of an accepted step (a checkpoint: the step's output is complete then).
-  void set_step_end_hook(std::function<void(Analysis&, const StepRecord&)> hook) { step_end_hook_ = std::move(hook); }
+  void set_step_end_hook(std::function<void(Analysis&, const StepRecord&)> hook) {
+    controller_.set_closing_observer([this, hook = std::move(hook)](const StepRecord& record) { hook(*this, record); });
+  }
 
  private:
   void prepare();
   void size_state();
   void start_steps();
-  void record_step(double step, StepRecord& record);
-  void notify_step(const StepRecord& record);
+  // SteppedSystem
+  double time() const override { return carried_.state.time; }
+  bool try_step(double step, double end_time, StepRecord& record) override;
+  void commit_step(double step, StepRecord& record) override;
+  std::string failure_message(int cuts, double step) const override;
   LinearSolver& newton_linear_solver();
   void analyze_pattern();
   /// ModelError when there is nothing to solve (no elements, or every DOF fixed).
   void require_equations() const;
   void select_solver(LinearSolver& solver);
-  bool try_step(double step, double end_time, StepRecord& record);
-  void check_step_budget(int steps_taken, double nominal_steps, double step) const;
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
   void update_committed_reactions();
@@ -203,14 +178,13 @@ class Analysis : private StepEquations {
   int analyzed_pattern_ = -1;  // the Assembler's pattern_version() the solver last analysed
   NewtonSolver newton_;
   Integrator integrator_ = Integrator::quasi_static();
-  StepControl control_;
   std::ostream* log_ = nullptr;
   std::string last_failure_;
 
   CarriedState carried_;
+  StepController controller_{carried_.steps};
   State trial_;
   Eigen::VectorXd residual_all_, external_new_;
-  std::vector<StepRecord> records_;
   std::vector<int> driven_dofs_;
   Eigen::VectorXd driven_displacements_;
   std::unique_ptr<DrivenDofSolver> driven_solver_;
@@ -219,8 +193,6 @@ class Analysis : private StepEquations {
   bool trial_recorded_ = false;  // record_trial_step() done, observers not yet told
   double trial_step_size_ = 0.0;
   StepRecord trial_record_;
-  std::vector<std::function<void(const Analysis&, const StepRecord&)>> observers_;
-  std::function<void(Analysis&, const StepRecord&)> step_end_hook_;
 };
 
 }  // namespace tirefe
