@@ -214,7 +214,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     context.time = carried_.state.time;
     context.factors = Integrator::internal_force_factors();
     context.want_tangent = false;
-    assembler_.assemble(context, carried_.state, carried_.old_internal_forces);
+    assembler_.query(context, carried_.state, carried_.old_internal_forces);
     model_.external_forces(carried_.state.time, carried_.external_old);
     carried_.old_forces_valid = true;
   }
@@ -318,8 +318,7 @@ void Analysis::update_committed_reactions() {
   context.time_step = carried_.steps.current;
   context.want_tangent = false;
   context.factors = integrator_.physical_residual_factors();
-  assembler_.assemble(context, carried_.state, residual_all_);
-  model_.revert_history();  // an evaluation at the committed state must leave no trial history behind
+  assembler_.query(context, carried_.state, residual_all_);
   model_.external_forces(carried_.state.time, carried_.external_old);
   for (const auto& constraint : model_.prescribed_dofs())
     carried_.reactions[constraint.dof] = residual_all_[constraint.dof] - carried_.external_old[constraint.dof];
@@ -467,8 +466,7 @@ void Analysis::initialize_acceleration() {
   context.time = carried_.state.time;
   context.factors = Integrator::initial_acceleration_factors();
   context.want_tangent = true;
-  assembler_.assemble(context, carried_.state, residual_all_);
-  model_.revert_history();
+  assembler_.query(context, carried_.state, residual_all_);
   model_.external_forces(carried_.state.time, external_new_);
   const DofMap& dofs = model_.dof_map();
   Eigen::VectorXd unbalanced(dofs.equation_count());
