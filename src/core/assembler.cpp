@@ -69,4 +69,12 @@ void Assembler::assemble(const EvaluationContext& context, const State& state, E
   for (const auto& block : model_.blocks()) block->assemble(context, state, target);
 }
 
+void Assembler::query(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual) {
+  struct HistoryRestorer {
+    Model& model;
+    ~HistoryRestorer() { model.revert_history(); }
+  } restorer{model_};
+  assemble(context, state, residual);
+}
+
 }  // namespace tirefe

@@ -22,7 +22,14 @@ class Assembler {
 
   /// residual: element forces weighted by context.factors (external loads are the
   /// integrator's business); tangent: cK K + cC C + cM M over the free equations.
+  /// The Newton step's evaluation, the one that writes the elements' trial history (which
+  /// the step then commits or reverts).
   void assemble(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual);
+  /// The same evaluation for a query between steps (reactions, an initial acceleration,
+  /// a penalty's scale, modal matrices): the elements' trial history is put back to the
+  /// committed one afterwards, however the evaluation ends, so that no query changes the
+  /// next step.
+  void query(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual);
 
   const SparseMatrix& tangent() const { return tangent_; }
   SparseMatrix& tangent() { return tangent_; }

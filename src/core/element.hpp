@@ -42,6 +42,22 @@ struct IntegratorFactors {
   double tangent_stiffness = 1.0;  // cK
   double tangent_damping = 0.0;    // cC
   double tangent_mass = 0.0;       // cM
+
+  // One term alone, for queries between steps: its force (residual, no tangent wanted)
+  // or its matrix (tangent).
+  static IntegratorFactors stiffness_force() { return only(&IntegratorFactors::force_stiffness); }
+  static IntegratorFactors damping_force() { return only(&IntegratorFactors::force_damping); }
+  static IntegratorFactors inertia_force() { return only(&IntegratorFactors::force_mass); }
+  static IntegratorFactors stiffness_matrix() { return {}; }  // with its force f_int
+  static IntegratorFactors damping_matrix() { return only(&IntegratorFactors::tangent_damping); }
+  static IntegratorFactors mass_matrix() { return only(&IntegratorFactors::tangent_mass); }
+
+ private:
+  static IntegratorFactors only(double IntegratorFactors::*factor) {
+    IntegratorFactors factors{0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    factors.*factor = 1.0;
+    return factors;
+  }
 };
 
 struct EvaluationContext {

@@ -15,44 +15,47 @@ Eigen::VectorXd to_eigen(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-// The snapshot's vectors and numbers, one name each (written and read by the same table).
-struct VectorField {
-  const char* name;
-  Eigen::VectorXd AnalysisSnapshot::*member;
-};
-const VectorField kVectors[] = {{"external_old", &AnalysisSnapshot::external_old},
-                                {"old_internal_forces", &AnalysisSnapshot::old_internal_forces},
-                                {"reactions", &AnalysisSnapshot::reactions}};
-struct NumberField {
-  const char* name;
-  double AnalysisSnapshot::*member;
-};
-const NumberField kNumbers[] = {{"nominal_step", &AnalysisSnapshot::nominal_step},
-                                {"current_step", &AnalysisSnapshot::current_step},
-                                {"beta", &AnalysisSnapshot::beta},
-                                {"gamma", &AnalysisSnapshot::gamma},
-                                {"alpha", &AnalysisSnapshot::alpha}};
-struct EnergyField {
-  const char* name;
-  double EnergyRecord::*member;
-};
-const EnergyField kEnergies[] = {{"energy_kinetic", &EnergyRecord::kinetic},
-                                 {"energy_strain", &EnergyRecord::strain},
-                                 {"external_work", &EnergyRecord::external_work},
-                                 {"energy_initial", &EnergyRecord::initial},
-                                 {"energy_dissipated", &EnergyRecord::dissipated}};
-struct FlagField {
-  const char* name;
-  bool AnalysisSnapshot::*member;
-};
-const FlagField kFlags[] = {{"old_forces_valid", &AnalysisSnapshot::old_forces_valid},
-                            {"acceleration_pending", &AnalysisSnapshot::acceleration_pending},
-                            {"reactions_valid", &AnalysisSnapshot::reactions_valid},
-                            {"energy_started", &AnalysisSnapshot::energy_started}};
-
 long long integer_attribute(const Hdf5File& file, const std::string& object, const char* name) {
   return static_cast<long long>(file.read_double_attribute(object, name));
 }
+
+/// A field's place in the file, "/analysis/beta": the object "/analysis" and the name "beta".
+std::pair<std::string, std::string> attribute_place(const std::string& path) {
+  const size_t slash = path.rfind('/');
+  return {slash == 0 ? "/" : path.substr(0, slash), path.substr(slash + 1)};
+}
+
+/// Writes each of the carried state's fields where CarriedState::for_each_field puts it.
+struct FieldWriter {
+  Hdf5File& file;
+  void operator()(const char* path, const Eigen::VectorXd& field) const { file.write_vector(path, to_std(field)); }
+  void operator()(const char* path, double field) const {
+    const auto [object, name] = attribute_place(path);
+    file.write_attribute(object, name, field);
+  }
+  void operator()(const char* path, int field) const { write_integer(path, field); }
+  void operator()(const char* path, bool field) const { write_integer(path, field ? 1 : 0); }
+  void write_integer(const char* path, long long field) const {
+    const auto [object, name] = attribute_place(path);
+    file.write_attribute(object, name, field);
+  }
+};
+
+/// Reads them back.
+struct FieldReader {
+  const Hdf5File& file;
+  void operator()(const char* path, Eigen::VectorXd& field) const { field = to_eigen(file.read_doubles(path)); }
+  void operator()(const char* path, double& field) const {
+    const auto [object, name] = attribute_place(path);
+    field = file.read_double_attribute(object, name);
+  }
+  void operator()(const char* path, int& field) const { field = static_cast<int>(read_integer(path)); }
+  void operator()(const char* path, bool& field) const { field = read_integer(path) != 0; }
+  long long read_integer(const char* path) const {
+    const auto [object, name] = attribute_place(path);
+    return integer_attribute(file, object, name.c_str());
+  }
+};
 
 }  // namespace
 
@@ -160,20 +163,10 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
   const std::string partial = path + kUnfinished;
   {
     Hdf5File file = Hdf5File::create(partial);
-    const AnalysisSnapshot& analysis = checkpoint.analysis;
     file.write_attribute("/", "title", checkpoint.title);
     file.write_attribute("/", "model_index", checkpoint.model_index);
     file.write_attribute("/", "node_count", checkpoint.node_count);
-    file.write_attribute("/", "time", analysis.state.time);
-    file.write_attribute("/", "steps", analysis.accepted_steps);
-    file.write_vector("/analysis/displacement", to_std(analysis.state.displacement));
-    file.write_vector("/analysis/velocity", to_std(analysis.state.velocity));
-    file.write_vector("/analysis/acceleration", to_std(analysis.state.acceleration));
-    for (const VectorField& field : kVectors) file.write_vector("/analysis/" + std::string(field.name), to_std(analysis.*field.member));
-    for (const NumberField& field : kNumbers) file.write_attribute("/analysis", field.name, analysis.*field.member);
-    for (const EnergyField& field : kEnergies) file.write_attribute("/analysis", field.name, analysis.energy.*field.member);
-    for (const FlagField& field : kFlags) file.write_attribute("/analysis", field.name, static_cast<long long>(analysis.*field.member));
-    file.write_attribute("/analysis", "integrator_kind", analysis.integrator_kind);
+    CarriedState::for_each_field(checkpoint.analysis, FieldWriter{file});
     file.write_attribute("/blocks", "count", static_cast<long long>(checkpoint.blocks.size()));
     for (size_t b = 0; b < checkpoint.blocks.size(); ++b) {
       const SavedBlock& block = checkpoint.blocks[b];
@@ -223,20 +216,10 @@ Checkpoint read_checkpoint(const std::string& path) {
     if (!file.exists("/analysis") || file.read_string_attribute("/", "format") != kFormat)
       throw IoError("no checkpoint written by this tirefe");
     Checkpoint checkpoint;
-    AnalysisSnapshot& analysis = checkpoint.analysis;
     checkpoint.title = file.read_string_attribute("/", "title");
     checkpoint.model_index = static_cast<int>(integer_attribute(file, "/", "model_index"));
     checkpoint.node_count = static_cast<int>(integer_attribute(file, "/", "node_count"));
-    analysis.state.time = file.read_double_attribute("/", "time");
-    analysis.accepted_steps = static_cast<int>(integer_attribute(file, "/", "steps"));
-    analysis.state.displacement = to_eigen(file.read_doubles("/analysis/displacement"));
-    analysis.state.velocity = to_eigen(file.read_doubles("/analysis/velocity"));
-    analysis.state.acceleration = to_eigen(file.read_doubles("/analysis/acceleration"));
-    for (const VectorField& field : kVectors) analysis.*field.member = to_eigen(file.read_doubles("/analysis/" + std::string(field.name)));
-    for (const NumberField& field : kNumbers) analysis.*field.member = file.read_double_attribute("/analysis", field.name);
-    for (const EnergyField& field : kEnergies) analysis.energy.*field.member = file.read_double_attribute("/analysis", field.name);
-    for (const FlagField& field : kFlags) analysis.*field.member = integer_attribute(file, "/analysis", field.name) != 0;
-    analysis.integrator_kind = static_cast<int>(integer_attribute(file, "/analysis", "integrator_kind"));
+    CarriedState::for_each_field(checkpoint.analysis, FieldReader{file});
     const long long blocks = integer_attribute(file, "/blocks", "count");
     for (long long b = 0; b < blocks; ++b) {
       const std::string group = "/blocks/" + std::to_string(b);

@@ -2,7 +2,7 @@
 // steps, in an HDF5 file of its own:
 //   /                   attributes: format, title, model_index, node_count, time, steps
 //   /analysis/*         u, v, a, the forces and reactions of the last step, step size,
-//                       energy bookkeeping and the integrator (AnalysisSnapshot)
+//                       energy bookkeeping and the integrator (CarriedState)
 //   /blocks/<i>         every element block's committed history as bytes, with the
 //                       block's name, kernel type and history size as attributes
 //   /parameters         the deck's parameters (names, values as text), which a restart
@@ -39,7 +39,7 @@ struct Checkpoint {
   std::string title;
   int model_index = 0;  // which tirefe.model{} of the deck, counted from 1
   int node_count = 0;
-  AnalysisSnapshot analysis;
+  CarriedState analysis;
   std::vector<SavedBlock> blocks;
   bool has_output = false;
   int steps_recorded = 0;

@@ -152,18 +152,12 @@ int load_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
 // ---- solution --------------------------------------------------------------------
 
 int integrator_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
-  const std::string type = arguments.string("type");
-  const std::string predictor = arguments.string("predictor");
-  const Integrator::Predictor choice = predictor == "zero_acceleration" ? Integrator::Predictor::ZeroAcceleration
-                                       : predictor == "same_displacement" ? Integrator::Predictor::SameDisplacement
-                                                                          : Integrator::Predictor::SameAcceleration;
-  if (type == "static")
-    deck.analysis().set_integrator(Integrator::quasi_static());
-  else if (type == "newmark")
-    deck.analysis().set_integrator(
-        Integrator::newmark(arguments.number("beta"), arguments.number("gamma")).with_predictor(choice));
-  else
-    deck.analysis().set_integrator(Integrator::hht(arguments.number("alpha")).with_predictor(choice));
+  IntegratorParameters parameters;
+  parameters.beta = arguments.number("beta");
+  parameters.gamma = arguments.number("gamma");
+  parameters.alpha = arguments.number("alpha");
+  parameters.predictor = predictor_named(arguments.string("predictor"));
+  deck.analysis().set_integrator(make_integrator(arguments.string("type"), parameters));
   return 0;
 }
 
@@ -526,14 +520,14 @@ void add_model_macros(MacroTable& table) {
        "model:load{ node = tip, fy = -10.0 }"},
       load_macro);
   add({"integrator", "Chooses the solution procedure: quasi-static, Newmark or HHT-alpha (docs/dynamics.md).",
-       {{"type", VT::String, true, "", "static, newmark or hht", std::nullopt, Range::Any, {"static", "newmark", "hht"}},
+       {{"type", VT::String, true, "", "static, newmark or hht", std::nullopt, Range::Any, integrator_names()},
         {"beta", VT::Number, false, "", "Newmark beta", std::string("0.25"), Range::Positive},
         {"gamma", VT::Number, false, "", "Newmark gamma", std::string("0.5"), Range::Positive},
         {"alpha", VT::Number, false, "", "HHT alpha in [-1/3, 0]", std::string("-0.05")},
         {"predictor", VT::String, false, "",
          "start of each step: same_acceleration (smooth motion), zero_acceleration (accelerations that jump, "
          "as in a contact patch rolling at speed) or same_displacement",
-         std::string("same_acceleration"), Range::Any, {"same_acceleration", "zero_acceleration", "same_displacement"}}},
+         std::string("same_acceleration"), Range::Any, predictor_names()}},
        "model:integrator{ type = \"hht\", alpha = -0.1 }"},
       integrator_macro);
   add({"newton", "Newton-Raphson settings.",

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <ostream>
 #include <sstream>
+#include <type_traits>
 
 namespace tirefe {
 
@@ -62,16 +63,16 @@ void Analysis::require_equations() const {
 void Analysis::set_integrator(const Integrator& integrator) {
   // Entering dynamics needs accelerations in equilibrium with the current state; a
   // request still pending (new initial conditions) survives a change of scheme.
-  acceleration_pending_ = integrator.is_dynamic() && (acceleration_pending_ || !integrator_.is_dynamic());
+  carried_.acceleration_pending = integrator.is_dynamic() && (carried_.acceleration_pending || !integrator_.is_dynamic());
   integrator_ = integrator;
-  old_forces_valid_ = false;
+  carried_.old_forces_valid = false;
 }
 
 void Analysis::set_time_step(double step) {
   if (!(step > 0.0) || !std::isfinite(step))
     throw ModelError("the time step must be positive and finite (got " + std::to_string(step) + ")");
-  nominal_step_ = step;
-  current_step_ = step;
+  carried_.steps.nominal = step;
+  carried_.steps.current = step;
 }
 
 void Analysis::set_log(std::ostream* log) {
@@ -121,9 +122,9 @@ void Analysis::drive_dofs(std::vector<int> dofs) {
   driven_displacements_.resize(static_cast<Eigen::Index>(driven_dofs_.size()));
   size_state();
   for (size_t i = 0; i < driven_dofs_.size(); ++i)
-    driven_displacements_[static_cast<Eigen::Index>(i)] = committed_.displacement[driven_dofs_[i]];
+    driven_displacements_[static_cast<Eigen::Index>(i)] = carried_.state.displacement[driven_dofs_[i]];
   driven_solver_.reset();
-  reactions_valid_ = false;
+  carried_.reactions_valid = false;
 }
 
 void Analysis::set_driven_displacements(const Eigen::Ref<const Eigen::VectorXd>& values) {
@@ -146,31 +147,29 @@ const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
 
 void Analysis::size_state() {
   const int dofs = model_.mesh().dof_count();
-  if (committed_.displacement.size() != dofs) {
+  if (carried_.state.displacement.size() != dofs) {
     // Nodes added since the last step start at rest.
-    const int old_size = static_cast<int>(committed_.displacement.size());
-    for (Eigen::VectorXd* field : {&committed_.displacement, &committed_.velocity, &committed_.acceleration}) {
+    const int old_size = static_cast<int>(carried_.state.displacement.size());
+    for (Eigen::VectorXd* field : {&carried_.state.displacement, &carried_.state.velocity, &carried_.state.acceleration}) {
       field->conservativeResize(dofs);
       field->tail(dofs - old_size).setZero();
     }
-    reactions_.setZero(dofs);
-    model_.external_forces(committed_.time, external_old_);
-    reactions_valid_ = false;
-    old_forces_valid_ = false;
+    carried_.reactions.setZero(dofs);
+    model_.external_forces(carried_.state.time, carried_.external_old);
+    carried_.reactions_valid = false;
+    carried_.old_forces_valid = false;
   }
 }
 
 void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) {
   EvaluationContext context;
   context.time = trial_.time;
-  context.time_step = current_step_;
-  context.factors = integrator_.factors(current_step_);
+  context.time_step = carried_.steps.current;
+  context.factors = integrator_.factors(carried_.steps.current);
   context.want_tangent = with_tangent;
   assembler_.assemble(context, trial_, residual_all_);
 
-  residual_all_ -= integrator_.new_force_weight() * external_new_;
-  if (integrator_.old_force_weight() != 0.0)
-    residual_all_ += integrator_.old_force_weight() * (old_internal_forces_ - external_old_);
+  integrator_.add_load_terms(external_new_, carried_.old_internal_forces, carried_.external_old, residual_all_);
 
   const DofMap& dofs = model_.dof_map();
   free_residual.resize(dofs.equation_count());
@@ -190,34 +189,34 @@ double Analysis::apply_increment(const Eigen::VectorXd& increment) {
   const DofMap& dofs = model_.dof_map();
   double largest_increment = 0.0;
   for (int equation = 0; equation < dofs.equation_count(); ++equation) {
-    integrator_.correct(current_step_, dofs.dof(equation), increment[equation], trial_);
+    integrator_.correct(carried_.steps.current, dofs.dof(equation), increment[equation], trial_);
     largest_increment = std::max(largest_increment, std::abs(increment[equation]));
   }
   return largest_increment / (1.0 + trial_.displacement.lpNorm<Eigen::Infinity>());
 }
 
 bool Analysis::try_step(double step, double end_time, StepRecord& record) {
-  current_step_ = step;
-  trial_ = committed_;
-  integrator_.predict(committed_, step, trial_);
+  carried_.steps.current = step;
+  trial_ = carried_.state;
+  integrator_.predict(carried_.state, step, trial_);
   trial_.time = end_time;
   model_.apply_prescribed_displacements(trial_.time, trial_);
   for (const auto& constraint : model_.prescribed_dofs())
-    integrator_.update_rates(committed_, step, constraint.dof, trial_);
+    integrator_.update_rates(carried_.state, step, constraint.dof, trial_);
   for (size_t i = 0; i < driven_dofs_.size(); ++i) {
     trial_.displacement[driven_dofs_[i]] = driven_displacements_[static_cast<Eigen::Index>(i)];
-    integrator_.update_rates(committed_, step, driven_dofs_[i], trial_);
+    integrator_.update_rates(carried_.state, step, driven_dofs_[i], trial_);
   }
   model_.external_forces(trial_.time, external_new_);
-  if (integrator_.old_force_weight() != 0.0 && !old_forces_valid_) {
+  if (integrator_.weights_old_forces() && !carried_.old_forces_valid) {
     // g_n = f_int(u_n) + C v_n at the committed state, for HHT's weighting.
     EvaluationContext context;
-    context.time = committed_.time;
-    context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 0.0};
+    context.time = carried_.state.time;
+    context.factors = Integrator::internal_force_factors();
     context.want_tangent = false;
-    assembler_.assemble(context, committed_, old_internal_forces_);
-    model_.external_forces(committed_.time, external_old_);
-    old_forces_valid_ = true;
+    assembler_.query(context, carried_.state, carried_.old_internal_forces);
+    model_.external_forces(carried_.state.time, carried_.external_old);
+    carried_.old_forces_valid = true;
   }
   try {
     LinearSolver& linear_solver = newton_linear_solver();
@@ -226,7 +225,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     record.augmentations = 0;
     // Augmented Lagrangian: update the multipliers and solve again until the
     // constraints are met to their tolerance (or the augmentation budget is spent).
-    while (record.augmentations < control_.max_augmentations && model_.augment()) {
+    while (record.augmentations < controller_.settings().max_augmentations && model_.augment()) {
       ++record.augmentations;
       report = &newton_.solve(*this, linear_solver);
       record.newton_iterations += report->iterations;
@@ -244,52 +243,47 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
 
 void Analysis::finish_step(double step) {
   // residual_all_ must hold the physical residual M a + g - F of the new state, whose
-  // prescribed entries are the reactions: the last Newton evaluation gives it unless
-  // HHT weighted the forces. Its HHT residual R = M a + (1+alpha) g_{n+1} - alpha g_n
-  // - (1+alpha) F_{n+1} + alpha F_n differs from the physical one by
-  // alpha [(g_{n+1} - F_{n+1}) - (g_n - F_n)], so one assembly of g_{n+1} (needed anyway
-  // for the next step's weighting) corrects it.
-  const bool weighted = integrator_.old_force_weight() != 0.0;
-  if (weighted) {
-    const double alpha = integrator_.alpha();
-    residual_all_ += alpha * (old_internal_forces_ - external_old_);
-    EvaluationContext context;
-    context.time = trial_.time;
-    context.time_step = step;
-    context.want_tangent = false;
-    context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 0.0};
-    assembler_.assemble(context, trial_, old_internal_forces_);
-    residual_all_ -= alpha * (old_internal_forces_ - external_new_);
-  }
+  // prescribed entries are the reactions: the last Newton evaluation's, as the integrator
+  // turns it.
+  integrator_.to_physical_residual(carried_.external_old, external_new_, carried_.old_internal_forces,
+                                   [this, step](Eigen::VectorXd& internal) {
+                                     EvaluationContext context;
+                                     context.time = trial_.time;
+                                     context.time_step = step;
+                                     context.want_tangent = false;
+                                     context.factors = Integrator::internal_force_factors();
+                                     assembler_.assemble(context, trial_, internal);
+                                   },
+                                   residual_all_);
   const double work = step_work();  // before the reactions and the state move on
-  reactions_.setZero(model_.mesh().dof_count());
-  for (const auto& constraint : model_.prescribed_dofs()) reactions_[constraint.dof] = residual_all_[constraint.dof];
-  for (int dof : driven_dofs_) reactions_[dof] = residual_all_[dof];
-  reactions_valid_ = true;
+  carried_.reactions.setZero(model_.mesh().dof_count());
+  for (const auto& constraint : model_.prescribed_dofs()) carried_.reactions[constraint.dof] = residual_all_[constraint.dof];
+  for (int dof : driven_dofs_) carried_.reactions[dof] = residual_all_[dof];
+  carried_.reactions_valid = true;
   model_.commit_history();
-  std::swap(committed_, trial_);
-  external_old_ = external_new_;
-  old_forces_valid_ = weighted;
-  ++accepted_steps_;
+  std::swap(carried_.state, trial_);
+  carried_.external_old = external_new_;
+  carried_.old_forces_valid = integrator_.weights_old_forces();
+  ++carried_.accepted_steps;
 
-  const ElementEnergy stored = stored_energy(committed_);
-  energy_.kinetic = stored.kinetic;
-  energy_.strain = stored.strain;
-  energy_.external_work += work;
-  energy_.dissipated = energy_.initial + energy_.external_work - stored.kinetic - stored.strain;
+  const ElementEnergy stored = stored_energy(carried_.state);
+  carried_.energy.kinetic = stored.kinetic;
+  carried_.energy.strain = stored.strain;
+  carried_.energy.external_work += work;
+  carried_.energy.dissipated = carried_.energy.initial + carried_.energy.external_work - stored.kinetic - stored.strain;
 }
 
 double Analysis::step_work() const {
   // Trapezoidal work from the committed state to the trial state: the nodal loads on
   // every DOF, the support reactions on the prescribed ones (residual_all_ holds the new reactions).
-  const Eigen::VectorXd& u_old = committed_.displacement;
+  const Eigen::VectorXd& u_old = carried_.state.displacement;
   const Eigen::VectorXd& u_new = trial_.displacement;
-  double work = 0.5 * (external_old_ + external_new_).dot(u_new - u_old);
+  double work = 0.5 * (carried_.external_old + external_new_).dot(u_new - u_old);
   for (const auto& constraint : model_.prescribed_dofs()) {
     const int dof = constraint.dof;
-    work += 0.5 * (reactions_[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
+    work += 0.5 * (carried_.reactions[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
   }
-  for (int dof : driven_dofs_) work += 0.5 * (reactions_[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
+  for (int dof : driven_dofs_) work += 0.5 * (carried_.reactions[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
   return work;
 }
 
@@ -300,13 +294,13 @@ ElementEnergy Analysis::stored_energy(const State& state) const {
 }
 
 void Analysis::start_energy_bookkeeping() {
-  model_.external_forces(committed_.time, external_old_);  // F_0 of the first step's trapezoid
-  const ElementEnergy stored = stored_energy(committed_);
-  energy_ = EnergyRecord{};
-  energy_.kinetic = stored.kinetic;
-  energy_.strain = stored.strain;
-  energy_.initial = stored.kinetic + stored.strain;
-  energy_started_ = true;
+  model_.external_forces(carried_.state.time, carried_.external_old);  // F_0 of the first step's trapezoid
+  const ElementEnergy stored = stored_energy(carried_.state);
+  carried_.energy = EnergyRecord{};
+  carried_.energy.kinetic = stored.kinetic;
+  carried_.energy.strain = stored.strain;
+  carried_.energy.initial = stored.kinetic + stored.strain;
+  carried_.energy_started = true;
 }
 
 void Analysis::restart_energy_balance() {
@@ -316,33 +310,31 @@ void Analysis::restart_energy_balance() {
 
 void Analysis::update_committed_reactions() {
   // Physical residual M a + C v + f_int - F at the committed state (no inertia quasi-statically).
-  reactions_.setZero(model_.mesh().dof_count());
-  reactions_valid_ = true;
+  carried_.reactions.setZero(model_.mesh().dof_count());
+  carried_.reactions_valid = true;
   if (model_.prescribed_dofs().empty() && driven_dofs_.empty()) return;
   EvaluationContext context;
-  context.time = committed_.time;
-  context.time_step = current_step_;
+  context.time = carried_.state.time;
+  context.time_step = carried_.steps.current;
   context.want_tangent = false;
-  context.factors = integrator_.is_dynamic() ? IntegratorFactors{1.0, 1.0, 1.0, 0.0, 0.0, 0.0}
-                                             : IntegratorFactors{1.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  assembler_.assemble(context, committed_, residual_all_);
-  model_.revert_history();  // an evaluation at the committed state must leave no trial history behind
-  model_.external_forces(committed_.time, external_old_);
+  context.factors = integrator_.physical_residual_factors();
+  assembler_.query(context, carried_.state, residual_all_);
+  model_.external_forces(carried_.state.time, carried_.external_old);
   for (const auto& constraint : model_.prescribed_dofs())
-    reactions_[constraint.dof] = residual_all_[constraint.dof] - external_old_[constraint.dof];
-  for (int dof : driven_dofs_) reactions_[dof] = residual_all_[dof] - external_old_[dof];
+    carried_.reactions[constraint.dof] = residual_all_[constraint.dof] - carried_.external_old[constraint.dof];
+  for (int dof : driven_dofs_) carried_.reactions[dof] = residual_all_[dof] - carried_.external_old[dof];
 }
 
 Eigen::VectorXd& Analysis::initial_field(Eigen::VectorXd State::*field, const char* what) {
-  if (accepted_steps_ > 0)
+  if (carried_.accepted_steps > 0)
     throw ModelError(std::string("initial ") + what + " can only be set before the first step (" +
-                     std::to_string(accepted_steps_) + " steps are already taken)");
+                     std::to_string(carried_.accepted_steps) + " steps are already taken)");
   size_state();
-  acceleration_pending_ = acceleration_pending_ || integrator_.is_dynamic();
-  reactions_valid_ = false;
-  old_forces_valid_ = false;
-  energy_started_ = false;
-  return committed_.*field;
+  carried_.acceleration_pending = carried_.acceleration_pending || integrator_.is_dynamic();
+  carried_.reactions_valid = false;
+  carried_.old_forces_valid = false;
+  carried_.energy_started = false;
+  return carried_.state.*field;
 }
 
 namespace {
@@ -380,22 +372,17 @@ void Analysis::set_initial_velocity(const Eigen::VectorXd& velocity) {
 void Analysis::start_steps() {
   discard_trial_step();
   prepare();
-  if (acceleration_pending_) initialize_acceleration();
-  if (!reactions_valid_) update_committed_reactions();
-  if (!energy_started_) start_energy_bookkeeping();
+  if (carried_.acceleration_pending) initialize_acceleration();
+  if (!carried_.reactions_valid) update_committed_reactions();
+  if (!carried_.energy_started) start_energy_bookkeeping();
 }
 
-void Analysis::record_step(double step, StepRecord& record) {
+void Analysis::commit_step(double step, StepRecord& record) {
   finish_step(step);
-  record.step = accepted_steps_;
-  record.time = committed_.time;
+  record.step = carried_.accepted_steps;
+  record.time = carried_.state.time;
   record.step_size = step;
-  record.energy = energy_;
-}
-
-void Analysis::notify_step(const StepRecord& record) {
-  for (const auto& observer : observers_) observer(*this, record);
-  if (step_end_hook_) step_end_hook_(*this, record);
+  record.energy = carried_.energy;
 }
 
 const StepRecord& Analysis::solve_trial_step(double step) {
@@ -403,8 +390,8 @@ const StepRecord& Analysis::solve_trial_step(double step) {
     throw ModelError("the time step must be positive and finite (got " + std::to_string(step) + ")");
   start_steps();
   trial_record_ = StepRecord{};
-  if (!try_step(step, committed_.time + step, trial_record_))
-    throw StepFailure("the step from t = " + std::to_string(committed_.time) + " (dt = " + std::to_string(step) +
+  if (!try_step(step, carried_.state.time + step, trial_record_))
+    throw StepFailure("the step from t = " + std::to_string(carried_.state.time) + " (dt = " + std::to_string(step) +
                       ") failed: " + last_failure_);
   trial_pending_ = true;
   trial_step_size_ = step;
@@ -414,14 +401,14 @@ const StepRecord& Analysis::solve_trial_step(double step) {
 void Analysis::accept_trial_step() {
   if (!trial_recorded_) record_trial_step();
   trial_recorded_ = false;
-  notify_step(trial_record_);
+  controller_.notify(trial_record_);
 }
 
 void Analysis::record_trial_step() {
   if (trial_recorded_) return;
   if (!trial_pending_) throw ModelError("there is no trial step to accept");
   trial_pending_ = false;
-  record_step(trial_step_size_, trial_record_);
+  commit_step(trial_step_size_, trial_record_);
   trial_recorded_ = true;
 }
 
@@ -433,122 +420,54 @@ void Analysis::discard_trial_step() {
 }
 
 const std::vector<StepRecord>& Analysis::advance(double duration) {
-  return advance_to(committed_.time + (duration > 0.0 ? duration : nominal_step_));
+  return advance_to(carried_.state.time + (duration > 0.0 ? duration : carried_.steps.nominal));
 }
 
 const std::vector<StepRecord>& Analysis::advance_to(double target) {
   start_steps();
-  records_.clear();
-  const double duration = target - committed_.time;
-  const double time_round_off = 1e-12 * std::max(1.0, std::abs(target));
-  double step = std::min(current_step_, control_.max_step > 0.0 ? control_.max_step : current_step_);
-  records_.reserve(static_cast<size_t>(std::min(std::max(duration, 0.0) / step, 1e6)) + 16);
-  while (committed_.time < target - time_round_off) {
-    const double remaining = target - committed_.time;
-    // Take the rest in one step if a sliver would be left over; it ends on the target exactly.
-    const bool last = step >= remaining || remaining - step < 1e-6 * step;
-    step = last ? remaining : step;
-    // No step is cut below the nominal one halved 2 max_cuts times: otherwise a run that
-    // scrapes through with tiny steps, failing again after each, lets the step dwindle
-    // from cut to cut without ever stopping.
-    const double smallest =
-        std::max(control_.min_step, std::ldexp(std::min(nominal_step_, remaining), -2 * control_.max_cuts));
-    StepRecord record;
-    while (!try_step(step, last && record.cuts == 0 ? target : committed_.time + step, record)) {
-      ++record.cuts;
-      const double cut = 0.5 * step;
-      if (record.cuts > control_.max_cuts || cut < smallest * (1.0 - 1e-9)) {
-        std::ostringstream message;
-        message << "the step from t = " << committed_.time << " could not be solved after " << record.cuts - 1
-                << " cuts (smallest dt = " << step << "): " << last_failure_
-                << ". Use smaller steps, more cuts, or check the loads and supports.";
-        throw StepFailure(message.str());
-      }
-      step = cut;
-    }
-    record_step(step, record);
-    records_.push_back(record);
-    // Grow back toward the nominal step after an easy convergence (before the observers,
-    // so that a checkpoint taken by one holds the next step's size).
-    if (record.newton_iterations <= control_.easy_iterations)
-      step = std::min(nominal_step_, step * control_.growth);
-    current_step_ = step;
-    notify_step(record);
-    if (committed_.time < target - time_round_off)
-      check_step_budget(static_cast<int>(records_.size()), duration / nominal_step_, record.step_size);
-  }
-  return records_;
+  return controller_.advance_to(*this, target);
 }
 
-void Analysis::check_step_budget(int steps_taken, double nominal_steps, double step) const {
-  if (control_.step_budget <= 0) return;
-  const double allowed = control_.step_budget * (std::ceil(nominal_steps - 1e-9) + 1.0);
-  if (steps_taken < allowed) return;
+std::string Analysis::failure_message(int cuts, double step) const {
   std::ostringstream message;
-  message << "the step budget ran out at t = " << committed_.time << ": " << steps_taken << " steps where dt = "
-          << nominal_step_ << " asks for " << std::ceil(nominal_steps - 1e-9) << " (the last dt = " << step
-          << "); steps that converge only far below dt point to a model out of balance or too light "
-          << "(a tiny rotary inertia). Check the loads, supports and masses, or raise "
-          << "model:step_control{ step_budget = " << control_.step_budget << " }";
-  throw StepFailure(message.str());
+  message << "the step from t = " << carried_.state.time << " could not be solved after " << cuts
+          << " cuts (smallest dt = " << step << "): " << last_failure_
+          << ". Use smaller steps, more cuts, or check the loads and supports.";
+  return message.str();
 }
 
-AnalysisSnapshot Analysis::snapshot() {
-  AnalysisSnapshot s;
-  s.state = committed_;
-  s.nominal_step = nominal_step_;
-  s.current_step = current_step_;
-  s.external_old = external_old_;
-  s.old_internal_forces = old_internal_forces_;
-  s.reactions = reactions_;
-  s.old_forces_valid = old_forces_valid_;
-  s.acceleration_pending = acceleration_pending_;
-  s.reactions_valid = reactions_valid_;
-  s.energy_started = energy_started_;
-  s.energy = energy_;
-  s.accepted_steps = accepted_steps_;
-  s.integrator_kind = static_cast<int>(integrator_.kind());
-  s.beta = integrator_.beta();
-  s.gamma = integrator_.gamma();
-  s.alpha = integrator_.alpha();
+CarriedState Analysis::snapshot() {
+  carried_.integrator_kind = static_cast<int>(integrator_.kind());
+  carried_.beta = integrator_.beta();
+  carried_.gamma = integrator_.gamma();
+  carried_.alpha = integrator_.alpha();
   analyzed_pattern_ = -1;  // the next factorization starts afresh, as after a restore
-  return s;
+  return carried_;
 }
 
-void Analysis::restore(const AnalysisSnapshot& s) {
+void Analysis::restore(const CarriedState& s) {
   if (s.integrator_kind != static_cast<int>(integrator_.kind()) || s.beta != integrator_.beta() ||
       s.gamma != integrator_.gamma() || s.alpha != integrator_.alpha())
     throw ModelError("the checkpoint was taken with another integrator than the deck's " + integrator_.name());
   const int dofs = model_.mesh().dof_count();
-  for (const Eigen::VectorXd* field : {&s.state.displacement, &s.state.velocity, &s.state.acceleration, &s.reactions,
-                                       &s.external_old})
-    if (field->size() != dofs || (s.old_forces_valid && s.old_internal_forces.size() != dofs))
-      throw ModelError("the checkpoint holds " + std::to_string(field->size()) + " DOFs, the model has " +
-                       std::to_string(dofs));
-  committed_ = s.state;
-  nominal_step_ = s.nominal_step;
-  current_step_ = s.current_step;
-  external_old_ = s.external_old;
-  old_internal_forces_ = s.old_internal_forces;
-  reactions_ = s.reactions;
-  old_forces_valid_ = s.old_forces_valid;
-  acceleration_pending_ = s.acceleration_pending;
-  reactions_valid_ = s.reactions_valid;
-  energy_started_ = s.energy_started;
-  energy_ = s.energy;
-  accepted_steps_ = s.accepted_steps;
+  CarriedState::for_each_field(s, [&s, dofs](const char*, const auto& field) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(field)>, Eigen::VectorXd>)
+      if (field.size() != dofs && (&field != &s.old_internal_forces || s.old_forces_valid))
+        throw ModelError("the checkpoint holds " + std::to_string(field.size()) + " DOFs, the model has " +
+                         std::to_string(dofs));
+  });
+  carried_ = s;
   analyzed_pattern_ = -1;
 }
 
 void Analysis::initialize_acceleration() {
   prepare();
   EvaluationContext context;
-  context.time = committed_.time;
-  context.factors = {1.0, 1.0, 0.0, 0.0, 0.0, 1.0};  // residual g, tangent M
+  context.time = carried_.state.time;
+  context.factors = Integrator::initial_acceleration_factors();
   context.want_tangent = true;
-  assembler_.assemble(context, committed_, residual_all_);
-  model_.revert_history();
-  model_.external_forces(committed_.time, external_new_);
+  assembler_.query(context, carried_.state, residual_all_);
+  model_.external_forces(carried_.state.time, external_new_);
   const DofMap& dofs = model_.dof_map();
   Eigen::VectorXd unbalanced(dofs.equation_count());
   for (int equation = 0; equation < dofs.equation_count(); ++equation) {
@@ -562,11 +481,11 @@ void Analysis::initialize_acceleration() {
   }
   linear_solver_->solve(unbalanced);
   for (int equation = 0; equation < dofs.equation_count(); ++equation)
-    committed_.acceleration[dofs.dof(equation)] = unbalanced[equation];
-  external_old_ = external_new_;
-  old_forces_valid_ = false;
-  acceleration_pending_ = false;
-  reactions_valid_ = false;  // the inertia part of the reactions changed
+    carried_.state.acceleration[dofs.dof(equation)] = unbalanced[equation];
+  carried_.external_old = external_new_;
+  carried_.old_forces_valid = false;
+  carried_.acceleration_pending = false;
+  carried_.reactions_valid = false;  // the inertia part of the reactions changed
 }
 
 }  // namespace tirefe

@@ -24,79 +24,30 @@
 
 #include "core/assembler.hpp"
 #include "core/model.hpp"
+#include "solvers/carried_state.hpp"
 #include "solvers/driven_solver.hpp"
 #include "solvers/integrator.hpp"
 #include "solvers/linear_solver.hpp"
 #include "solvers/newton.hpp"
 #include "solvers/ring_solver.hpp"
+#include "solvers/step_controller.hpp"
 
 namespace tirefe {
 
-/// Raised when a step cannot be completed even after the allowed cuts.
-class StepFailure : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-struct StepControl {
-  double min_step = 0.0;     // 0: no lower bound beyond max_cuts
-  double max_step = 0.0;     // 0: the nominal step
-  int max_cuts = 10;         // halvings of one step; and no step below nominal / 4^max_cuts
-  int easy_iterations = 4;   // grow the step after converging in this many iterations or fewer
-  double growth = 2.0;       // growth factor back toward the nominal step
-  int max_augmentations = 20;  // augmented-Lagrangian updates per step
-  // One advance may take at most step_budget steps per nominal step it spans (plus
-  // step_budget): a step that keeps converging only at a small fraction of the nominal one
-  // (an out-of-balance start, a tiny rotary inertia) stops the run instead of filling the
-  // disk with steps. 0: no budget.
-  int step_budget = 100;
-};
-
-/// Energies at the end of an accepted step; initial + external_work = kinetic + strain + dissipated.
-struct EnergyRecord {
-  double kinetic = 0.0;        // v.M v / 2
-  double strain = 0.0;         // sum of the element blocks' stored energy
-  double external_work = 0.0;  // of nodal loads and support reactions since the start
-  double initial = 0.0;        // kinetic + strain at the start of the analysis
-  double dissipated = 0.0;     // initial + external_work - kinetic - strain
-};
-
-struct StepRecord {
-  int step = 0;           // accepted steps since the start
-  double time = 0.0;      // at the end of the step
-  double step_size = 0.0;
-  int newton_iterations = 0;
-  int cuts = 0;           // cuts taken before this step converged
-  int augmentations = 0;  // augmented-Lagrangian multiplier updates
-  double residual = 0.0;  // final |R|
-  EnergyRecord energy;    // at the end of the step
-};
-
-/// Everything an Analysis carries from one accepted step to the next (checkpoints): with
-/// the element histories and the deck's settings it continues a run bit for bit.
-struct AnalysisSnapshot {
-  State state;
-  double nominal_step = 0.0, current_step = 0.0;
-  Eigen::VectorXd external_old, old_internal_forces, reactions;
-  bool old_forces_valid = false, acceleration_pending = false, reactions_valid = false, energy_started = false;
-  EnergyRecord energy;
-  int accepted_steps = 0;
-  int integrator_kind = 0;  // Integrator::Kind, with its parameters: checked on restore
-  double beta = 0.0, gamma = 0.0, alpha = 0.0;
-};
-
-class Analysis : private StepEquations {
+class Analysis : private StepEquations, private SteppedSystem {
  public:
   explicit Analysis(Model& model);
+  Analysis(const Analysis&) = delete;
+  Analysis& operator=(const Analysis&) = delete;
 
   Model& model() { return model_; }
   const Model& model() const { return model_; }
   void set_integrator(const Integrator& integrator);
   const Integrator& integrator() const { return integrator_; }
   void set_time_step(double step);
-  double time_step() const { return nominal_step_; }
+  double time_step() const { return carried_.steps.nominal; }
   NewtonSettings& newton_settings() { return newton_.settings(); }
-  StepControl& step_control() { return control_; }
+  StepControl& step_control() { return controller_.settings(); }
   void set_log(std::ostream* log);
 
   /// Advances by 'duration' (default: one nominal step) in as many accepted steps as
@@ -107,9 +58,9 @@ class Analysis : private StepEquations {
 
   /// The state between steps, for a checkpoint. Taking one also drops the linear
   /// solver's reused pivots, as a restore does, so that the run goes on as a restarted one would.
-  AnalysisSnapshot snapshot();
+  CarriedState snapshot();
   /// Continues from a snapshot (with the same integrator; throws ModelError otherwise).
-  void restore(const AnalysisSnapshot& snapshot);
+  void restore(const CarriedState& snapshot);
 
   /// Solves M a = F - f_int - C v for the accelerations at the current time. Called by
   /// advance() when the analysis enters dynamics or after new initial conditions.
@@ -124,17 +75,17 @@ class Analysis : private StepEquations {
   void set_initial_displacement(const Eigen::VectorXd& displacement);
   void set_initial_velocity(const Eigen::VectorXd& velocity);
 
-  const State& state() const { return committed_; }
-  State& mutable_state() { return committed_; }
+  const State& state() const { return carried_.state; }
+  State& mutable_state() { return carried_.state; }
   /// Reactions at prescribed DOFs (zero elsewhere), from the last converged step.
-  const Eigen::VectorXd& reactions() const { return reactions_; }
+  const Eigen::VectorXd& reactions() const { return carried_.reactions; }
   const Eigen::VectorXd& external_forces() const { return external_new_; }
   /// Energy balance as of the last accepted step (all zero before the first).
-  const EnergyRecord& energy() const { return energy_; }
+  const EnergyRecord& energy() const { return carried_.energy; }
   /// Starts the balance afresh at the current state (after a static preload, say):
   /// initial = kinetic + strain now, no external work yet.
   void restart_energy_balance();
-  int accepted_steps() const { return accepted_steps_; }
+  int accepted_steps() const { return carried_.accepted_steps; }
   const NewtonReport& last_newton_report() const { return newton_.last_report(); }
   Assembler& assembler() { return assembler_; }
   /// The solver of the Newton iterations (KLU by default).
@@ -185,24 +136,27 @@ class Analysis : private StepEquations {
   const DrivenDofSolver::SmallMatrix& driven_tangent();
 
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
-    observers_.push_back(std::move(observer));
+    controller_.add_observer([this, observer = std::move(observer)](const StepRecord& record) { observer(*this, record); });
   }
   /// Runs after every observer of an accepted step (a checkpoint: the step's output is complete then).
-  void set_step_end_hook(std::function<void(Analysis&, const StepRecord&)> hook) { step_end_hook_ = std::move(hook); }
+  void set_step_end_hook(std::function<void(Analysis&, const StepRecord&)> hook) {
+    controller_.set_closing_observer([this, hook = std::move(hook)](const StepRecord& record) { hook(*this, record); });
+  }
 
  private:
   void prepare();
   void size_state();
   void start_steps();
-  void record_step(double step, StepRecord& record);
-  void notify_step(const StepRecord& record);
+  // SteppedSystem
+  double time() const override { return carried_.state.time; }
+  bool try_step(double step, double end_time, StepRecord& record) override;
+  void commit_step(double step, StepRecord& record) override;
+  std::string failure_message(int cuts, double step) const override;
   LinearSolver& newton_linear_solver();
   void analyze_pattern();
   /// ModelError when there is nothing to solve (no elements, or every DOF fixed).
   void require_equations() const;
   void select_solver(LinearSolver& solver);
-  bool try_step(double step, double end_time, StepRecord& record);
-  void check_step_budget(int steps_taken, double nominal_steps, double step) const;
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
   void update_committed_reactions();
@@ -224,21 +178,13 @@ class Analysis : private StepEquations {
   int analyzed_pattern_ = -1;  // the Assembler's pattern_version() the solver last analysed
   NewtonSolver newton_;
   Integrator integrator_ = Integrator::quasi_static();
-  StepControl control_;
-  double nominal_step_ = 1.0;
-  double current_step_ = 1.0;
   std::ostream* log_ = nullptr;
   std::string last_failure_;
 
-  State committed_, trial_;
-  Eigen::VectorXd residual_all_, external_new_, external_old_, old_internal_forces_, reactions_;
-  bool old_forces_valid_ = false;
-  bool acceleration_pending_ = false;
-  bool reactions_valid_ = false;  // reactions_ belong to the committed state
-  bool energy_started_ = false;
-  EnergyRecord energy_;
-  int accepted_steps_ = 0;
-  std::vector<StepRecord> records_;
+  CarriedState carried_;
+  StepController controller_{carried_.steps};
+  State trial_;
+  Eigen::VectorXd residual_all_, external_new_;
   std::vector<int> driven_dofs_;
   Eigen::VectorXd driven_displacements_;
   std::unique_ptr<DrivenDofSolver> driven_solver_;
@@ -247,8 +193,6 @@ class Analysis : private StepEquations {
   bool trial_recorded_ = false;  // record_trial_step() done, observers not yet told
   double trial_step_size_ = 0.0;
   StepRecord trial_record_;
-  std::vector<std::function<void(const Analysis&, const StepRecord&)>> observers_;
-  std::function<void(Analysis&, const StepRecord&)> step_end_hook_;
 };
 
 }  // namespace tirefe

@@ -47,9 +47,39 @@ std::string Integrator::name() const {
 }
 
 IntegratorFactors Integrator::factors(double step) const {
-  if (!is_dynamic()) return {};
-  const double weight = 1.0 + alpha_;
-  return {weight, weight, 1.0, weight, weight * gamma_ / (beta_ * step), 1.0 / (beta_ * step * step)};
+  if (!is_dynamic()) return {};  // f_int and K alone
+  const double weight = new_force_weight();
+  IntegratorFactors factors;
+  factors.force_stiffness = weight;
+  factors.force_damping = weight;
+  factors.force_mass = 1.0;
+  factors.tangent_stiffness = weight;
+  factors.tangent_damping = weight * gamma_ / (beta_ * step);
+  factors.tangent_mass = 1.0 / (beta_ * step * step);
+  return factors;
+}
+
+IntegratorFactors Integrator::internal_force_factors() {
+  IntegratorFactors factors;
+  factors.force_stiffness = 1.0;
+  factors.force_damping = 1.0;
+  factors.tangent_stiffness = 0.0;
+  return factors;
+}
+
+IntegratorFactors Integrator::physical_residual_factors() const {
+  IntegratorFactors factors;
+  factors.force_stiffness = 1.0;
+  factors.force_damping = is_dynamic() ? 1.0 : 0.0;
+  factors.force_mass = is_dynamic() ? 1.0 : 0.0;
+  factors.tangent_stiffness = 0.0;
+  return factors;
+}
+
+IntegratorFactors Integrator::initial_acceleration_factors() {
+  IntegratorFactors factors = internal_force_factors();
+  factors.tangent_mass = 1.0;
+  return factors;
 }
 
 void Integrator::predict(const State& committed, double step, State& trial) const {
@@ -83,6 +113,39 @@ void Integrator::update_rates(const State& committed, double step, int dof, Stat
                         step * step * (0.5 - beta_) * a_old) / (beta_ * step * step);
   trial.acceleration[dof] = a_new;
   trial.velocity[dof] = committed.velocity[dof] + step * ((1.0 - gamma_) * a_old + gamma_ * a_new);
+}
+
+const std::vector<IntegratorScheme>& integrator_schemes() {
+  static const std::vector<IntegratorScheme> schemes = {
+      {"static", [](const IntegratorParameters&) { return Integrator::quasi_static(); }},
+      {"newmark",
+       [](const IntegratorParameters& p) { return Integrator::newmark(p.beta, p.gamma).with_predictor(p.predictor); }},
+      {"hht", [](const IntegratorParameters& p) { return Integrator::hht(p.alpha).with_predictor(p.predictor); }},
+  };
+  return schemes;
+}
+
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (const IntegratorScheme& scheme : integrator_schemes()) names.emplace_back(scheme.name);
+  return names;
+}
+
+Integrator make_integrator(const std::string& name, const IntegratorParameters& parameters) {
+  for (const IntegratorScheme& scheme : integrator_schemes())
+    if (name == scheme.name) return scheme.make(parameters);
+  std::string known;
+  for (const std::string& other : integrator_names()) known += (known.empty() ? "" : ", ") + other;
+  throw ModelError("no integrator named '" + name + "' (known: " + known + ")");
+}
+
+std::vector<std::string> predictor_names() { return {"same_acceleration", "zero_acceleration", "same_displacement"}; }
+
+Integrator::Predictor predictor_named(const std::string& name) {
+  const std::vector<std::string> names = predictor_names();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (name == names[i]) return static_cast<Integrator::Predictor>(i);
+  throw ModelError("no predictor named '" + name + "'");
 }
 
 }  // namespace tirefe

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/element.hpp"
 #include "core/state.hpp"
@@ -50,10 +51,42 @@ class Integrator {
     return copy;
   }
 
+  /// The weights and tangent factors of the step equations with step size h.
   IntegratorFactors factors(double step) const;
+  /// g = f_int + C v alone (HHT's old and new internal forces), no tangent.
+  static IntegratorFactors internal_force_factors();
+  /// The physical residual M a + C v + f_int (f_int alone quasi-statically), no tangent:
+  /// at prescribed DOFs, with the loads taken off, the support reactions.
+  IntegratorFactors physical_residual_factors() const;
+  /// Residual g = f_int + C v with the tangent M: the initial acceleration's M a = F - g.
+  static IntegratorFactors initial_acceleration_factors();
+
   /// Weight of the new (t_{n+1}) and old (t_n) force levels: 1 + alpha and -alpha.
   double new_force_weight() const { return 1.0 + alpha_; }
   double old_force_weight() const { return -alpha_; }
+  /// True when the step equations hold the old forces (HHT): g_n must be known.
+  bool weights_old_forces() const { return old_force_weight() != 0.0; }
+  /// Adds the loads to the element forces of the step equations (element forces weighted
+  /// by factors()): - (1+alpha) F_{n+1} - alpha (g_n - F_n).
+  void add_load_terms(const Eigen::VectorXd& external_new, const Eigen::VectorXd& internal_old,
+                      const Eigen::VectorXd& external_old, Eigen::VectorXd& residual) const {
+    residual -= new_force_weight() * external_new;
+    if (weights_old_forces()) residual += old_force_weight() * (internal_old - external_old);
+  }
+  /// Turns the converged residual of the step equations into the physical one
+  /// M a + g_{n+1} - F_{n+1}, whose prescribed entries are the reactions. HHT's residual
+  /// differs from it by alpha [(g_{n+1} - F_{n+1}) - (g_n - F_n)]: 'internal' holds g_n on
+  /// entry and g_{n+1} on return, from one call of assemble_internal(internal) (which the
+  /// next step's weighting needs anyway). Nothing to do without old forces.
+  template <class AssembleInternal>
+  void to_physical_residual(const Eigen::VectorXd& external_old, const Eigen::VectorXd& external_new,
+                            Eigen::VectorXd& internal, AssembleInternal&& assemble_internal,
+                            Eigen::VectorXd& residual) const {
+    if (!weights_old_forces()) return;
+    residual += alpha_ * (internal - external_old);
+    assemble_internal(internal);
+    residual -= alpha_ * (internal - external_new);
+  }
 
   /// Predicts the state at t_n + step from the committed state (every DOF).
   void predict(const State& committed, double step, State& trial) const;
@@ -77,5 +110,23 @@ class Integrator {
   double beta_, gamma_, alpha_;
   Predictor predictor_ = Predictor::SameAcceleration;
 };
+
+/// The deck's integrators by name (model:integrator{ type = ... }): one entry per scheme,
+/// made from the parameters the deck gives.
+struct IntegratorParameters {
+  double beta = 0.25, gamma = 0.5, alpha = -0.05;
+  Integrator::Predictor predictor = Integrator::Predictor::SameAcceleration;
+};
+struct IntegratorScheme {
+  const char* name;
+  Integrator (*make)(const IntegratorParameters& parameters);
+};
+const std::vector<IntegratorScheme>& integrator_schemes();
+std::vector<std::string> integrator_names();
+/// ModelError naming the known schemes for an unknown name.
+Integrator make_integrator(const std::string& name, const IntegratorParameters& parameters);
+/// The predictors' deck names, in Predictor's order.
+std::vector<std::string> predictor_names();
+Integrator::Predictor predictor_named(const std::string& name);
 
 }  // namespace tirefe

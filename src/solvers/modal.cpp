@@ -21,14 +21,8 @@ constexpr double kTwoPi = 6.28318530717958647692;
 constexpr int kMaxModalEquations = 10000;
 using Complex = std::complex<double>;
 
-/// Restores trial = committed history however an assembly ends.
-struct HistoryRevert {
-  Model& model;
-  ~HistoryRevert() { model.revert_history(); }
-};
-
-/// One assembly pass at a state with the given factors: the residual of every DOF (the
-/// tangent, if asked for, stays in the assembler).
+/// One query at a state with the given factors: the residual of every DOF (the tangent,
+/// if asked for, stays in the assembler); the history stays as committed.
 Eigen::VectorXd assembled_forces(Assembler& assembler, const State& state, const IntegratorFactors& factors,
                                  bool with_tangent) {
   EvaluationContext context;
@@ -36,7 +30,7 @@ Eigen::VectorXd assembled_forces(Assembler& assembler, const State& state, const
   context.factors = factors;
   context.want_tangent = with_tangent;
   Eigen::VectorXd residual;
-  assembler.assemble(context, state, residual);
+  assembler.query(context, state, residual);
   return residual;
 }
 
@@ -67,14 +61,11 @@ struct Linearisation {
       field->conservativeResize(dof_count);
       field->tail(dof_count - old_size).setZero();
     }
-    {
-      HistoryRevert revert{model};
-      stiffness = dense_tangent(assembler, state, {1.0, 0.0, 0.0, 1.0, 0.0, 0.0});
-      mass = dense_tangent(assembler, state, {0.0, 0.0, 0.0, 0.0, 0.0, 1.0});
-      const int equations = model.dof_map().equation_count();
-      damping = with_damping ? dense_tangent(assembler, state, {0.0, 0.0, 0.0, 0.0, 1.0, 0.0})
-                             : Eigen::MatrixXd::Zero(equations, equations);
-    }
+    stiffness = dense_tangent(assembler, state, IntegratorFactors::stiffness_matrix());
+    mass = dense_tangent(assembler, state, IntegratorFactors::mass_matrix());
+    const int equations = model.dof_map().equation_count();
+    damping = with_damping ? dense_tangent(assembler, state, IntegratorFactors::damping_matrix())
+                           : Eigen::MatrixXd::Zero(equations, equations);
     mass = 0.5 * (mass + mass.transpose());
     mass_factor.compute(mass);
     if (mass_factor.info() != Eigen::Success)
@@ -111,14 +102,10 @@ Eigen::VectorXd quarter_turn(const Eigen::VectorXd& field) {
 /// Products of K, C and M with a direction over all DOFs, at every DOF (the prescribed
 /// rows give the support reactions; the tangent covers only the free equations): K d by
 /// a central difference of the residual along d, C d and M d from the residual itself,
-/// linear in v and a by the element contract. Leaves the history as committed.
+/// linear in v and a by the element contract. Queries: the history stays as committed.
 class ForceProbe {
  public:
-  ForceProbe(Model& model, Assembler& assembler, const State& state)
-      : model_(model), assembler_(assembler), state_(state) {}
-  ~ForceProbe() { model_.revert_history(); }
-  ForceProbe(const ForceProbe&) = delete;
-  ForceProbe& operator=(const ForceProbe&) = delete;
+  ForceProbe(Assembler& assembler, const State& state) : assembler_(assembler), state_(state) {}
 
   Eigen::VectorXd stiffness(const Eigen::VectorXd& direction) {
     const double size = direction.lpNorm<Eigen::Infinity>();
@@ -126,19 +113,19 @@ class ForceProbe {
     const double step = 1e-7 / size;
     State shifted = state_;
     shifted.displacement = state_.displacement + step * direction;
-    const Eigen::VectorXd plus = forces(shifted, {1.0, 0.0, 0.0, 0.0, 0.0, 0.0});
+    const Eigen::VectorXd plus = forces(shifted, IntegratorFactors::stiffness_force());
     shifted.displacement = state_.displacement - step * direction;
-    return (plus - forces(shifted, {1.0, 0.0, 0.0, 0.0, 0.0, 0.0})) / (2.0 * step);
+    return (plus - forces(shifted, IntegratorFactors::stiffness_force())) / (2.0 * step);
   }
   Eigen::VectorXd damping(const Eigen::VectorXd& direction) {
     State probe = state_;
     probe.velocity = direction;
-    return forces(probe, {0.0, 1.0, 0.0, 0.0, 0.0, 0.0});
+    return forces(probe, IntegratorFactors::damping_force());
   }
   Eigen::VectorXd mass(const Eigen::VectorXd& direction) {
     State probe = state_;
     probe.acceleration = direction;
-    return forces(probe, {0.0, 0.0, 1.0, 0.0, 0.0, 0.0});
+    return forces(probe, IntegratorFactors::inertia_force());
   }
   /// M_t d: the mass on the in-plane translations (theta_z entries of d and of M d dropped).
   Eigen::VectorXd translational_mass(const Eigen::VectorXd& direction) {
@@ -155,7 +142,6 @@ class ForceProbe {
     return assembled_forces(assembler_, state, weights, false);
   }
 
-  Model& model_;
   Assembler& assembler_;
   const State& state_;
 };
@@ -456,7 +442,7 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
     result.frequencies_hz.push_back(rigid ? 0.0 : signed_omega / kTwoPi);
     result.shapes.col(i) = on_all_dofs(dofs, shape);
   }
-  ForceProbe probe(model, assembler, linear.state);
+  ForceProbe probe(assembler, linear.state);
   for (int i = 0; i < count; ++i) result.reactions.col(i) = prescribed_rows(dofs, probe.stiffness(result.shapes.col(i)));
   return result;
 }
@@ -543,7 +529,7 @@ DampedModalResult damped_modal_analysis(Model& model, const State& state, int mo
   const int count = static_cast<int>(modes.size());
   result.shapes.setZero(dofs.dof_count(), count);
   result.reactions.setZero(dofs.dof_count(), count);
-  ForceProbe probe(model, assembler, linear.state);
+  ForceProbe probe(assembler, linear.state);
   for (int i = 0; i < count; ++i) {
     const Mode& mode = modes[i];
     Eigen::VectorXcd shape = on_all_dofs(dofs, mode.shape);

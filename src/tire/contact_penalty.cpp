@@ -23,8 +23,7 @@ const SparseMatrix& static_tangent(Analysis& analysis, State& state) {
   EvaluationContext context;  // static factors: dF_int/du alone
   context.time = state.time;
   Eigen::VectorXd residual;
-  assembler.assemble(context, state, residual);
-  model.revert_history();  // an evaluation between steps leaves no trial history behind
+  assembler.query(context, state, residual);
   return assembler.tangent();
 }
 

@@ -156,8 +156,8 @@ void Vehicle::initialize_acceleration() {
   started_ = true;
 }
 
-bool Vehicle::try_step(double h) {
-  const double alpha = integrator_.alpha(), beta = integrator_.beta(), gamma = integrator_.gamma();
+bool Vehicle::solve_step(double h) {
+  const IntegratorFactors factors = integrator_.factors(h);
   const double reference = weight_.sum();
   integrator_.predict(committed_, h, trial_);
   for (int iteration = 0;; ++iteration) {
@@ -179,7 +179,8 @@ bool Vehicle::try_step(double h) {
       }
     }
     suspension_forces(trial_, forces_);
-    residual_ = mass_.cwiseProduct(trial_.acceleration) + (1.0 + alpha) * forces_ - alpha * old_forces_ + weight_;
+    residual_ = mass_.cwiseProduct(trial_.acceleration) + integrator_.new_force_weight() * forces_ +
+                integrator_.old_force_weight() * old_forces_ + weight_;
     for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
       residual_[wheel_fore_aft_dof(i)] += replies_[i].force[0];
       residual_[wheel_vertical_dof(i)] += replies_[i].force[1];
@@ -196,8 +197,8 @@ bool Vehicle::try_step(double h) {
       last_failure_ = message.str();
       return false;
     }
-    jacobian_ = (mass_ / (beta * h * h)).asDiagonal();
-    suspension_tangent(trial_, 1.0 + alpha, (1.0 + alpha) * gamma / (beta * h), jacobian_);
+    jacobian_ = (factors.tangent_mass * mass_).asDiagonal();
+    suspension_tangent(trial_, factors.tangent_stiffness, factors.tangent_damping, jacobian_);
     for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
       const int dofs[2] = {wheel_fore_aft_dof(i), wheel_vertical_dof(i)};
       for (int r = 0; r < 2; ++r)
@@ -210,53 +211,46 @@ bool Vehicle::try_step(double h) {
   }
 }
 
-void Vehicle::take_step(double h, int cuts) {
-  if (try_step(h)) {
-    std::swap(committed_, trial_);  // first: the tires' output may read the vehicle's new state
-    suspension_forces(committed_, old_forces_);
-    tires_.serve_all(SpindleCommand::Commit, replies_);
-    for (size_t i = 0; i < replies_.size(); ++i)
-      if (replies_[i].status == SpindleStatus::Failed)
-        throw StepFailure(tire_of(i) + " could not commit: " + replies_[i].message);
-    ++statistics_.steps;
-    for (const auto& observer : observers_) observer(*this);
-    return;
-  }
-  tires_.serve_all(SpindleCommand::Revert, replies_);
-  if (cuts >= settings_.max_cuts)
-    throw StepFailure("vehicle step from t = " + std::to_string(committed_.time) + " (dt = " + std::to_string(h) +
-                      ") failed after " + std::to_string(cuts) + " cuts: " + last_failure_);
-  ++statistics_.cuts;
-  take_step(0.5 * h, cuts + 1);
-  take_step(0.5 * h, cuts + 1);
+bool Vehicle::try_step(double h, double, StepRecord& record) {
+  const int iterations = statistics_.corrector_iterations;
+  const bool solved = solve_step(h);
+  record.newton_iterations = statistics_.corrector_iterations - iterations;
+  if (!solved) tires_.serve_all(SpindleCommand::Revert, replies_);
+  return solved;
 }
 
-void Vehicle::step(double h) {
-  if (!(h > 0.0) || !std::isfinite(h)) throw ModelError("the vehicle time step must be positive and finite");
-  if (!started_) initialize_acceleration();
-  take_step(h, 0);
+void Vehicle::commit_step(double h, StepRecord& record) {
+  std::swap(committed_, trial_);  // first: the tires' output may read the vehicle's new state
+  suspension_forces(committed_, old_forces_);
+  tires_.serve_all(SpindleCommand::Commit, replies_);
+  for (size_t i = 0; i < replies_.size(); ++i)
+    if (replies_[i].status == SpindleStatus::Failed)
+      throw StepFailure(tire_of(i) + " could not commit: " + replies_[i].message);
+  ++statistics_.steps;
+  statistics_.cuts += record.cuts;
+  record.step = statistics_.steps;
+  record.time = committed_.time;
+  record.step_size = h;
+  record.residual = residual_.lpNorm<Eigen::Infinity>();
+}
+
+std::string Vehicle::failure_message(int, double h) const {
+  // The controller gives up when the step would fall below h / 2^max_cuts: all cuts taken.
+  return "vehicle step from t = " + std::to_string(committed_.time) + " (dt = " + std::to_string(h) +
+         ") failed after " + std::to_string(settings_.max_cuts) + " cuts: " + last_failure_;
 }
 
 void Vehicle::advance(double duration, double h, std::vector<StepWindow> windows) {
-  for (const StepWindow& window : windows)
-    if (!(window.to > window.from) || !(window.step > 0.0))
-      throw ModelError("a step window needs from < to and a positive step");
-  std::sort(windows.begin(), windows.end(), [](const StepWindow& a, const StepWindow& b) { return a.from < b.from; });
-  const double end = committed_.time + duration;
-  for (const StepWindow& window : windows) {
-    const double from = std::clamp(window.from, committed_.time, end), to = std::clamp(window.to, from, end);
-    if (from > committed_.time) advance(from - committed_.time, h);
-    if (to > committed_.time) advance(to - committed_.time, window.step);
-  }
-  if (end > committed_.time) advance(end - committed_.time, h);
-}
-
-void Vehicle::advance(double duration, double h) {
-  // Times add up with round-off: a remainder within 1e-6 h of a step is taken with it, so
-  // that no sliver of a step (whose inertia terms 1/h^2 would swamp the corrector) is left.
-  const double target = committed_.time + duration;
-  for (double remaining = duration; remaining > 1e-6 * h; remaining = target - committed_.time)
-    step(remaining < h * (1.0 + 1e-6) ? remaining : h);
+  if (!(h > 0.0) || !std::isfinite(h)) throw ModelError("the vehicle time step must be positive and finite");
+  controller_.set_windows(std::move(windows));
+  if (!started_) initialize_acceleration();
+  StepControl& control = controller_.settings();
+  // Halvings of h, never below h / 2^max_cuts: its cuts bound the steps.
+  control.max_cuts = settings_.max_cuts;
+  control.depth = std::max(settings_.max_cuts, 1);
+  control.step_budget = 0;
+  steps_ = {h, h};
+  controller_.advance_to(*this, committed_.time + duration);
 }
 
 }  // namespace tirefe

@@ -27,6 +27,7 @@
 
 #include "core/state.hpp"
 #include "solvers/integrator.hpp"
+#include "solvers/step_controller.hpp"
 #include "vehicle/force_curve.hpp"
 #include "vehicle/tire_exchange.hpp"
 
@@ -75,12 +76,14 @@ struct VehicleStatistics {
   int backtracks = 0;  // corrector increments halved because a tire could not follow
 };
 
-class Vehicle {
+class Vehicle : private SteppedSystem {
  public:
   /// Corner i rides on tires.tire(i) (spin free), whose current spindle position is the
   /// design position; the tires may be solved in threads or on other MPI ranks. A single corner makes a quarter car (heave only); more add pitch
   /// and roll. Starts at rest at the design position.
   Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, VehicleSettings settings);
+  Vehicle(const Vehicle&) = delete;
+  Vehicle& operator=(const Vehicle&) = delete;
 
   int dof_count() const { return static_cast<int>(mass_.size()); }
   int body_dofs() const { return body_dofs_; }
@@ -89,14 +92,13 @@ class Vehicle {
   int wheel_vertical_dof(int corner) const { return body_dofs_ + 2 * corner; }
   int wheel_fore_aft_dof(int corner) const { return body_dofs_ + 2 * corner + 1; }
 
-  /// Advances by one step h (cut into halves if the corrector fails; throws StepFailure).
-  void step(double h);
-  void advance(double duration, double h);
+  /// Advances by one step h (cut into halves if the corrector fails, growing back after
+  /// easy convergence: the StepController; throws StepFailure).
+  void step(double h) { advance(h, h); }
+  void advance(double duration, double h) { advance(duration, h, {}); }
   /// Advances by 'duration' in steps h, and in steps of each window's own size while the
   /// time is inside it (windows in absolute time, e.g. around an obstacle's impacts).
-  struct StepWindow {
-    double from = 0.0, to = 0.0, step = 0.0;  // [s]
-  };
+  using StepWindow = tirefe::StepWindow;
   void advance(double duration, double h, std::vector<StepWindow> windows);
 
   const State& state() const { return committed_; }
@@ -111,11 +113,17 @@ class Vehicle {
   VehicleSettings& settings() { return settings_; }
   const std::vector<Corner>& corners() const { return corners_; }
   /// Called after every accepted step.
-  void add_step_observer(std::function<void(const Vehicle&)> observer) { observers_.push_back(std::move(observer)); }
+  void add_step_observer(std::function<void(const Vehicle&)> observer) {
+    controller_.add_observer([this, observer = std::move(observer)](const StepRecord&) { observer(*this); });
+  }
 
  private:
-  bool try_step(double h);
-  void take_step(double h, int cuts);
+  // SteppedSystem (with time()): the tires step by h on their own clocks, so the end time is theirs.
+  bool try_step(double h, double end_time, StepRecord& record) override;
+  void commit_step(double h, StepRecord& record) override;
+  std::string failure_message(int cuts, double h) const override;
+  /// The corrector of one step: true when it converged, with the tires at the trial state.
+  bool solve_step(double h);
   void solve_tires(double h);
   void suspension_forces(const State& state, Eigen::VectorXd& forces) const;
   void suspension_tangent(const State& state, double stiffness_factor, double damping_factor,
@@ -144,7 +152,8 @@ class Vehicle {
   std::vector<Eigen::Vector2d> perturbed_forces_;   // finite differences: f_s at q + delta e_j
   std::vector<Eigen::VectorXd> attachments_;
   std::string last_failure_;
-  std::vector<std::function<void(const Vehicle&)>> observers_;
+  StepSizes steps_;
+  StepController controller_{steps_};
   // Corrector work space.
   Eigen::VectorXd residual_, forces_, increment_;
   Eigen::MatrixXd jacobian_;
