@@ -221,6 +221,7 @@ TEST_CASE("sidewall tangent equals central finite differences, deformed, rotated
     EvaluationContext statics;
     check_tangent(wedge, local, statics);
     check_tangent(wedge, local, testing::dynamic_context(1e-3));
+    CHECK(testing::declared_zero_magnitude(wedge, local, testing::dynamic_context(1e-3)) == 0.0);
   }
   CHECK(stretched > 0);  // both branches of the law were exercised
 }
@@ -412,6 +413,7 @@ TEST_CASE("tread pressure tangent equals central finite differences and is unsym
   for (int trial = 0; trial < 10; ++trial) {
     const LocalState<6> local = testing::random_local_state<6>(random, 0.02, 1.0);
     check_tangent(load, local, testing::dynamic_context());
+    CHECK(testing::declared_zero_magnitude(load, local, testing::dynamic_context()) == 0.0);
     TreadPressure::Vector residual;
     TreadPressure::Matrix tangent;
     NoHistory history;

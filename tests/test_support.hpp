@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -92,6 +94,32 @@ double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDo
   const typename Kernel::Matrix numerical = finite_difference_tangent(kernel, local, context, history);
   if (asymmetry) *asymmetry = (tangent - tangent.transpose()).norm() / tangent.norm();
   return (tangent - numerical).norm() / tangent.norm();
+}
+
+/// The largest magnitude among what a kernel's block-loop declarations (element.hpp) say
+/// is zero: the residual entries and tangent rows and columns of its kIdleDofs, and, if it
+/// declares kReadsAcceleration = false, the change of its residual when the acceleration
+/// is dropped. The block loop skips these, so anything but 0 is a wrong declaration.
+template <class Kernel>
+double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kDofs>& local,
+                               const EvaluationContext& context) {
+  typename Kernel::Vector residual, without_acceleration;
+  typename Kernel::Matrix tangent;
+  typename Kernel::History history{};
+  kernel.evaluate(local, context, history, history, residual, &tangent);
+  double largest = 0.0;
+  constexpr auto idle = detail::IdleDofs<Kernel>::mask();
+  for (int i = 0; i < Kernel::kDofs; ++i)
+    if (idle[i])
+      largest = std::max({largest, std::abs(residual[i]), tangent.row(i).cwiseAbs().maxCoeff(),
+                          tangent.col(i).cwiseAbs().maxCoeff()});
+  if constexpr (!detail::ReadsAcceleration<Kernel>::value) {
+    LocalState<Kernel::kDofs> at_rest = local;
+    at_rest.acceleration.setZero();
+    kernel.evaluate(at_rest, context, history, history, without_acceleration, nullptr);
+    largest = std::max(largest, (residual - without_acceleration).cwiseAbs().maxCoeff());
+  }
+  return largest;
 }
 
 /// 'text' with the first 'from' replaced by 'to' ('from' must be there).

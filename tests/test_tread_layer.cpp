@@ -32,6 +32,7 @@ static void check_tangent(const TreadLayer& layer, unsigned seed, bool symmetric
     INFO("trial " << trial);
     CHECK(testing::relative_tangent_error(layer, local, testing::dynamic_context(1e-3), &asymmetry) <= 1e-6);
     if (symmetric) CHECK(asymmetry <= 1e-12);
+    CHECK(testing::declared_zero_magnitude(layer, local, testing::dynamic_context(1e-3)) == 0.0);
   }
 }
 

@@ -146,6 +146,30 @@ template <class Kernel>
 struct HasAugment<Kernel, std::void_t<decltype(std::declval<const Kernel&>().augment(
                               std::declval<typename Kernel::History&>(),
                               std::declval<const typename Kernel::History&>()))>> : std::true_type {};
+
+// Optional kernel declarations that let the block loop skip work:
+//   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
+//   static constexpr std::array<int, N> kIdleDofs = {...};  // local DOFs whose residual
+//       row and tangent row and column are always zero (neither read nor loaded)
+template <class Kernel, class = void>
+struct ReadsAcceleration : std::true_type {};
+template <class Kernel>
+struct ReadsAcceleration<Kernel, std::void_t<decltype(Kernel::kReadsAcceleration)>>
+    : std::bool_constant<Kernel::kReadsAcceleration> {};
+
+/// Which local DOFs a kernel declares idle (all false unless it has kIdleDofs).
+template <class Kernel, class = void>
+struct IdleDofs {
+  static constexpr std::array<bool, Kernel::kDofs> mask() { return {}; }
+};
+template <class Kernel>
+struct IdleDofs<Kernel, std::void_t<decltype(Kernel::kIdleDofs)>> {
+  static constexpr std::array<bool, Kernel::kDofs> mask() {
+    std::array<bool, Kernel::kDofs> idle{};
+    for (int dof : Kernel::kIdleDofs) idle[dof] = true;
+    return idle;
+  }
+};
 }  // namespace detail
 
 template <class Kernel>
@@ -183,10 +207,23 @@ class ElementBlockOf final : public ElementBlock {
     committed_[element] = base_[element] = trial_[element] = history;
   }
 
-  void bind_tangent_slots(std::vector<int> slots) override { slots_ = std::move(slots); }
+  /// Keeps, per element, the entries that land in the sparse values: neither a prescribed
+  /// DOF's (slot -1) nor an idle DOF's row or column, so the scatter has no branch.
+  void bind_tangent_slots(std::vector<int> slots) override {
+    constexpr std::array<bool, kDofs> idle = detail::IdleDofs<Kernel>::mask();
+    tangent_entries_.clear();
+    element_entries_.assign(1, 0);
+    for (int e = 0; e < size(); ++e) {
+      const int* slot = slots.data() + static_cast<size_t>(e) * kDofs * kDofs;
+      for (int k = 0; k < kDofs * kDofs; ++k)
+        if (slot[k] >= 0 && !idle[k / kDofs] && !idle[k % kDofs]) tangent_entries_.push_back({k, slot[k]});
+      element_entries_.push_back(static_cast<int>(tangent_entries_.size()));
+    }
+  }
 
   void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) override {
     LocalState<kDofs> local;
+    local.acceleration.setZero();  // stays zero for kernels that never read it
     Vector residual;
     Matrix tangent;
     const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
@@ -204,6 +241,7 @@ class ElementBlockOf final : public ElementBlock {
   ElementEnergy energy(const State& state) const override {
     ElementEnergy total;
     LocalState<kDofs> local;
+    local.acceleration.setZero();
     for (int e = 0; e < size(); ++e) {
       gather(e, state, local);
       total += kernels_[e].energy(local, trial_[e]);
@@ -259,8 +297,9 @@ class ElementBlockOf final : public ElementBlock {
           state.displacement.template segment<kDofsPerNode>(first);
       local.velocity.template segment<kDofsPerNode>(kDofsPerNode * n) =
           state.velocity.template segment<kDofsPerNode>(first);
-      local.acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
-          state.acceleration.template segment<kDofsPerNode>(first);
+      if constexpr (detail::ReadsAcceleration<Kernel>::value)
+        local.acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
+            state.acceleration.template segment<kDofsPerNode>(first);
     }
   }
   void scatter_residual(int e, const Vector& residual, Eigen::VectorXd& global) const {
@@ -269,10 +308,10 @@ class ElementBlockOf final : public ElementBlock {
           residual.template segment<kDofsPerNode>(kDofsPerNode * n);
   }
   void scatter_tangent(int e, const Matrix& tangent, double* values) const {
-    const int* slot = slots_.data() + static_cast<size_t>(e) * kDofs * kDofs;
     const double* entry = tangent.data();
-    for (int k = 0; k < kDofs * kDofs; ++k)
-      if (slot[k] >= 0) values[slot[k]] += entry[k];
+    const TangentEntry* end = tangent_entries_.data() + element_entries_[e + 1];
+    for (const TangentEntry* t = tangent_entries_.data() + element_entries_[e]; t != end; ++t)
+      values[t->slot] += entry[t->entry];
   }
   /// Names the element, its nodes and the first node and DOF whose entry is NaN or infinite
   /// (nodes and elements numbered from 1, as in decks).
@@ -292,7 +331,12 @@ class ElementBlockOf final : public ElementBlock {
   std::vector<std::array<int, kNodes>> nodes_;
   std::vector<Kernel> kernels_;
   std::vector<History> committed_, base_, trial_;
-  std::vector<int> slots_;
+  struct TangentEntry {
+    int entry;  // row-major index into the element matrix
+    int slot;   // position in the sparse values
+  };
+  std::vector<TangentEntry> tangent_entries_;
+  std::vector<int> element_entries_;  // element e's entries: [element_entries_[e], element_entries_[e + 1])
 };
 
 }  // namespace tirefe

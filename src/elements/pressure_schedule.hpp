@@ -26,11 +26,20 @@ class PressureSchedule {
     return PressureSchedule(pressure, LoadFunction::constant(1.0));
   }
 
-  double at(double time) const { return pressure_ * ramp_(time); }
+  /// Every wedge and tread load of the tire asks for the same time in one assembly: the
+  /// ramp (a std::function, a table search) runs once per time, the rest read the memo.
+  double at(double time) const {
+    if (time != memo_time_) {
+      memo_pressure_ = pressure_ * ramp_(time);
+      memo_time_ = time;
+    }
+    return memo_pressure_;
+  }
 
  private:
   double pressure_;
   LoadFunction ramp_;
+  mutable double memo_time_ = std::nan(""), memo_pressure_ = 0.0;
 };
 
 }  // namespace tirefe

@@ -110,6 +110,8 @@ class SidewallLaw {
 class SidewallWedge : public KernelShape<3> {
  public:
   static constexpr int kQuadraturePoints = 2;
+  static constexpr bool kReadsAcceleration = false;
+  static constexpr std::array<int, 2> kIdleDofs = {5, 8};  // the tread rotations
 
   /// Reference positions of the spindle and of the two tread nodes (counter-clockwise).
   SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector2d& tread_a, const Eigen::Vector2d& tread_b,

@@ -39,6 +39,7 @@ struct TreadLayerProperties {
 
 class TreadLayer : public KernelShape<2> {
  public:
+  static constexpr std::array<int, 1> kIdleDofs = {2};  // the contact node's rotation
   /// 'radial' is the outward direction at the node in the reference state (normalised here).
   TreadLayer(const Eigen::Vector2d& radial, const TreadLayerProperties& properties);
 

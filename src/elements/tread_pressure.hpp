@@ -23,6 +23,8 @@ namespace tirefe {
 
 class TreadPressure : public KernelShape<2> {
  public:
+  static constexpr bool kReadsAcceleration = false;
+  static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
 
   /// Reference positions of the two tread nodes (counter-clockwise), tread width w [m].
   TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,
