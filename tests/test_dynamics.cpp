@@ -517,6 +517,61 @@ TEST_CASE("energy balance of a linear model is exact, counting the reactions' wo
   CHECK(analysis.energy().initial == 0.0);
 }
 
+TEST_CASE("EnergyBalance books the trapezoidal work of the loads and of the held DOFs' reactions",
+          "[dynamics][energy]") {
+  // Two spring-masses (m = 2, k = 8 in x): node 0's u_x prescribed, node 1 loaded with
+  // F_x = 3, node 1's u_y driven. Hand-computed energies and work.
+  Model model;
+  SpringMassProperties properties;
+  properties.mass = 2.0;
+  properties.stiffness = {8.0, 0.0, 0.0};
+  model.mesh().add_node({0.0, 0.0});
+  model.mesh().add_node({1.0, 0.0});
+  auto& points = model.add_block<NodalSpringMass>("points");
+  points.add({0}, NodalSpringMass(properties));
+  points.add({1}, NodalSpringMass(properties));
+  model.prescribe(0, kUx, 1.0, model.add_load_function(LoadFunction([](double t) { return t; })));
+  model.add_nodal_load(1, kUx, 3.0, model.add_load_function(LoadFunction([](double) { return 1.0; })));
+  const int held = dof_index(0, kUx), loaded = dof_index(1, kUx), driven = dof_index(1, kUy);
+
+  EnergyRecord record;
+  bool started = false;
+  EnergyBalance balance(model, record, started);
+  State before;
+  before.resize(model.mesh().dof_count());
+  before.displacement[loaded] = 0.25;
+  before.velocity[loaded] = 0.5;
+  Eigen::VectorXd loads;
+  balance.start(before, loads);
+  CHECK(balance.started());
+  CHECK(loads[loaded] == 3.0);
+  CHECK(record.kinetic == Approx(0.25).epsilon(1e-15));  // 2 * 0.5^2 / 2
+  CHECK(record.strain == Approx(0.25).epsilon(1e-15));   // 8 * 0.25^2 / 2
+  CHECK(record.initial == Approx(0.5).epsilon(1e-15));
+
+  State after = before;
+  after.displacement[held] = 0.1;
+  after.displacement[loaded] = 0.35;
+  after.displacement[driven] = 0.2;
+  after.velocity[loaded] = 1.0;
+  Eigen::VectorXd reactions_old = Eigen::VectorXd::Zero(loads.size()), reactions_new = reactions_old;
+  reactions_old[held] = 4.0;
+  reactions_new[held] = 6.0;
+  reactions_old[driven] = 10.0;
+  reactions_new[driven] = 20.0;
+  reactions_new[loaded] = 100.0;  // not held: no work
+  // 3 * 0.1 (load) + 5 * 0.1 (prescribed) + 15 * 0.2 (driven)
+  const double work = balance.step_work(before, after, loads, loads, reactions_old, reactions_new, {driven});
+  CHECK(work == Approx(3.8).epsilon(1e-14));
+  balance.add_step(after, work);
+  CHECK(record.kinetic == Approx(1.0).epsilon(1e-15));
+  CHECK(record.strain == Approx(0.53).epsilon(1e-14));  // 8 (0.1^2 + 0.35^2) / 2
+  CHECK(record.external_work == Approx(3.8).epsilon(1e-14));
+  CHECK(record.dissipated == Approx(0.5 + 3.8 - 1.0 - 0.53).epsilon(1e-14));
+  balance.forget();
+  CHECK_FALSE(balance.started());
+}
+
 TEST_CASE("HHT reports the physical reaction M a + g - F on a driven DOF", "[dynamics]") {
   // A driven spring-mass point, u_x = 0.1 sin(3 t): its reaction is m a + k u at every step,
   // not the alpha-weighted force balance HHT solves.

@@ -16,38 +16,13 @@ void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> bor
     for (int node : *nodes) model_.mesh().checked(node);
   auto solver = std::make_unique<RingSolver>(model_.dof_map(), std::move(ring_nodes), std::move(border_nodes));
   assembler_.update_pattern();
-  solver->analyze(assembler_.tangent());  // throws for a model that does not fit, before anything changes
-  ring_ = std::move(solver);
-  ring_use_ = RingUse::Always;
-  select_solver(*ring_);
-  analyzed_pattern_ = assembler_.pattern_version();
+  solvers_.use_ring(std::move(solver), assembler_.tangent(), assembler_.pattern_version());
 }
 
 void Analysis::prefer_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes) {
   for (const std::vector<int>* nodes : {&ring_nodes, &border_nodes})
     for (int node : *nodes) model_.mesh().checked(node);
-  ring_ = std::make_unique<RingSolver>(model_.dof_map(), std::move(ring_nodes), std::move(border_nodes));
-  ring_use_ = RingUse::WhereItFits;
-  analyzed_pattern_ = -1;  // chosen at the next step
-}
-
-void Analysis::select_solver(LinearSolver& solver) {
-  if (linear_solver_ != &solver) driven_solver_.reset();  // it wrapped the other one
-  linear_solver_ = &solver;
-}
-
-void Analysis::analyze_pattern() {
-  require_equations();
-  if (ring_use_ == RingUse::WhereItFits) {
-    try {
-      ring_->analyze(assembler_.tangent());
-      select_solver(*ring_);
-      return;
-    } catch (const ModelError&) {  // not a lone ring and its border: the general solver
-      select_solver(klu_);
-    }
-  }
-  linear_solver_->analyze(assembler_.tangent());
+  solvers_.prefer_ring(std::make_unique<RingSolver>(model_.dof_map(), std::move(ring_nodes), std::move(border_nodes)));
 }
 
 void Analysis::require_equations() const {
@@ -84,14 +59,14 @@ void Analysis::prepare() {
   // By version rather than update_pattern()'s answer: others (contact set-up) may have
   // rebuilt the pattern through assembler() since the last step.
   assembler_.update_pattern();
-  if (assembler_.pattern_version() != analyzed_pattern_) {
-    analyze_pattern();
-    analyzed_pattern_ = assembler_.pattern_version();
+  if (!solvers_.analyzed(assembler_.pattern_version())) {
+    require_equations();
+    solvers_.analyze(assembler_.tangent(), assembler_.pattern_version());
   }
   size_state();
   if (driven_dofs_.empty()) {
-    driven_solver_.reset();
-  } else if (!driven_solver_ || driven_pattern_ != analyzed_pattern_) {
+    solvers_.stop_driving();
+  } else if (!solvers_.driving()) {
     if (!integrator_.is_dynamic())
       throw ModelError("driven DOFs need a dynamic integrator (Newmark or HHT): the quasi-static tangent of a "
                        "structure held only at its driven DOFs is singular");
@@ -101,14 +76,8 @@ void Analysis::prepare() {
         throw ModelError("DOF " + std::to_string(dof) + " is prescribed and cannot also be driven (release it first)");
       equations.push_back(model_.dof_map().equation(dof));
     }
-    driven_solver_ = std::make_unique<DrivenDofSolver>(*linear_solver_, std::move(equations));
-    driven_solver_->analyze(assembler_.tangent());
-    driven_pattern_ = analyzed_pattern_;
+    solvers_.drive(std::move(equations), assembler_.tangent());
   }
-}
-
-LinearSolver& Analysis::newton_linear_solver() {
-  return driven_solver_ ? static_cast<LinearSolver&>(*driven_solver_) : *linear_solver_;
 }
 
 void Analysis::drive_dofs(std::vector<int> dofs) {
@@ -123,7 +92,7 @@ void Analysis::drive_dofs(std::vector<int> dofs) {
   size_state();
   for (size_t i = 0; i < driven_dofs_.size(); ++i)
     driven_displacements_[static_cast<Eigen::Index>(i)] = carried_.state.displacement[driven_dofs_[i]];
-  driven_solver_.reset();
+  solvers_.stop_driving();
   carried_.reactions_valid = false;
 }
 
@@ -140,9 +109,10 @@ void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const {
 }
 
 const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
-  if (!trial_pending_ || !driven_solver_) throw ModelError("the driven tangent needs a solved trial step");
-  driven_solver_->factorize(assembler_.tangent());
-  return driven_solver_->schur_complement();
+  DrivenDofSolver* driven = solvers_.driven();
+  if (!trial_pending_ || !driven) throw ModelError("the driven tangent needs a solved trial step");
+  driven->factorize(assembler_.tangent());
+  return driven->schur_complement();
 }
 
 void Analysis::size_state() {
@@ -219,7 +189,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     carried_.old_forces_valid = true;
   }
   try {
-    LinearSolver& linear_solver = newton_linear_solver();
+    LinearSolver& linear_solver = solvers_.newton_solver();
     const NewtonReport* report = &newton_.solve(*this, linear_solver);
     record.newton_iterations = report->iterations;
     record.augmentations = 0;
@@ -255,7 +225,8 @@ void Analysis::finish_step(double step) {
                                      assembler_.assemble(context, trial_, internal);
                                    },
                                    residual_all_);
-  const double work = step_work();  // before the reactions and the state move on
+  const double work = energy_.step_work(carried_.state, trial_, carried_.external_old, external_new_, carried_.reactions,
+                                         residual_all_, driven_dofs_);  // before the reactions and the state move on
   carried_.reactions.setZero(model_.mesh().dof_count());
   for (const auto& constraint : model_.prescribed_dofs()) carried_.reactions[constraint.dof] = residual_all_[constraint.dof];
   for (int dof : driven_dofs_) carried_.reactions[dof] = residual_all_[dof];
@@ -265,47 +236,12 @@ void Analysis::finish_step(double step) {
   carried_.external_old = external_new_;
   carried_.old_forces_valid = integrator_.weights_old_forces();
   ++carried_.accepted_steps;
-
-  const ElementEnergy stored = stored_energy(carried_.state);
-  carried_.energy.kinetic = stored.kinetic;
-  carried_.energy.strain = stored.strain;
-  carried_.energy.external_work += work;
-  carried_.energy.dissipated = carried_.energy.initial + carried_.energy.external_work - stored.kinetic - stored.strain;
-}
-
-double Analysis::step_work() const {
-  // Trapezoidal work from the committed state to the trial state: the nodal loads on
-  // every DOF, the support reactions on the prescribed ones (residual_all_ holds the new reactions).
-  const Eigen::VectorXd& u_old = carried_.state.displacement;
-  const Eigen::VectorXd& u_new = trial_.displacement;
-  double work = 0.5 * (carried_.external_old + external_new_).dot(u_new - u_old);
-  for (const auto& constraint : model_.prescribed_dofs()) {
-    const int dof = constraint.dof;
-    work += 0.5 * (carried_.reactions[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
-  }
-  for (int dof : driven_dofs_) work += 0.5 * (carried_.reactions[dof] + residual_all_[dof]) * (u_new[dof] - u_old[dof]);
-  return work;
-}
-
-ElementEnergy Analysis::stored_energy(const State& state) const {
-  ElementEnergy total;
-  for (const auto& block : model_.blocks()) total += block->energy(state);
-  return total;
-}
-
-void Analysis::start_energy_bookkeeping() {
-  model_.external_forces(carried_.state.time, carried_.external_old);  // F_0 of the first step's trapezoid
-  const ElementEnergy stored = stored_energy(carried_.state);
-  carried_.energy = EnergyRecord{};
-  carried_.energy.kinetic = stored.kinetic;
-  carried_.energy.strain = stored.strain;
-  carried_.energy.initial = stored.kinetic + stored.strain;
-  carried_.energy_started = true;
+  energy_.add_step(carried_.state, work);
 }
 
 void Analysis::restart_energy_balance() {
   size_state();
-  start_energy_bookkeeping();
+  energy_.start(carried_.state, carried_.external_old);
 }
 
 void Analysis::update_committed_reactions() {
@@ -333,7 +269,7 @@ Eigen::VectorXd& Analysis::initial_field(Eigen::VectorXd State::*field, const ch
   carried_.acceleration_pending = carried_.acceleration_pending || integrator_.is_dynamic();
   carried_.reactions_valid = false;
   carried_.old_forces_valid = false;
-  carried_.energy_started = false;
+  energy_.forget();
   return carried_.state.*field;
 }
 
@@ -374,7 +310,7 @@ void Analysis::start_steps() {
   prepare();
   if (carried_.acceleration_pending) initialize_acceleration();
   if (!carried_.reactions_valid) update_committed_reactions();
-  if (!carried_.energy_started) start_energy_bookkeeping();
+  if (!energy_.started()) energy_.start(carried_.state, carried_.external_old);
 }
 
 void Analysis::commit_step(double step, StepRecord& record) {
@@ -382,7 +318,7 @@ void Analysis::commit_step(double step, StepRecord& record) {
   record.step = carried_.accepted_steps;
   record.time = carried_.state.time;
   record.step_size = step;
-  record.energy = carried_.energy;
+  record.energy = energy_.record();
 }
 
 const StepRecord& Analysis::solve_trial_step(double step) {
@@ -441,7 +377,7 @@ CarriedState Analysis::snapshot() {
   carried_.beta = integrator_.beta();
   carried_.gamma = integrator_.gamma();
   carried_.alpha = integrator_.alpha();
-  analyzed_pattern_ = -1;  // the next factorization starts afresh, as after a restore
+  solvers_.forget_analysis();  // the next factorization starts afresh, as after a restore
   return carried_;
 }
 
@@ -457,7 +393,7 @@ void Analysis::restore(const CarriedState& s) {
                          std::to_string(dofs));
   });
   carried_ = s;
-  analyzed_pattern_ = -1;
+  solvers_.forget_analysis();
 }
 
 void Analysis::initialize_acceleration() {
@@ -475,11 +411,11 @@ void Analysis::initialize_acceleration() {
     unbalanced[equation] = external_new_[dof] - residual_all_[dof];
   }
   try {
-    linear_solver_->factorize(assembler_.tangent());
+    solvers_.solver().factorize(assembler_.tangent());
   } catch (const SingularMatrix&) {
     throw ModelError("the mass matrix is singular: every free DOF needs mass (or rotary inertia) for dynamics");
   }
-  linear_solver_->solve(unbalanced);
+  solvers_.solver().solve(unbalanced);
   for (int equation = 0; equation < dofs.equation_count(); ++equation)
     carried_.state.acceleration[dofs.dof(equation)] = unbalanced[equation];
   carried_.external_old = external_new_;

@@ -2,17 +2,8 @@
 // quasi-statically) in steps, solves each step with Newton, commits the state and
 // the element history on success, and on failure reverts, cuts the step and retries.
 // Steps grow back after easy convergence. Observers hear of every accepted step
-// (output writers, logs). The linear solver is KLU unless use_ring_solver() picks the
-// structured RingSolver, or prefer_ring_solver() lets every new pattern choose (the
-// RingSolver where it fits, KLU elsewhere); it is (re)analysed whenever the pattern changes.
-//
-// Energy bookkeeping (docs/dynamics.md), once per accepted step n -> n+1:
-//   W_{n+1} = W_n + (F_n + F_{n+1})/2 . (u_{n+1} - u_n) + (R_n + R_{n+1})/2 . (u_{n+1} - u_n)|prescribed,
-//   dissipated = (T_0 + U_0) + W - T - U,
-// with F the nodal loads, R the support reactions, T = v.M v/2 and U the blocks' stored
-// energy. For a linear model under Newmark average acceleration the balance is exact,
-// so 'dissipated' is the dashpots' work alone; otherwise it also holds the integrator's
-// numerical dissipation (HHT) and the trapezoidal rule's error on nonlinear forces.
+// (output writers, logs). The linear solver is a SolverChoice (solver_choice.hpp).
+// The energy balance of the accepted steps is an EnergyBalance (energy_balance.hpp).
 #pragma once
 
 #include <functional>
@@ -26,10 +17,12 @@
 #include "core/model.hpp"
 #include "solvers/carried_state.hpp"
 #include "solvers/driven_solver.hpp"
+#include "solvers/energy_balance.hpp"
 #include "solvers/integrator.hpp"
 #include "solvers/linear_solver.hpp"
 #include "solvers/newton.hpp"
 #include "solvers/ring_solver.hpp"
+#include "solvers/solver_choice.hpp"
 #include "solvers/step_controller.hpp"
 
 namespace tirefe {
@@ -81,7 +74,7 @@ class Analysis : private StepEquations, private SteppedSystem {
   const Eigen::VectorXd& reactions() const { return carried_.reactions; }
   const Eigen::VectorXd& external_forces() const { return external_new_; }
   /// Energy balance as of the last accepted step (all zero before the first).
-  const EnergyRecord& energy() const { return carried_.energy; }
+  const EnergyRecord& energy() const { return energy_.record(); }
   /// Starts the balance afresh at the current state (after a static preload, say):
   /// initial = kinetic + strain now, no external work yet.
   void restart_energy_balance();
@@ -89,7 +82,7 @@ class Analysis : private StepEquations, private SteppedSystem {
   const NewtonReport& last_newton_report() const { return newton_.last_report(); }
   Assembler& assembler() { return assembler_; }
   /// The solver of the Newton iterations (KLU by default).
-  LinearSolver& linear_solver() { return *linear_solver_; }
+  LinearSolver& linear_solver() { return solvers_.solver(); }
   /// Solves with the RingSolver (ring_solver.hpp): ring_nodes in ring order (a tire's
   /// tread nodes), border_nodes coupled to everything (its spindle; mark it with
   /// Model::condense_node so that its equations come last, as H's rows do). The model's
@@ -102,7 +95,7 @@ class Analysis : private StepEquations, private SteppedSystem {
   /// gets the structured solver, a tire with more structure attached the general one.
   void prefer_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes);
   /// The RingSolver in use, for its border Schur complement; null while KLU solves.
-  RingSolver* ring_solver() { return linear_solver_ == ring_.get() ? ring_.get() : nullptr; }
+  RingSolver* ring_solver() { return solvers_.ring_solver(); }
 
   /// Driven DOFs (docs/spindle.md): free DOFs whose displacement at the end of each
   /// step a host gives (a vehicle moving a tire's spindle). Newton solves the other
@@ -152,17 +145,11 @@ class Analysis : private StepEquations, private SteppedSystem {
   bool try_step(double step, double end_time, StepRecord& record) override;
   void commit_step(double step, StepRecord& record) override;
   std::string failure_message(int cuts, double step) const override;
-  LinearSolver& newton_linear_solver();
-  void analyze_pattern();
   /// ModelError when there is nothing to solve (no elements, or every DOF fixed).
   void require_equations() const;
-  void select_solver(LinearSolver& solver);
   void finish_step(double step);
   Eigen::VectorXd& initial_field(Eigen::VectorXd State::*field, const char* what);
   void update_committed_reactions();
-  double step_work() const;
-  ElementEnergy stored_energy(const State& state) const;
-  void start_energy_bookkeeping();
   // StepEquations
   void evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) override;
   const SparseMatrix& tangent() const override { return assembler_.tangent(); }
@@ -170,12 +157,7 @@ class Analysis : private StepEquations, private SteppedSystem {
 
   Model& model_;
   Assembler assembler_;
-  enum class RingUse { Never, Always, WhereItFits };
-  KluSolver klu_;
-  std::unique_ptr<RingSolver> ring_;
-  RingUse ring_use_ = RingUse::Never;
-  LinearSolver* linear_solver_ = &klu_;  // klu_ or ring_
-  int analyzed_pattern_ = -1;  // the Assembler's pattern_version() the solver last analysed
+  SolverChoice solvers_;
   NewtonSolver newton_;
   Integrator integrator_ = Integrator::quasi_static();
   std::ostream* log_ = nullptr;
@@ -183,12 +165,11 @@ class Analysis : private StepEquations, private SteppedSystem {
 
   CarriedState carried_;
   StepController controller_{carried_.steps};
+  EnergyBalance energy_{model_, carried_.energy, carried_.energy_started};
   State trial_;
   Eigen::VectorXd residual_all_, external_new_;
   std::vector<int> driven_dofs_;
   Eigen::VectorXd driven_displacements_;
-  std::unique_ptr<DrivenDofSolver> driven_solver_;
-  int driven_pattern_ = -1;  // the pattern driven_solver_ was built for
   bool trial_pending_ = false;
   bool trial_recorded_ = false;  // record_trial_step() done, observers not yet told
   double trial_step_size_ = 0.0;
