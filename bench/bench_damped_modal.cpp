@@ -34,7 +34,8 @@ int main() {
     }
     double difference = 0.0;
     for (size_t i = 0; i < results[0].roots.size(); ++i)
-      difference = std::max(difference, std::abs(results[0].roots[i] - results[1].roots[i]) / std::abs(results[0].roots[i]));
+      difference =
+          std::max(difference, std::abs(results[0].roots[i] - results[1].roots[i]) / std::abs(results[0].roots[i]));
     std::printf("%-28s %4d equations: dense %6.2f s, shift-invert %5.2f s (%s), roots agree to %.1e\n", module.c_str(),
                 model.dof_map().equation_count(), seconds[0], seconds[1],
                 results[1].shift_invert ? "converged" : "fell back to dense", difference);

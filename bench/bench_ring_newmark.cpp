@@ -19,9 +19,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// Mean wall time of one call of 'work' in microseconds over 'repetitions' calls.
 template <class Work>

@@ -45,7 +45,8 @@ int main() {
   properties.radial_damping = 80.0;
   properties.circumferential_damping = 40.0;
   auto pressure = std::make_shared<const PressureSchedule>(0.208e6, LoadFunction::linear());
-  const Eigen::Vector2d spindle(0.0, 0.0), a(0.27, 0.0), b(0.27 * std::cos(2 * kPi / 100), 0.27 * std::sin(2 * kPi / 100));
+  const Eigen::Vector2d spindle(0.0, 0.0), a(0.27, 0.0),
+      b(0.27 * std::cos(2 * kPi / 100), 0.27 * std::sin(2 * kPi / 100));
   const SidewallWedge wedge(spindle, a, b, properties, pressure);
   const TreadPressure load(a, b, 0.11, pressure);
 

@@ -32,9 +32,9 @@ double setting(const char* name, double fallback) {
 }
 
 const double kSpeed = setting("SPEED", 36.0) / 3.6;  // road speed after the ramp [m/s]
-constexpr double kRamp = 0.5;        // [s]
-const double kStep = setting("STEP", 5e-4);    // [s]
-const double kDepth = setting("DEPTH", 0.05);  // pothole depth [m]
+constexpr double kRamp = 0.5;                        // [s]
+const double kStep = setting("STEP", 5e-4);          // [s]
+const double kDepth = setting("DEPTH", 0.05);        // pothole depth [m]
 constexpr double kCornerMass = 350.0, kCarrierMass = 35.0, kGravity = 9.81;
 
 /// A tire at 0.243 MPa pressed 20 mm onto a road that starts 0.1 s after the press and
@@ -64,7 +64,8 @@ Corner corner(double x, double y) {
   c.x = x;
   c.y = y;
   c.mass = kCarrierMass;
-  c.suspension.spring = ForceCurve({{-0.1, kCornerMass * kGravity - 2500.0}, {0.0, kCornerMass * kGravity},
+  c.suspension.spring = ForceCurve({{-0.1, kCornerMass * kGravity - 2500.0},
+                                    {0.0, kCornerMass * kGravity},
                                     {0.05, kCornerMass * kGravity + 1500.0}});  // progressive
   c.suspension.damper = ForceCurve({{-1.0, -3000.0}, {0.0, 0.0}, {1.0, 1500.0}});
   c.suspension.bumper_gap = 0.05;
@@ -103,10 +104,11 @@ Run run(std::vector<std::unique_ptr<TireOnRoad>>& tires, std::vector<Corner> cor
 
 void print(const char* label, const Run& r, double duration) {
   const VehicleStatistics& s = r.statistics;
-  std::printf("%-34s steps %5d  corrector/step %5.2f  tire solves %6d  tire Newton/solve %5.2f  cuts %d  "
-              "wall %7.2f s (%.2f x real time)  peak |Fy| %.0f N\n",
-              label, s.steps, double(s.corrector_iterations) / s.steps, s.tire_solves,
-              double(s.tire_newton_iterations) / s.tire_solves, s.cuts, r.seconds, r.seconds / duration, r.peak_force);
+  std::printf(
+      "%-34s steps %5d  corrector/step %5.2f  tire solves %6d  tire Newton/solve %5.2f  cuts %d  "
+      "wall %7.2f s (%.2f x real time)  peak |Fy| %.0f N\n",
+      label, s.steps, double(s.corrector_iterations) / s.steps, s.tire_solves,
+      double(s.tire_newton_iterations) / s.tire_solves, s.cuts, r.seconds, r.seconds / duration, r.peak_force);
 }
 
 }  // namespace
@@ -131,10 +133,9 @@ int main(int argc, char** argv) {
     for (int lanes : {1, 2, 4}) {
       std::vector<std::unique_ptr<TireOnRoad>> tires;
       for (bool pothole : {true, false, true, false}) tires.push_back(road_tire(pothole));
-      const std::vector<Corner> corners{corner(1.3, 0.75), corner(1.3, -0.75), corner(-1.4, 0.75),
-                                        corner(-1.4, -0.75)};
-      const Run r = run(tires, corners, Body{4 * kCornerMass, 2500.0, 550.0}, SpindleJacobianSource::Direct,
-                        lanes, duration);
+      const std::vector<Corner> corners{corner(1.3, 0.75), corner(1.3, -0.75), corner(-1.4, 0.75), corner(-1.4, -0.75)};
+      const Run r =
+          run(tires, corners, Body{4 * kCornerMass, 2500.0, 550.0}, SpindleJacobianSource::Direct, lanes, duration);
       const std::string label = "  4 tires, " + std::to_string(lanes) + (lanes == 1 ? " thread" : " threads");
       print(label.c_str(), r, duration);
     }

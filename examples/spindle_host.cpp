@@ -16,9 +16,9 @@
 int main() {
   using namespace tirefe;
   // A 145 SR-12 tire inflated on a held hub over a flat road (the spindle at y = 0).
-  TireOnRoad tire(macros::load_tire_parameters("tires.145SR12"),
-                  [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0, level)); },
-                  RoadContact{0.8});
+  TireOnRoad tire(
+      macros::load_tire_parameters("tires.145SR12"),
+      [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0, level)); }, RoadContact{0.8});
   TireSpindle& spindle = tire.drive(Integrator::newmark());  // the host's scheme: Newmark, beta = 1/4
 
   const double m = 300.0, c = 4000.0, g = 9.81, h = 1e-3;

@@ -48,8 +48,7 @@ void require(bool condition, const std::string& what) {
 
 void require_names_file(const std::exception& error, const fs::path& file) {
   const std::string message = error.what();
-  require(message.find(file.filename().string()) != std::string::npos,
-          "the error does not name the file: " + message);
+  require(message.find(file.filename().string()) != std::string::npos, "the error does not name the file: " + message);
 }
 
 /// Runs a deck through the sandbox and the macro layer: it runs or stops with a DeckError naming it.
@@ -70,10 +69,10 @@ void run_deck(const fs::path& deck) {
 // Macros that only describe the model or query it: solving macros (step, solve, modal,
 // fit) would let free-form arguments ask for unbounded work (deck_sequence calls them
 // with bounded ones), and output macros write files.
-const char* const kMacros[] = {"node",       "node_set", "section",      "beam",    "load_function", "fix",
-                               "prescribe",  "release",  "load",         "integrator", "newton",     "step_control",
-                               "dt",         "history",  "value",        "time",    "print",         "initial",
-                               "surface",    "contact",  "contact_value", "checkpoint"};
+const char* const kMacros[] = {"node",      "node_set", "section",       "beam",       "load_function", "fix",
+                               "prescribe", "release",  "load",          "integrator", "newton",        "step_control",
+                               "dt",        "history",  "value",         "time",       "print",         "initial",
+                               "surface",   "contact",  "contact_value", "checkpoint"};
 
 const char* kPrelude = R"(local model = tirefe.model{ title = "fuzz" }
 local a = model:node{ x = 0, y = 0 }
@@ -141,14 +140,17 @@ std::string sequence_call(uint8_t op, uint8_t a) {
       const char* types[] = {"type = 'static'", "type = 'newmark'", "type = 'hht', alpha = -0.05"};
       return std::string("model:integrator{ ") + types[a % 3] + " }";
     }
-    case 4: return "model:load{ node = " + node + ", fy = " + std::to_string(static_cast<int>(a) - 128) +
-                   ", load_function = " + function + " }";
-    case 5: return "model:prescribe{ node = " + node + ", dof = " + dof + ", value = 0.01, load_function = " +
-                   function + " }";
+    case 4:
+      return "model:load{ node = " + node + ", fy = " + std::to_string(static_cast<int>(a) - 128) +
+             ", load_function = " + function + " }";
+    case 5:
+      return "model:prescribe{ node = " + node + ", dof = " + dof + ", value = 0.01, load_function = " + function +
+             " }";
     case 6: return "model:fix{ node = " + node + " }";
     case 7: return "model:release{ node = " + node + ", dofs = { " + dof + " } }";
-    case 8: return "n[#n + 1] = model:node{ x = 0.5 * #n, y = " + std::to_string(0.01 * (a % 7)) +
-                   " } model:beam{ section = 'beam', nodes = { n[#n - 1], n[#n] } }";
+    case 8:
+      return "n[#n + 1] = model:node{ x = 0.5 * #n, y = " + std::to_string(0.01 * (a % 7)) +
+             " } model:beam{ section = 'beam', nodes = { n[#n - 1], n[#n] } }";
     case 9: return "model:modal{ modes = " + std::to_string(1 + a % 3) + " }";
     case 10: return "model:value{ node = " + node + ", dof = " + dof + " }";
     case 11: return "collectgarbage()";
@@ -205,7 +207,8 @@ void road_profile(const uint8_t* data, size_t size) {
   }
   try {
     const RoadProfile profile(points, 0.01);
-    for (const Eigen::Vector2d& point : {points.front(), points.back(), Eigen::Vector2d(0.5 * (points.front() + points.back()))}) {
+    for (const Eigen::Vector2d& point :
+         {points.front(), points.back(), Eigen::Vector2d(0.5 * (points.front() + points.back()))}) {
       const SurfaceProjection projection = profile.project(point + Eigen::Vector2d(0.0, 0.1), 0.0);
       require(std::isfinite(projection.gap) && projection.normal.allFinite(), "a projection is not finite");
     }

@@ -154,8 +154,7 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state);
  * in this order) in turn. forces[i] is the vertical force Fz the tire exerts on the wheel
  * there [N] (positive: the tire carries the wheel). No handle: nothing is kept. */
 tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
-                                   const double* deflections, size_t n, double* forces, char* error,
-                                   size_t error_size);
+                                   const double* deflections, size_t n, double* forces, char* error, size_t error_size);
 
 /* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
  * a host that steps back in time (a co-simulation master repeating a macro step)

@@ -9,6 +9,7 @@ packages=(
   hdf5-tools python3-h5py python3-matplotlib python3-numpy python3-meshio
   libopenmpi-dev openmpi-bin
   pybind11-dev python3-pybind11 python3-scipy
+  clang-format
 )
 
 missing=()

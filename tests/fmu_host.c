@@ -19,11 +19,11 @@
 #include "fmu/fmi2.h"
 
 /* POSIX's way to a function pointer from dlsym, which ISO C has no cast for. */
-#define LOAD(name)   \
-  name##_t name;     \
+#define LOAD(name) \
+  name##_t name;   \
   *(void**)(&name) = dlsym(library, #name)
-typedef fmi2Component (*fmi2Instantiate_t)(fmi2String, fmi2Type, fmi2String, fmi2String,
-                                           const fmi2CallbackFunctions*, fmi2Boolean, fmi2Boolean);
+typedef fmi2Component (*fmi2Instantiate_t)(fmi2String, fmi2Type, fmi2String, fmi2String, const fmi2CallbackFunctions*,
+                                           fmi2Boolean, fmi2Boolean);
 typedef void (*fmi2FreeInstance_t)(fmi2Component);
 typedef fmi2Status (*fmi2SetupExperiment_t)(fmi2Component, fmi2Boolean, fmi2Real, fmi2Real, fmi2Boolean, fmi2Real);
 typedef fmi2Status (*fmi2EnterInitializationMode_t)(fmi2Component);
@@ -162,8 +162,7 @@ int main(int argc, char** argv) {
   fmi2GetReal(tire, fx_fz_my, 3, after);
   const int discard = crushed == fmi2Discard && last_time == t && memcmp(after, force, sizeof force) == 0;
 
-  printf("Fz %.17g\nH_zz %.17g\nH_zz_fd %.17g\nrepeat %d\ndiscard %d\n", force[1], h_zz, h_zz_fd, repeat,
-         discard);
+  printf("Fz %.17g\nH_zz %.17g\nH_zz_fd %.17g\nrepeat %d\ndiscard %d\n", force[1], h_zz, h_zz_fd, repeat, discard);
   fmi2Terminate(tire);
   fmi2FreeInstance(tire);
   dlclose(library);

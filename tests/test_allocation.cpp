@@ -31,7 +31,8 @@ void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
 void operator delete(void* memory) noexcept { std::free(memory); }
 void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
 
-TEST_CASE("steps after the first allocate no memory in assembly, Newton and KLU refactorisation", "[kernel][allocation]") {
+TEST_CASE("steps after the first allocate no memory in assembly, Newton and KLU refactorisation",
+          "[kernel][allocation]") {
   using namespace tirefe;
   Model model;
   BeamSection section;
@@ -63,13 +64,14 @@ TEST_CASE("steps after the first allocate no memory in assembly, Newton and KLU 
   CHECK(during == 0);
 }
 
-TEST_CASE("Newmark steps of the tire with the ring solver allocate no memory, nor do its factorisations, solves "
-          "and condensations",
-          "[kernel][allocation][ring_solver]") {
+TEST_CASE(
+    "Newmark steps of the tire with the ring solver allocate no memory, nor do its factorisations, solves "
+    "and condensations",
+    "[kernel][allocation][ring_solver]") {
   using namespace tirefe;
   Model model;
-  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"),
-                               LoadFunction::table({{0.0, 0.0}, {1e-3, 1.0}}));
+  const Tire tire =
+      build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::table({{0.0, 0.0}, {1e-3, 1.0}}));
   model.condense_node(tire.spindle);
   model.fix(tire.spindle, kUx);  // a dead axle: the spin is free, the border has one equation
   model.fix(tire.spindle, kUy);
@@ -107,8 +109,8 @@ TEST_CASE("spindle steps of a driven tire allocate no memory: Newton, the driven
           "[kernel][allocation][spindle]") {
   using namespace tirefe;
   Model model;
-  const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"),
-                               LoadFunction::table({{0.0, 0.0}, {1e-3, 1.0}}));
+  const Tire tire =
+      build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::table({{0.0, 0.0}, {1e-3, 1.0}}));
   model.condense_node(tire.spindle);
   Analysis analysis(model);
   analysis.use_ring_solver(tire.tread_nodes, {tire.spindle});

@@ -48,8 +48,8 @@ const fs::path& run_folder() {
 
 RunResult run_tirefe(const std::string& arguments) {
   const fs::path output = run_folder();
-  const std::string command = std::string(TIREFE_BINARY) + " " + arguments + " --quiet --output-dir " +
-                              output.string() + " 2>&1 >/dev/null";
+  const std::string command =
+      std::string(TIREFE_BINARY) + " " + arguments + " --quiet --output-dir " + output.string() + " 2>&1 >/dev/null";
   FILE* pipe = popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);
   std::string errors;
@@ -126,9 +126,9 @@ TEST_CASE("every bad deck gets a clear one-line error with file and line", "[dec
 }
 
 TEST_CASE("the self-checking decks in inputs/ pass their checks", "[decks]") {
-  for (const char* deck : {"cantilever_elastica.lua", "cantilever_rollup.lua", "tire_inflation.lua", "ring_modes.lua",
-                           "step_cut.lua", "loaded_modes_145SR12.lua", "spindle_force.lua", "quarter_car.lua",
-                           "fit_ksw_145SR12.lua"}) {
+  for (const char* deck :
+       {"cantilever_elastica.lua", "cantilever_rollup.lua", "tire_inflation.lua", "ring_modes.lua", "step_cut.lua",
+        "loaded_modes_145SR12.lua", "spindle_force.lua", "quarter_car.lua", "fit_ksw_145SR12.lua"}) {
     const std::string path = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / deck).string();
     INFO("deck " << path);
     const RunResult result = run_tirefe(path);
@@ -192,14 +192,16 @@ TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF ind
   CHECK(pressed == Approx(3800.0).epsilon(1e-3));
   CHECK(strike < -2000.0);
 
-  const std::string plot = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_drum_cleat.py").string() +
-                           " " + file.string() + " > /dev/null";
+  const std::string plot = "/usr/bin/python3 " +
+                           (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_drum_cleat.py").string() + " " +
+                           file.string() + " > /dev/null";
   REQUIRE(std::system(plot.c_str()) == 0);
   for (const char* suffix : {"_forces.png", "_impact.png", "_spectrum.png", "_snapshots.png"})
     CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);
   // The general plot of any result file, on the same run.
-  const std::string general = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_results.py").string() +
-                              " " + file.string() + " > /dev/null 2>&1";
+  const std::string general = "/usr/bin/python3 " +
+                              (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_results.py").string() + " " +
+                              file.string() + " > /dev/null 2>&1";
   REQUIRE(std::system(general.c_str()) == 0);
   for (const char* suffix : {"_history.png", "_shapes.png"})
     CHECK(fs::file_size(output / ("drum_short" + std::string(suffix))) > 10000);

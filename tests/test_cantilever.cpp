@@ -120,8 +120,8 @@ TEST_CASE("an end moment 2 pi EI/L rolls the cantilever into a circle; error fal
     CHECK(std::abs(state.displacement[dof_index(tip, kUy)]) <= 1e-6 * length);
     // The middle node should sit at the top of the circle, (0, L/pi).
     const int middle = elements / 2;
-    const Eigen::Vector2d position = cantilever.model.mesh().position(middle) +
-                                     state.displacement.segment<2>(dof_index(middle, kUx));
+    const Eigen::Vector2d position =
+        cantilever.model.mesh().position(middle) + state.displacement.segment<2>(dof_index(middle, kUx));
     const double error = (position - Eigen::Vector2d(0.0, length / kPi)).norm();
     INFO("N = " << elements << ", error " << error);
     if (previous_error > 0.0) CHECK(previous_error / error == Approx(4.0).epsilon(0.05));

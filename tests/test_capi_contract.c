@@ -85,8 +85,7 @@ static void check_call_errors(tirefe_tire* tire) {
   tirefe_spindle_force reply;
   check(tirefe_commit(tire) == TIREFE_INVALID_CALL, "commit without a trial step", tirefe_message(tire));
   const tirefe_spindle_motion nan_motion = {1e-3, 0.0, NAN, 0.0};
-  check(tirefe_solve(tire, &nan_motion, &reply) == TIREFE_INVALID_ARGUMENT, "NaN spindle height",
-        tirefe_message(tire));
+  check(tirefe_solve(tire, &nan_motion, &reply) == TIREFE_INVALID_ARGUMENT, "NaN spindle height", tirefe_message(tire));
   const tirefe_spindle_motion no_step = {0.0, 0.0, 0.0, 0.0};
   check(tirefe_solve(tire, &no_step, &reply) == TIREFE_INVALID_ARGUMENT, "zero time step", tirefe_message(tire));
   check(strstr(tirefe_message(tire), "time step") != NULL, "the message names the time step", tirefe_message(tire));
@@ -131,8 +130,8 @@ static void check_trial_steps(tirefe_tire* tire) {
   const double v_end[3] = {-state.velocity[0], 2.0 * dz / h - state.velocity[1], 0.0};
   check(tirefe_solve_velocity(tire, h, v_end, &by_velocity) == TIREFE_OK, "solve by velocity", tirefe_message(tire));
   check_close(by_velocity.force[1], first.force[1], 1e-9 * fabs(first.force[1]), "Fz by velocity = Fz by position");
-  check_close(by_velocity.jacobian[1][1], first.jacobian[1][1] * 0.25 * h / 0.5,
-              1e-9 * fabs(first.jacobian[1][1] * h), "dFz/dvz = dFz/dz beta h / gamma");
+  check_close(by_velocity.jacobian[1][1], first.jacobian[1][1] * 0.25 * h / 0.5, 1e-9 * fabs(first.jacobian[1][1] * h),
+              "dFz/dvz = dFz/dz beta h / gamma");
   tirefe_revert(tire);
 }
 
@@ -261,7 +260,8 @@ int main(void) {
   if (!tire) return 1;
   tirefe_spindle_force reply;
   check(press(tire, 8, &reply) == TIREFE_OK, "press 2 mm", tirefe_message(tire));
-  check(reply.jacobian[1][1] < 0.0, "the vertical stiffness is positive: lifting the wheel unloads it, dFz/dz < 0", NULL);
+  check(reply.jacobian[1][1] < 0.0, "the vertical stiffness is positive: lifting the wheel unloads it, dFz/dz < 0",
+        NULL);
   check_call_errors(tire);
   check_failed_step(tire);
   check_trial_steps(tire);

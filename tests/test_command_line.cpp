@@ -85,10 +85,10 @@ TEST_CASE("tirefe --help and -h print the usage, the options, the exit statuses 
   const Run help = run_in(folder.path(), tirefe_binary() + " --help");
   CHECK(help.status == 0);
   CHECK(help.err.empty());
-  for (const char* piece : {"usage: tirefe DECK.lua [key=value ...]", "--list-parameters DECK", "--output-dir DIR",
-                            "--restart CHECKPOINT", "--quiet", "--verbose", "-h, --help", "Progress:",
-                            "2 a usage error", "3 a self-check of the deck failed", "130 or 143",
-                            "docs/ (decks.md", TIREFE_SOURCE_DIR})
+  for (const char* piece :
+       {"usage: tirefe DECK.lua [key=value ...]", "--list-parameters DECK", "--output-dir DIR", "--restart CHECKPOINT",
+        "--quiet", "--verbose", "-h, --help", "Progress:", "2 a usage error", "3 a self-check of the deck failed",
+        "130 or 143", "docs/ (decks.md", TIREFE_SOURCE_DIR})
     CHECK(help.out.find(piece) != std::string::npos);
   const Run short_form = run_in(folder.path(), tirefe_binary() + " -h");
   CHECK(short_form.status == 0);
@@ -99,16 +99,18 @@ TEST_CASE("tirefe --help and -h print the usage, the options, the exit statuses 
   CHECK(unknown.err.rfind("tirefe: unknown option '--hepl'\nusage: tirefe DECK.lua", 0) == 0);
 }
 
-TEST_CASE("tirefe --list-parameters lists every parameter of the drum-cleat deck with its default and unit, "
-          "running no model",
-          "[cli]") {
+TEST_CASE(
+    "tirefe --list-parameters lists every parameter of the drum-cleat deck with its default and unit, "
+    "running no model",
+    "[cli]") {
   tirefe::testing::TempDir folder;
-  const Run list = run_in(folder.path(), tirefe_binary() + " --list-parameters " + source_path("inputs/drum_cleat.lua"));
+  const Run list =
+      run_in(folder.path(), tirefe_binary() + " --list-parameters " + source_path("inputs/drum_cleat.lua"));
   INFO(list.out << list.err);
   CHECK(list.status == 0);
   CHECK(list.err.empty());
-  CHECK(list.out.rfind(source_path("inputs/drum_cleat.lua") + ": 28 parameters, set on the command line as name=value\n",
-                       0) == 0);
+  CHECK(list.out.rfind(
+            source_path("inputs/drum_cleat.lua") + ": 28 parameters, set on the command line as name=value\n", 0) == 0);
   const auto rows = table_rows(list.out);
   CHECK(rows.size() == 28);
   using Row = std::vector<std::string>;
@@ -124,7 +126,8 @@ TEST_CASE("tirefe --list-parameters lists every parameter of the drum-cleat deck
   CHECK(fs::is_empty(folder.path()));
 }
 
-TEST_CASE("tirefe --list-parameters: a missing deck is a usage error (2), an unreadable one a deck error (1)", "[cli]") {
+TEST_CASE("tirefe --list-parameters: a missing deck is a usage error (2), an unreadable one a deck error (1)",
+          "[cli]") {
   tirefe::testing::TempDir folder;
   const Run missing = run_in(folder.path(), tirefe_binary() + " --list-parameters");
   CHECK(missing.status == 2);
@@ -300,9 +303,10 @@ TEST_CASE("ProgressLine: its text, one drawing per interval at most, erased befo
   CHECK(written == "\rt = 1 s of 2 s  step 2  cuts 2  elapsed 0:00\x1b[K\r\r\x1b[K");
 }
 
-TEST_CASE("the progress line: rewritten in place on a terminal, nothing per step in a log, one line a step with "
-          "--verbose",
-          "[cli]") {
+TEST_CASE(
+    "the progress line: rewritten in place on a terminal, nothing per step in a log, one line a step with "
+    "--verbose",
+    "[cli]") {
   tirefe::testing::TempDir folder;
   const std::string deck = source_path("inputs/cantilever_elastica.lua");
   const std::string command = tirefe_binary() + " " + deck + " steps=40 --output-dir out";

@@ -1036,8 +1036,7 @@ TEST_CASE("deck macros: contact mistakes are reported at the deck line", "[conta
   }
 }
 
-TEST_CASE("deck macros: surfaces belong to their model, and decks in one process keep their own",
-          "[contact][macros]") {
+TEST_CASE("deck macros: surfaces belong to their model, and decks in one process keep their own", "[contact][macros]") {
   TempDir folder;
   // Two models of one deck may each name a surface "road"; a model sees its own only.
   const std::string two_models = folder.write("two_models.lua", R"(
@@ -1057,10 +1056,12 @@ first:surface_projection{ surface = "kerb", point = { 0, 0 } }
   CHECK_THAT(run.error, Contains("two_models.lua:10") && Contains("no surface named 'kerb' (defined: road)"));
 
   // A deck run while another's model is alive in the same process sees none of its surfaces.
-  const std::string keeps = folder.write("keeps.lua", "kept = tirefe.model{}\n"
-                                                      "kept:surface{ name = \"road\", type = \"flat\" }\n");
-  const std::string asks = folder.write("asks.lua", "local m = tirefe.model{}\n"
-                                                    "m:surface_projection{ surface = \"road\", point = { 0, 0 } }\n");
+  const std::string keeps = folder.write("keeps.lua",
+                                         "kept = tirefe.model{}\n"
+                                         "kept:surface{ name = \"road\", type = \"flat\" }\n");
+  const std::string asks = folder.write("asks.lua",
+                                        "local m = tirefe.model{}\n"
+                                        "m:surface_projection{ surface = \"road\", point = { 0, 0 } }\n");
   macros::DeckSession session;
   session.output_dir = folder.path("out_kept");
   session.quiet = true;
@@ -1068,5 +1069,6 @@ first:surface_projection{ surface = "kerb", point = { 0, 0 } }
   macros::install_macros(alive, session);
   alive.run_file(keeps);
   const testing::InProcessRun other = testing::run_deck_in_process(asks, folder.path("out_asks"));
-  CHECK_THAT(other.error, Contains("asks.lua:2") && Contains("no surface named 'road' (define one with model:surface{...})"));
+  CHECK_THAT(other.error,
+             Contains("asks.lua:2") && Contains("no surface named 'road' (define one with model:surface{...})"));
 }

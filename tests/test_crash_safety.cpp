@@ -42,12 +42,14 @@ model:beam{ section = "s", nodes = chain }
 model:fix{ node = chain[1] }
 model:load{ node = chain[#chain], fy = -1, load_function = "constant" }
 model:integrator{ type = "newmark" }
-)" + outputs + "model:solve{ to = " + to + ", dt = 1e-4 }\n";
+)" + outputs +
+         "model:solve{ to = " + to + ", dt = 1e-4 }\n";
 }
 
 const std::string kLongDeck = chain_deck("a long run", R"(model:output{ file = "long.h5", fields_every = 100 }
 model:history{ name = "tip_uy", node = chain[#chain], dof = "uy" }
-)", "1e4");
+)",
+                                         "1e4");
 
 /// Starts 'binary' with 'arguments' (output and error to 'log' if given); returns its pid.
 pid_t start(const std::string& binary, std::vector<std::string> arguments, const fs::path& log = {}) {
@@ -222,7 +224,8 @@ std::string inconsistency(const fs::path& path) {
       if (index.find("</Xdmf>") == std::string::npos) return index_path.string() + " is not whole";
       const std::regex named(path.filename().string() + ":(/[^<]*)<");
       std::set<std::string> paths;
-      for (auto match = std::sregex_iterator(index.begin(), index.end(), named); match != std::sregex_iterator(); ++match)
+      for (auto match = std::sregex_iterator(index.begin(), index.end(), named); match != std::sregex_iterator();
+           ++match)
         paths.insert((*match)[1]);
       for (const std::string& named_path : paths)
         if (!file.exists(named_path)) return index_path.string() + " names " + named_path + " which the file lacks";
@@ -300,7 +303,8 @@ namespace {
 
 const std::string kShortDeck = chain_deck("a short run", R"(model:output{ file = "short.h5", fields_every = 10 }
 model:checkpoint{ file = "short.ckpt.h5", every_steps = 20 }
-)", "5e-3");
+)",
+                                          "5e-3");
 
 }  // namespace
 
@@ -317,16 +321,15 @@ TEST_CASE("the next run removes what a killed run left unfinished, and an unfini
   CHECK(Hdf5File::open_read_only(folder.path("short.h5")).read_doubles("/history/time").size() == 50);
 
   folder.write("short.ckpt.h5.partial", "a killed run's unfinished checkpoint");
-  const int status = wait_for(start(TIREFE_BINARY, {deck, "--quiet", "--output-dir", folder.path(), "--restart",
-                                                    folder.path("short.ckpt.h5.partial")},
-                                    log));
+  const int status = wait_for(
+      start(TIREFE_BINARY,
+            {deck, "--quiet", "--output-dir", folder.path(), "--restart", folder.path("short.ckpt.h5.partial")}, log));
   CHECK(WEXITSTATUS(status) == 1);
   CHECK_THAT(text_of(log), Catch::Contains("is a checkpoint a run did not finish writing; restart from '" +
                                            folder.path("short.ckpt.h5") + "'"));
 }
 
-TEST_CASE("a full disk stops the run with one line naming the file, which keeps its last flush",
-          "[reliability]") {
+TEST_CASE("a full disk stops the run with one line naming the file, which keeps its last flush", "[reliability]") {
   tirefe::testing::TempDir folder;
   const fs::path disk = folder.path("disk");
   fs::create_directories(disk);
@@ -389,7 +392,8 @@ TEST_CASE("an output folder that cannot be made is named, with the reason", "[re
       return;
     }
     if (!root) fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
-    const int status = wait_for(start(TIREFE_BINARY, {deck, "--quiet", "--output-dir", (locked / "results").string()}, log));
+    const int status =
+        wait_for(start(TIREFE_BINARY, {deck, "--quiet", "--output-dir", (locked / "results").string()}, log));
     if (root) umount2(locked.c_str(), MNT_DETACH);
     fs::permissions(locked, fs::perms::owner_all);
     CHECK(WEXITSTATUS(status) == 1);

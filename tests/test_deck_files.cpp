@@ -61,9 +61,9 @@ TEST_CASE("a deck reads from its folder, lua/, inputs/ and the folders the comma
   // A missing file inside the folders passes: its reader says it is missing.
   CHECK(deck_relative(session, "no_such.csv") == dir.path("deck/no_such.csv"));
 
-  for (const std::string& outside : {std::string("../other/secret.csv"), dir.path("other/secret.csv"),
-                                     std::string("/etc/passwd"), std::string("/proc/self/maps"),
-                                     std::string("data/../../other/secret.csv")}) {
+  for (const std::string& outside :
+       {std::string("../other/secret.csv"), dir.path("other/secret.csv"), std::string("/etc/passwd"),
+        std::string("/proc/self/maps"), std::string("data/../../other/secret.csv")}) {
     INFO(outside);
     CHECK_THAT(refusal([&] { deck_relative(session, outside); }),
                Contains("'" + outside + "' lies outside the folders a deck may read") && Contains("--allow-read DIR"));
@@ -91,8 +91,8 @@ TEST_CASE("a deck writes only in the output folder, never over a file of another
   CHECK(fs::is_directory(dir.path("out/sub")));  // created for the writer
   CHECK(deck_output_path(session, dir.path("out/sub/r.h5"), result) == dir.path("out/sub/r.h5"));  // same purpose again
 
-  for (const std::string& outside : {std::string("../r.h5"), dir.path("deck/r.h5"), std::string("/tmp/r.h5"),
-                                     std::string("sub/../../r.h5")}) {
+  for (const std::string& outside :
+       {std::string("../r.h5"), dir.path("deck/r.h5"), std::string("/tmp/r.h5"), std::string("sub/../../r.h5")}) {
     INFO(outside);
     CHECK_THAT(refusal([&] { deck_output_path(session, outside, OutputFile::hdf5("a fit result file")); }),
                Contains("'" + outside + "' lies outside the output folder") && Contains("--allow-write DIR"));
@@ -123,11 +123,10 @@ TEST_CASE("a deck writes only in the output folder, never over a file of another
     CHECK_THAT(refusal([&] { deck_output_path(session, "sub", result); }), Contains("is a folder"));
   }
   SECTION("one file, one purpose in a run") {
-    CHECK_THAT(refusal([&] {
-                 deck_output_path(session, "sub/r.h5", OutputFile::hdf5("the checkpoint of model 1 ('a')"));
-               }),
-               Contains("sub/r.h5' is already the result file of model 1 ('a') in this run; give the checkpoint of "
-                        "model 1 ('a') another name"));
+    CHECK_THAT(
+        refusal([&] { deck_output_path(session, "sub/r.h5", OutputFile::hdf5("the checkpoint of model 1 ('a')")); }),
+        Contains("sub/r.h5' is already the result file of model 1 ('a') in this run; give the checkpoint of "
+                 "model 1 ('a') another name"));
     // Through another spelling of the same file.
     CHECK_THAT(refusal([&] { deck_output_path(session, "./sub/../sub/r.h5", OutputFile::hdf5("a fit result file")); }),
                Contains("is already the result file"));
@@ -159,19 +158,21 @@ TEST_CASE("a deck's read of a foreign file names it without a line of its conten
   const std::string deck = dir.write("deck.lua", "local rows = tirefe.read_csv{ file = '/etc/passwd' }\n");
   const auto run = run_tirefe(deck + " --output-dir " + dir.path("out"));
   CHECK(run.status == 1);
-  CHECK(run.output == "tirefe: " + deck + ":1: macro 'read_csv': '/etc/passwd' lies outside the folders a deck may "
-                      "read (its own folder, the project's lua/ and inputs/, the output folder); give another with "
-                      "--allow-read DIR (docs/security.md)\n");
+  CHECK(run.output == "tirefe: " + deck +
+                          ":1: macro 'read_csv': '/etc/passwd' lies outside the folders a deck may "
+                          "read (its own folder, the project's lua/ and inputs/, the output folder); give another with "
+                          "--allow-read DIR (docs/security.md)\n");
 }
 
 TEST_CASE("the options --allow-read and --allow-write widen what a deck may read and write", "[files][decks]") {
   TempDir dir;
   dir.write("data/curve.csv", "deflection [m],force [N]\n0,0\n0.01,1500\n");
   const std::string deck = dir.write(
-      "deck/deck.lua",
-      "local curve = tirefe.read_csv{ file = '" + dir.path("data/curve.csv") + "' }\n"
-      "tirefe.check{ name = 'force', value = curve.force[2], expected = 1500, tolerance = 0 }\n"
-      "tirefe.write_tire{ file = '" + dir.path("tires/a.tir") + "', parameters = require('tires.145SR12') }\n");
+      "deck/deck.lua", "local curve = tirefe.read_csv{ file = '" + dir.path("data/curve.csv") +
+                           "' }\n"
+                           "tirefe.check{ name = 'force', value = curve.force[2], expected = 1500, tolerance = 0 }\n"
+                           "tirefe.write_tire{ file = '" +
+                           dir.path("tires/a.tir") + "', parameters = require('tires.145SR12') }\n");
   const auto refused = run_tirefe(deck + " --quiet --output-dir " + dir.path("out"));
   CHECK(refused.status == 1);
   CHECK_THAT(refused.output, Contains("curve.csv' lies outside the folders a deck may read"));

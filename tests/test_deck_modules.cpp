@@ -167,13 +167,15 @@ tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
 }
 
-TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes", "[lua][modules][vehicle]") {
+TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes",
+          "[lua][modules][vehicle]") {
   // With a tread layer the contact nodes are the layer's, 10 mm below the belt at rest:
   // both the C++ tire and the deck module must find the road level from them, and the C++
   // tire must put its contact on them.
   const tirefe::TireParameters layered = tirefe::macros::load_tire_parameters("tires.145SR12_tread_layer");
-  tirefe::TireOnRoad tire(layered, [](double level) { return std::make_shared<tirefe::FlatRoad>(Eigen::Vector2d(0.0, level)); },
-                          tirefe::RoadContact{});
+  tirefe::TireOnRoad tire(
+      layered, [](double level) { return std::make_shared<tirefe::FlatRoad>(Eigen::Vector2d(0.0, level)); },
+      tirefe::RoadContact{});
   const std::vector<int>& contact_nodes = tire.tire().contact_nodes;
   REQUIRE(contact_nodes.size() == 100);
   CHECK(contact_nodes != tire.tire().tread_nodes);
@@ -191,7 +193,7 @@ TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's con
 local model = tirefe.model{ title = "level" }
 local tire, level = require("tire_on_road").inflated(model, require("tires.145SR12_tread_layer"))
 tirefe.check{ name = "the deck module's road level = TireOnRoad's [m]", value = level, expected = )" +
-                                                                expected.str() + R"(, tolerance = 1e-7 }
+                                                              expected.str() + R"(, tolerance = 1e-7 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 1);
 }

@@ -26,7 +26,7 @@ namespace {
 struct DocBlock {
   std::string info;  // the fence's info string, e.g. "lua deck"
   std::string text;
-  int line = 0;      // of the opening fence
+  int line = 0;  // of the opening fence
 };
 
 std::vector<DocBlock> fenced_blocks(const std::string& path) {
@@ -100,7 +100,8 @@ int run_commands(const std::string& doc, const tirefe::testing::TempDir& folder)
 
 }  // namespace
 
-TEST_CASE("the commands of docs/restart.md run, and the restarted run's file equals the whole run's", "[docs][restart]") {
+TEST_CASE("the commands of docs/restart.md run, and the restarted run's file equals the whole run's",
+          "[docs][restart]") {
   tirefe::testing::TempDir folder;
   REQUIRE(run_commands("docs/restart.md", folder) == 2);
   const fs::path whole = folder.path("results"), restarted = whole / "restarted";

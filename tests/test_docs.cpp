@@ -12,8 +12,7 @@
 #include "macros/macro_table.hpp"
 #include "tirefe/test_paths.hpp"
 
-TEST_CASE("docs/macros.md is the current macro reference (regenerate: tirefe --macros > docs/macros.md)",
-          "[docs]") {
+TEST_CASE("docs/macros.md is the current macro reference (regenerate: tirefe --macros > docs/macros.md)", "[docs]") {
   std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/docs/macros.md");
   REQUIRE(in.good());
   const std::string documented((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -38,7 +37,8 @@ std::vector<fs::path> repository_text_files() {
   for (auto entry = fs::recursive_directory_iterator(root); entry != fs::recursive_directory_iterator(); ++entry) {
     const fs::path& path = entry->path();
     if (entry->is_directory()) {
-      if (path.filename().string().front() == '.' || fs::exists(path / "CMakeCache.txt")) entry.disable_recursion_pending();
+      if (path.filename().string().front() == '.' || fs::exists(path / "CMakeCache.txt"))
+        entry.disable_recursion_pending();
       continue;
     }
     const std::string extension = path.extension().string();
@@ -52,8 +52,8 @@ std::vector<fs::path> repository_text_files() {
 TEST_CASE("no file of the repository names a document outside it", "[docs]") {
   // Spelt in pieces so that this file does not name them itself.
   const std::vector<std::string> outside = {std::string("..") + "/shared", std::string("shared") + "/docs",
-                                            std::string("MODEL") + ".md", std::string("TIRE-") + "DATA",
-                                            std::string("STYLE") + ".md", std::string("PERFORMANCE") + ".md"};
+                                            std::string("MODEL") + ".md",  std::string("TIRE-") + "DATA",
+                                            std::string("STYLE") + ".md",  std::string("PERFORMANCE") + ".md"};
   const std::vector<fs::path> files = repository_text_files();
   CHECK(files.size() > 100);
   for (const fs::path& path : files) {
@@ -120,7 +120,8 @@ static int check_quoted_sources(const std::string& doc) {
 }
 
 TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs]") {
-  CHECK(check_quoted_sources("docs/coupling.md") == 4);  // the consumer project, the C and Python quarter cars, the k_sw fit
+  CHECK(check_quoted_sources("docs/coupling.md") ==
+        4);  // the consumer project, the C and Python quarter cars, the k_sw fit
 }
 
 TEST_CASE("the C++ host quoted in docs/spindle.md is the built and tested file", "[docs]") {

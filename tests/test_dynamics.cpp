@@ -126,8 +126,7 @@ std::complex<double> fitted_root(const std::vector<double>& u, int first) {
   return std::polar(modulus, std::acos(std::clamp(pq[0] / (2.0 * modulus), -1.0, 1.0)));
 }
 
-BeamSection slender_section(double bending_stiffness, double mass_per_length, double stiffness_ratio,
-                            double length) {
+BeamSection slender_section(double bending_stiffness, double mass_per_length, double stiffness_ratio, double length) {
   BeamSection section;
   section.bending_stiffness = bending_stiffness;
   section.axial_stiffness = stiffness_ratio * bending_stiffness / (length * length);
@@ -212,8 +211,8 @@ TEST_CASE("spring-mass tangent equals finite differences; energies are k u^2/2 a
                                   properties.damping[c] * local.velocity[c] + inertia[c] * local.acceleration[c])
                                .epsilon(1e-13));
     const ElementEnergy energy = point.energy(local, history);
-    CHECK(energy.strain == Approx(0.5 * (properties.stiffness.array() * local.displacement.array().square()).sum())
-                               .epsilon(1e-13));
+    CHECK(energy.strain ==
+          Approx(0.5 * (properties.stiffness.array() * local.displacement.array().square()).sum()).epsilon(1e-13));
     CHECK(energy.kinetic == Approx(0.5 * (inertia.array() * local.velocity.array().square()).sum()).epsilon(1e-13));
   }
   properties.mass = -1.0;
@@ -312,8 +311,8 @@ TEST_CASE("Newmark and HHT accept exactly their unconditionally stable parameter
   const std::string range = "1/2 <= gamma <= 1 and gamma/2 <= beta <= 1";
   CHECK_THROWS_WITH(Integrator::newmark(1e-300, 0.5), Contains(range) && Contains("got beta = 1e-300, gamma = 0.5"));
   CHECK_THROWS_WITH(Integrator::newmark(1.0 / 6.0, 0.5), Contains(range));  // linear acceleration: conditional
-  CHECK_THROWS_WITH(Integrator::newmark(0.29, 0.6), Contains(range));        // beta < gamma/2
-  CHECK_THROWS_WITH(Integrator::newmark(0.25, 0.45), Contains(range));       // gamma < 1/2: amplitudes grow
+  CHECK_THROWS_WITH(Integrator::newmark(0.29, 0.6), Contains(range));       // beta < gamma/2
+  CHECK_THROWS_WITH(Integrator::newmark(0.25, 0.45), Contains(range));      // gamma < 1/2: amplitudes grow
   CHECK_THROWS_WITH(Integrator::newmark(0.6, 1.1), Contains(range));
   CHECK_THROWS_WITH(Integrator::newmark(1.5, 0.5), Contains(range));
   CHECK_THROWS_WITH(Integrator::newmark(std::nan(""), 0.5), Contains(range));
@@ -738,8 +737,7 @@ TEST_CASE("free ring: three rigid-body modes and the in-plane bending pairs n = 
   }
 }
 
-TEST_CASE("modes about a loaded state include the geometric stiffness: pre-stressed pinned beam",
-          "[dynamics][modal]") {
+TEST_CASE("modes about a loaded state include the geometric stiffness: pre-stressed pinned beam", "[dynamics][modal]") {
   // Pinned-pinned beam under an end force P (tension > 0):
   //   f_1 = (pi / L)^2 sqrt(EI / rho A) / (2 pi) * sqrt(1 + P / P_cr),  P_cr = pi^2 EI / L^2.
   const double length = 1.0, bending_stiffness = 1.0, mass_per_length = 1.0;
@@ -761,8 +759,10 @@ TEST_CASE("modes about a loaded state include the geometric stiffness: pre-stres
     INFO("P / P_cr = " << load_ratio << ": f1 = " << modes.frequencies_hz[0]);
     CHECK_FALSE(modes.rigid_body[0]);
     CHECK(modes.frequencies_hz[0] == Approx(unloaded * factor).epsilon(0.005));
-    if (load_ratio == 0.0) unloaded_numerical = modes.frequencies_hz[0];
-    else CHECK(modes.frequencies_hz[0] / unloaded_numerical == Approx(factor).epsilon(1e-3));
+    if (load_ratio == 0.0)
+      unloaded_numerical = modes.frequencies_hz[0];
+    else
+      CHECK(modes.frequencies_hz[0] / unloaded_numerical == Approx(factor).epsilon(1e-3));
     // The analysis state is left as it was.
     CHECK(analysis.state().time == 1.0);
   }

@@ -131,8 +131,8 @@ TEST_CASE("Brent's method finds the minima of analytic functions to 1e-8 in few 
       {"quadratic (x - 2)^2", [](double x) { return (x - 2.0) * (x - 2.0); }, 0.0, 0.5, 2.0, 12},
       {"(exp x - 3)^2", [](double x) { return std::pow(std::exp(x) - 3.0, 2); }, 0.0, 0.1, std::log(3.0), 20},
       {"log(1 + (x - 1.5)^2)", [](double x) { return std::log1p((x - 1.5) * (x - 1.5)); }, 5.0, -1.0, 1.5, 20},
-      {"(x^2 - 2)^2 + (x^2 - 2)^4", [](double x) { return std::pow(x * x - 2, 2) + std::pow(x * x - 2, 4); }, 3.0,
-       -0.2, std::sqrt(2.0), 20}};
+      {"(x^2 - 2)^2 + (x^2 - 2)^4", [](double x) { return std::pow(x * x - 2, 2) + std::pow(x * x - 2, 4); }, 3.0, -0.2,
+       std::sqrt(2.0), 20}};
   for (const Case& c : cases) {
     INFO(c.name);
     int calls = 0;
@@ -157,10 +157,12 @@ TEST_CASE("Brent's method: a minimum with a non-zero value is found to its resol
 
 TEST_CASE("Brent's method respects the bounds and reports a minimum on a bound", "[fitting]") {
   std::vector<double> evaluated;
-  ScalarSearch search = scalar_search([&](double x) {
-    evaluated.push_back(x);
-    return (x - 5.0) * (x - 5.0);
-  }, 1e-8);
+  ScalarSearch search = scalar_search(
+      [&](double x) {
+        evaluated.push_back(x);
+        return (x - 5.0) * (x - 5.0);
+      },
+      1e-8);
   search.lower = -1.0;
   search.upper = 3.0;
   const ScalarMinimum minimum = minimize_scalar(search, 0.0, 1.0);
@@ -227,8 +229,8 @@ TEST_CASE("a one-parameter fit steps back from evaluations that fail", "[fitting
 
   SECTION("but a model failing at the initial parameters is an error") {
     problem.parameters[0].initial = 3e6;
-    CHECK_THROWS_WITH(fit(problem, options), Contains("initial parameters (k = 3000000)") &&
-                                                 Contains("Newton iterations diverge"));
+    CHECK_THROWS_WITH(fit(problem, options),
+                      Contains("initial parameters (k = 3000000)") && Contains("Newton iterations diverge"));
   }
 }
 
@@ -265,8 +267,7 @@ TEST_CASE("Levenberg-Marquardt with central differences and a quadratic law F = 
   CHECK(relative_error(result.values[1], 2.0e6) <= 1e-8);
 }
 
-TEST_CASE("from data with 2 % noise the estimate lies within 3 standard errors, which match Monte Carlo",
-          "[fitting]") {
+TEST_CASE("from data with 2 % noise the estimate lies within 3 standard errors, which match Monte Carlo", "[fitting]") {
   FitOptions options;
   options.tolerance = 1e-9;
   options.max_evaluations = 400;
@@ -408,7 +409,9 @@ TEST_CASE("the CSV reader converts unit suffixes to SI and names bad rows by fil
 
 TEST_CASE("the CSV reader skips a byte order mark, refuses hex, NUL and overflow, reads underflow as 0", "[fitting]") {
   TempDir folder;
-  const CurveData marked = CurveData::read_csv(folder.write("bom.csv", "\xEF\xBB\xBF" "deflection_mm, force_N\n1, 10\n"));
+  const CurveData marked = CurveData::read_csv(folder.write("bom.csv",
+                                                            "\xEF\xBB\xBF"
+                                                            "deflection_mm, force_N\n1, 10\n"));
   CHECK(marked.columns().front().name == "deflection");
   CHECK(marked.column("deflection").values[0] == Approx(1e-3).epsilon(1e-15));
 
@@ -417,10 +420,12 @@ TEST_CASE("the CSV reader skips a byte order mark, refuses hex, NUL and overflow
   CHECK(tiny.column("y").values[0] == 0.0);
   CHECK(tiny.column("x").values[1] == Approx(2.5e-310).epsilon(1e-6));  // subnormal, kept
 
+  // clang-format off
   const std::pair<std::string, std::string> refused[] = {
       {"hex.csv", "x, y\n0x10, 1\n"},          {"hex_float.csv", "x, y\n1, 0x1p3\n"},
       {"inf.csv", "x, y\ninf, 1\n"},           {"overflow.csv", "x, y\n1e400, 1\n"},
       {"nan.csv", "x, y\n1, nan\n"},           {"nul.csv", std::string("x, y\n1, 12", 10) + std::string("\0" "5\n", 3)}};
+  // clang-format on
   for (const auto& [name, text] : refused) {
     INFO(name);
     CHECK_THROWS_WITH(CurveData::read_csv(folder.write(name, text)),

@@ -69,7 +69,7 @@ TEST_CASE("Hdf5File round-trips attributes and fixed datasets", "[io][hdf5]") {
     file.write_attribute("/", "empty", std::string());
     file.write_attribute("/", "dt", 1e-4);
     file.write_attribute("/", "steps", 123456789012LL);
-    file.write_attribute("/", "nodes", 7);  // int goes to the long long overload
+    file.write_attribute("/", "nodes", 7);            // int goes to the long long overload
     file.write_attribute("/run/info", "deck", deck);  // creates /run and /run/info
     file.write_matrix("/mesh/matrix", matrix);
     file.write_vector("/mesh/vector", vector);
@@ -214,23 +214,21 @@ TEST_CASE("A writer killed after flush leaves a readable file", "[io][hdf5]") {
 }
 
 TEST_CASE("Hdf5File errors name the file and the object", "[io][hdf5]") {
-  const std::string missing_folder =
-      (fs::temp_directory_path() / "tirefe_no_such_folder_4711" / "out.h5").string();
+  const std::string missing_folder = (fs::temp_directory_path() / "tirefe_no_such_folder_4711" / "out.h5").string();
   REQUIRE_FALSE(fs::exists(fs::path(missing_folder).parent_path()));
   // On one line, the system's reason last (not HDF5's description of its call).
   CHECK_THROWS_WITH(Hdf5File::create(missing_folder),
                     "cannot create output file '" + missing_folder + "': No such file or directory");
-  CHECK_THROWS_WITH(Hdf5File::create_published(missing_folder),
-                    "cannot create output file '" + missing_folder + "' (written as '" + missing_folder +
-                        ".partial'): No such file or directory");
+  CHECK_THROWS_WITH(Hdf5File::create_published(missing_folder), "cannot create output file '" + missing_folder +
+                                                                    "' (written as '" + missing_folder +
+                                                                    ".partial'): No such file or directory");
   CHECK_THROWS_WITH(Hdf5File::open_read_only(missing_folder), Catch::Contains(missing_folder));
 
   TempPath temp;
   Hdf5File file = Hdf5File::create(temp.str());
   file.write_vector("/a/b", {1.0});
   CHECK_THROWS_AS(file.read_doubles("/a/missing"), IoError);
-  CHECK_THROWS_WITH(file.read_doubles("/a/missing"),
-                    Catch::Contains("'/a/missing'") && Catch::Contains(temp.str()));
+  CHECK_THROWS_WITH(file.read_doubles("/a/missing"), Catch::Contains("'/a/missing'") && Catch::Contains(temp.str()));
   CHECK_THROWS_WITH(file.read_strings("/a/b"), Catch::Contains("'/a/b'") && Catch::Contains("not a string"));
   CHECK_THROWS_WITH(file.read_double_attribute("/a/b", "nope"), Catch::Contains("nope") && Catch::Contains("'/a/b'"));
   CHECK_THROWS_WITH(file.write_vector("/a/b", {2.0}), Catch::Contains("'/a/b'"));  // no silent overwrite

@@ -79,7 +79,8 @@ TEST_CASE("SIGTERM stops a deck looping in pure Lua, with its line and status 14
   INFO(message);
   CHECK(status == 128 + SIGTERM);
   CHECK(seconds < 5.0);
-  CHECK_THAT(message, StartsWith("tirefe: " + path + ":") && Contains("stopped by SIGTERM while the deck ran Lua code"));
+  CHECK_THAT(message,
+             StartsWith("tirefe: " + path + ":") && Contains("stopped by SIGTERM while the deck ran Lua code"));
 }
 
 TEST_CASE("Lua memory beyond the bound is a deck error at its line, and the sandbox stays usable", "[lua][limits]") {
@@ -90,16 +91,18 @@ TEST_CASE("Lua memory beyond the bound is a deck error at its line, and the sand
   sandbox.set_memory_limit_mib(16);
   SECTION("one allocation beyond it") {
     const std::string deck = dir.write("big.lua", "local a = 1\nlocal s = string.rep('x', 17 * 2^20)\n");
-    CHECK_THROWS_WITH(sandbox.run_file(deck), deck + ":2: the deck used more than 16 MiB of Lua memory (the limit; "
-                                                     "--lua-memory MIB sets another)");
+    CHECK_THROWS_WITH(sandbox.run_file(deck), deck +
+                                                  ":2: the deck used more than 16 MiB of Lua memory (the limit; "
+                                                  "--lua-memory MIB sets another)");
   }
   SECTION("a table growing into it") {
     const std::string deck = dir.write("grow.lua", "local rows = {}\nfor i = 1, 1e9 do\n  rows[i] = { i }\nend\n");
     CHECK_THROWS_WITH(sandbox.run_file(deck), StartsWith(deck + ":3: the deck used more than 16 MiB"));
   }
   SECTION("a deck may catch it with pcall and go on within the bound") {
-    const std::string deck = dir.write(
-        "caught.lua", "local ok, message = pcall(string.rep, 'x', 2^25)\nassert(not ok)\nsmall = string.rep('y', 2^20)\n");
+    const std::string deck =
+        dir.write("caught.lua",
+                  "local ok, message = pcall(string.rep, 'x', 2^25)\nassert(not ok)\nsmall = string.rep('y', 2^20)\n");
     sandbox.run_file(deck);
     lua_getglobal(sandbox.state(), "small");
     CHECK(lua_rawlen(sandbox.state(), -1) == (1u << 20));

@@ -29,7 +29,13 @@ const MacroSpec& beam_spec() {
        {"EI", ValueType::Number, true, "N m^2", "bending stiffness", std::nullopt, Range::Positive},
        {"elements", ValueType::Integer, false, "", "number of elements", "36", Range::Positive},
        {"damping", ValueType::Number, false, "", "damping ratio", "0.02", Range::Fraction01},
-       {"integrator", ValueType::String, false, "", "time integrator", "newmark", Range::Any,
+       {"integrator",
+        ValueType::String,
+        false,
+        "",
+        "time integrator",
+        "newmark",
+        Range::Any,
         {"newmark", "hht", "static"}},
        {"radii", ValueType::NumberList, false, "m", "layer radii", std::nullopt, Range::Positive},
        {"nodes", ValueType::IntegerList, false, "", "output nodes"},
@@ -133,9 +139,11 @@ TEST_CASE("macro arguments are validated with the deck line and key in the messa
     std::string call, expected;
   };
   const std::vector<Case> cases{
-      {"tirefe.beam(5)", "macro 'beam' expects a table of named arguments, e.g. tirefe.beam{EA = 1e7, GA = 1e5, EI = 12.5}"},
+      {"tirefe.beam(5)",
+       "macro 'beam' expects a table of named arguments, e.g. tirefe.beam{EA = 1e7, GA = 1e5, EI = 12.5}"},
       {"tirefe.beam{1}", "macro 'beam' takes named arguments only, got a positional number 1"},
-      {"tirefe.beam{EA = 1, GA = 1, EJ = 1}", "macro 'beam': unknown key 'EJ' (did you mean 'EI'?; known keys: EA, GA, EI, elements"},
+      {"tirefe.beam{EA = 1, GA = 1, EJ = 1}",
+       "macro 'beam': unknown key 'EJ' (did you mean 'EI'?; known keys: EA, GA, EI, elements"},
       {"tirefe.beam{EA = 1, GA = 1, zzz = 1, EI = 1}", "macro 'beam': unknown key 'zzz' (known keys: EA, GA, EI"},
       {"tirefe.beam{EA = 1, GA = 1}", "macro 'beam': missing required key 'EI' (bending stiffness, N m^2)"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 'abc'}", "macro 'beam': key 'EI' must be a number, got string \"abc\""},
@@ -150,19 +158,26 @@ TEST_CASE("macro arguments are validated with the deck line and key in the messa
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 0}", "key 'elements' must be positive (got 0)"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, nodes = {1, -2^31 - 1}}",
        "key 'nodes' entry 2 must be an integer from -2147483648 to 2147483647 (got number -2147483649)"},
-      {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^63}", "key 'elements' must be an integer, got number 9.2233720368548e+18"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^63}",
+       "key 'elements' must be an integer, got number 9.2233720368548e+18"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, damping = 1.5}", "key 'damping' must be between 0 and 1 (got 1.5)"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, integrator = 'newmak'}",
        "key 'integrator' must be one of newmark, hht, static (got 'newmak')"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, verbose = 1}", "key 'verbose' must be a boolean, got number 1"},
-      {"tirefe.beam{EA = 1, GA = 1, EI = 1, radii = {0.3, 'x'}}", "key 'radii' entry 2 must be a number, got string \"x\""},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, radii = {0.3, 'x'}}",
+       "key 'radii' entry 2 must be a number, got string \"x\""},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, radii = {0.3, -1}}", "key 'radii' entry 2 must be positive (got -1)"},
-      {"tirefe.beam{EA = 1, GA = 1, EI = 1, radii = {0.3, foo = 1}}", "key 'radii' must be a list of numbers {a, b, ...}, found key string \"foo\""},
-      {"tirefe.beam{EA = 1, GA = 1, EI = 1, nodes = {1, 2.5}}", "key 'nodes' entry 2 must be an integer, got number 2.5"},
-      {"tirefe.beam{EA = 1, GA = 1, EI = 1, profile = {{0, 1}, {0, 1, 2}}}", "key 'profile' row 2 has 3 entries, expected 2 like row 1"},
-      {"tirefe.beam{EA = 1, GA = 1, EI = 1, profile = {{0, 1}, 5}}", "key 'profile' row 2 must be a list of numbers, got number 5"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, radii = {0.3, foo = 1}}",
+       "key 'radii' must be a list of numbers {a, b, ...}, found key string \"foo\""},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, nodes = {1, 2.5}}",
+       "key 'nodes' entry 2 must be an integer, got number 2.5"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, profile = {{0, 1}, {0, 1, 2}}}",
+       "key 'profile' row 2 has 3 entries, expected 2 like row 1"},
+      {"tirefe.beam{EA = 1, GA = 1, EI = 1, profile = {{0, 1}, 5}}",
+       "key 'profile' row 2 must be a list of numbers, got number 5"},
       {"tirefe.beam{EA = 1, GA = 1, EI = 1, on_step = 3}", "key 'on_step' must be a function, got number 3"},
-      {"tirefe.read_absent_list{EA = 1, GA = 1, EI = 1}", "macro 'beam': key 'radii' was not given and has no usable default"},
+      {"tirefe.read_absent_list{EA = 1, GA = 1, EI = 1}",
+       "macro 'beam': key 'radii' was not given and has no usable default"},
   };
   TempDir dir;
   for (const auto& c : cases) {
@@ -197,8 +212,9 @@ tirefe.beam{EA = 1e7, GA = 1e5, EI = 12.5, elements = 1e2, radii = {0.30, 0.31},
   CHECK(sandbox.deck_path() == deck);
 
   // The ends of an int are accepted (2^31 - 1 as an integral float too).
-  sandbox.run_file(dir.write("ends.lua", "tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^31 - 1, "
-                                         "nodes = {-2147483648, 2147483647}}\n"));
+  sandbox.run_file(dir.write("ends.lua",
+                             "tirefe.beam{EA = 1, GA = 1, EI = 1, elements = 2^31 - 1, "
+                             "nodes = {-2147483648, 2147483647}}\n"));
   CHECK(last_beam.elements == 2147483647);
   CHECK(last_beam.nodes == std::vector<long long>{-2147483648LL, 2147483647});
 }
@@ -381,7 +397,8 @@ TEST_CASE("protected_call turns C++ exceptions into deck errors and unwinds C++ 
 TEST_CASE("tirefe.parameters applies typed command-line overrides", "[lua][parameters]") {
   TempDir dir;
   LuaSandbox sandbox("");
-  const std::string deck = dir.write("deck.lua", R"(local defaults = { speed_kmh = 51.3, elements = 100, integrator = "newmark", contact = true }
+  const std::string deck = dir.write(
+      "deck.lua", R"(local defaults = { speed_kmh = 51.3, elements = 100, integrator = "newmark", contact = true }
 local p = tirefe.parameters(defaults)
 speed, elements, integrator, contact = p.speed_kmh, p.elements, p.integrator, p.contact
 elements_is_integer = math.type(p.elements) == "integer"
@@ -425,13 +442,16 @@ defaults_untouched = defaults.speed_kmh == 51.3 and p ~= defaults
   }
   SECTION("override for a deck that declares no parameters") {
     const std::string plain = dir.write("plain.lua", "x = 1\n");
-    CHECK(deck_error(sandbox, plain, {{"speed_kmh", "80"}}) ==
-          plain + ": command-line parameter 'speed_kmh' is not declared by the deck (declare it with tirefe.parameters{...})");
+    CHECK(
+        deck_error(sandbox, plain, {{"speed_kmh", "80"}}) ==
+        plain +
+            ": command-line parameter 'speed_kmh' is not declared by the deck (declare it with tirefe.parameters{...})");
   }
 }
 
 TEST_CASE("markdown_reference documents every macro and key", "[lua][macros]") {
-  const MacroSpec solve{"solve", "Advance the solution in time.",
+  const MacroSpec solve{"solve",
+                        "Advance the solution in time.",
                         {{"dt", ValueType::Number, true, "s", "time step", std::nullopt, Range::Positive}},
                         "tirefe.solve{dt = 1e-4}"};
   const std::string doc = markdown_reference({beam_spec(), solve});

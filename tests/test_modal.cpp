@@ -290,7 +290,8 @@ TEST_CASE("shift-invert Krylov gives the dense solver's modes: damped chain, dam
     const DampedModalResult modes = damped_modal_analysis(model, State{}, 3, krylov);
     CHECK(modes.shift_invert);
     REQUIRE(modes.roots.size() == 3);
-    for (int i = 0; i < 3; ++i) CHECK(modes.frequencies_hz[i] == Approx(20.0 * std::sqrt(i + 1.0) / (2 * kPi)).epsilon(1e-12));
+    for (int i = 0; i < 3; ++i)
+      CHECK(modes.frequencies_hz[i] == Approx(20.0 * std::sqrt(i + 1.0) / (2 * kPi)).epsilon(1e-12));
   }
   SECTION("rigid-body modes (a singular K) go to the dense solver") {
     Model model;
@@ -449,8 +450,8 @@ TEST_CASE("free-free beam with GA / EA = 1e8: exactly three rigid-body modes, an
     double along = 0.0, across = 0.0;
     for (int node : nodes) {
       along = std::max(along, std::abs(modes.shapes(dof_index(node, kUx), m)));
-      across = std::max({across, std::abs(modes.shapes(dof_index(node, kUy), m)),
-                         std::abs(modes.shapes(dof_index(node, kRz), m))});
+      across = std::max(
+          {across, std::abs(modes.shapes(dof_index(node, kUy), m)), std::abs(modes.shapes(dof_index(node, kRz), m))});
     }
     if (axial_mode < 0 && !modes.rigid_body[m] && across <= 1e-3 * along) axial_mode = m;
   }
@@ -492,8 +493,8 @@ TEST_CASE("inflated tire on a held hub (unsymmetric tangent): the n = 1 pair has
     if (mac(modes.shapes.col(m), along_x) + mac(modes.shapes.col(m), along_y) > 0.5) pair.push_back(m);
   REQUIRE(pair.size() == 2);
   const Eigen::VectorXd first = modes.shapes.col(pair[0]), second = modes.shapes.col(pair[1]);
-  INFO("n = 1 pair: modes " << pair[0] + 1 << " and " << pair[1] + 1 << " at " << modes.frequencies_hz[pair[0]]
-                            << " / " << modes.frequencies_hz[pair[1]] << " Hz, MAC between them " << mac(first, second));
+  INFO("n = 1 pair: modes " << pair[0] + 1 << " and " << pair[1] + 1 << " at " << modes.frequencies_hz[pair[0]] << " / "
+                            << modes.frequencies_hz[pair[1]] << " Hz, MAC between them " << mac(first, second));
   CHECK(modes.frequencies_hz[pair[1]] == Approx(modes.frequencies_hz[pair[0]]).epsilon(1e-6));
   // M-orthonormal: two distinct shapes spanning the pair.
   const Eigen::MatrixXd mass = free_mass(model, analysis.state());

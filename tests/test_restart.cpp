@@ -33,8 +33,8 @@ struct Run {
 
 Run run_deck(const fs::path& folder, const std::string& arguments, const std::string& deck = kDeck) {
   fs::remove_all(folder);
-  const std::string command = std::string(TIREFE_BINARY) + " " + deck + " --output-dir " + folder.string() + " " +
-                              arguments + " 2>&1";
+  const std::string command =
+      std::string(TIREFE_BINARY) + " " + deck + " --output-dir " + folder.string() + " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);
   std::string output;

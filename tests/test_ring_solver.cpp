@@ -185,8 +185,7 @@ TEST_CASE("ring solver: the calibrated tire pressed on a road with friction, its
   check_border_against_dense(ring, tangent);
 }
 
-TEST_CASE("ring solver: an uncondensed spindle and a two-node border give the same solutions and H",
-          "[ring_solver]") {
+TEST_CASE("ring solver: an uncondensed spindle and a two-node border give the same solutions and H", "[ring_solver]") {
   // Spindle numbered first (not condensed): H follows border_equations().
   Model model;
   const Tire tire = build_tire(model, macros::load_tire_parameters("tires.145SR12"), LoadFunction::linear());
@@ -210,7 +209,8 @@ TEST_CASE("ring solver: an uncondensed spindle and a two-node border give the sa
   const Eigen::MatrixXd dense = Eigen::MatrixXd(tangent);
   const Eigen::MatrixXd k_uu = dense.bottomRightCorner(n - 2, n - 2);
   const Eigen::MatrixXd schur =
-      dense.topLeftCorner(2, 2) - dense.topRightCorner(2, n - 2) * k_uu.partialPivLu().solve(dense.bottomLeftCorner(n - 2, 2));
+      dense.topLeftCorner(2, 2) -
+      dense.topRightCorner(2, n - 2) * k_uu.partialPivLu().solve(dense.bottomLeftCorner(n - 2, 2));
   CHECK(relative_difference(ring.border_schur_complement(), schur) <= 1e-9);
 
   // Spindle and tread node 10 as the border (width 9: the dynamic-size path); the ring
@@ -285,7 +285,8 @@ TEST_CASE("ring solver: analyze() refuses tires that do not fit and misuse of th
     section.axial_stiffness = section.shear_stiffness = 1e5;
     section.bending_stiffness = 1.0;
     const int a = tire.tread_nodes[0], b = tire.tread_nodes[50];
-    model.add_block<TreadBeam>("spoke").add({a, b}, TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
+    model.add_block<TreadBeam>("spoke").add({a, b},
+                                            TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
     CHECK_THROWS_WITH(analysis.use_ring_solver(tire.tread_nodes, {tire.spindle}),
                       Catch::Contains("not ring neighbours"));
   }
@@ -295,7 +296,8 @@ TEST_CASE("ring solver: analyze() refuses tires that do not fit and misuse of th
     BeamSection section;
     section.axial_stiffness = section.shear_stiffness = 1e5;
     section.bending_stiffness = 1.0;
-    model.add_block<TreadBeam>("spoke").add({a, b}, TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
+    model.add_block<TreadBeam>("spoke").add({a, b},
+                                            TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
     CHECK_THROWS_AS(analysis.advance(0.1), ModelError);
   }
   SECTION("factors of another pattern, solves before factoring") {
@@ -391,9 +393,10 @@ TEST_CASE("ring solver: a singular tangent throws SingularMatrix; the partial fa
   CHECK_THROWS_WITH(analysis.advance(0.5), Catch::Contains("singular"));
 }
 
-TEST_CASE("ring solver: inflation and Newmark steps of the tire match KLU's with the spindle free, on a dead "
-          "axle and fixed",
-          "[ring_solver]") {
+TEST_CASE(
+    "ring solver: inflation and Newmark steps of the tire match KLU's with the spindle free, on a dead "
+    "axle and fixed",
+    "[ring_solver]") {
   for (const char* tire_set : kTires)
     for (int c = 0; c < 3; ++c) {
       DYNAMIC_SECTION(tire_set << ", " << kSpindleCases[c]) {

@@ -22,8 +22,8 @@ constexpr double kTolerance = 5e-4;  // the contact's penetration tolerance [m]
 
 /// One accepted step of a loading run.
 struct LoadPoint {
-  double deflection = 0.0;     // spindle travel since first touch [m]
-  double load = 0.0;           // vertical spindle force, upwards on the road [N]
+  double deflection = 0.0;  // spindle travel since first touch [m]
+  double load = 0.0;        // vertical spindle force, upwards on the road [N]
   ContactSummary contact;
   int newton_iterations = 0;
   int cuts = 0;
@@ -38,7 +38,7 @@ struct TireOnRoad {
   std::unique_ptr<Analysis> analysis;
   ContactBlock* contact = nullptr;
   int press_function = -1;
-  double lowest = 0.0;          // y of the lowest tread point after inflation [m]
+  double lowest = 0.0;  // y of the lowest tread point after inflation [m]
   double inflated_radius = 0.0;
 
   explicit TireOnRoad(int elements = 100) {
@@ -65,8 +65,8 @@ struct TireOnRoad {
     parameters.friction = friction;
     parameters.normal_penalty = structural_penalty(*analysis, tire.tread_nodes);
     parameters.tangential_penalty = structural_tangential_penalty(*analysis, tire.tread_nodes, *surface);
-    contact = &add_contact_block(model, "contact", std::move(surface), tire.tread_nodes, parameters,
-                                 analysis->state().time);
+    contact =
+        &add_contact_block(model, "contact", std::move(surface), tire.tread_nodes, parameters, analysis->state().time);
   }
 
   /// Presses the spindle down to 'deepest' in 'steps' quasi-static steps (t from 1 to 2).
@@ -134,8 +134,8 @@ TEST_CASE("145 SR-12 on a flat road: force-deflection to 30 mm, stiffness near 3
     }
   }
   // Mesh convergence of the load: 100 against 200 elements.
-  WARN("load at 20 mm: " << curves[0][9].load << " N (100 elements), " << curves[1][9].load << " N (200); at 30 mm: "
-                         << curves[0][14].load << " N, " << curves[1][14].load << " N");
+  WARN("load at 20 mm: " << curves[0][9].load << " N (100 elements), " << curves[1][9].load
+                         << " N (200); at 30 mm: " << curves[0][14].load << " N, " << curves[1][14].load << " N");
   CHECK(curves[0][9].load == Approx(curves[1][9].load).epsilon(0.01));
   CHECK(curves[0][14].load == Approx(curves[1][14].load).epsilon(0.01));
 
@@ -143,11 +143,9 @@ TEST_CASE("145 SR-12 on a flat road: force-deflection to 30 mm, stiffness near 3
   size_t i = 1;
   while (curve[i].load < 3800.0) ++i;
   const double tangent = (curve[i].load - curve[i - 1].load) / (curve[i].deflection - curve[i - 1].deflection);
-  const double deflection_3800 =
-      curve[i - 1].deflection + (3800.0 - curve[i - 1].load) / tangent;
-  WARN("145 SR-12, flat road, 208 kPa: 3800 N at " << deflection_3800 * 1e3 << " mm, secant "
-                                                    << 3.8 / deflection_3800 << " N/mm, tangent " << tangent / 1e3
-                                                    << " N/mm (Rhyne: 194 N/mm)");
+  const double deflection_3800 = curve[i - 1].deflection + (3800.0 - curve[i - 1].load) / tangent;
+  WARN("145 SR-12, flat road, 208 kPa: 3800 N at " << deflection_3800 * 1e3 << " mm, secant " << 3.8 / deflection_3800
+                                                   << " N/mm, tangent " << tangent / 1e3 << " N/mm (Rhyne: 194 N/mm)");
   CHECK(tangent / 1e3 >= 150.0);
   CHECK(tangent / 1e3 <= 250.0);
   CHECK(3.8 / deflection_3800 >= 150.0);
@@ -168,8 +166,8 @@ TEST_CASE("145 SR-12 on a flat road: force-deflection to 30 mm, stiffness near 3
   }
   for (int step : {9, 14}) {  // 20 and 30 mm
     const double chord = 2.0 * std::sqrt(2.0 * fine.inflated_radius * patch_curve[step].deflection);
-    WARN("deflection " << patch_curve[step].deflection * 1e3 << " mm: patch " << patch_curve[step].contact.patch_length * 1e3
-                       << " mm, chord " << chord * 1e3 << " mm");
+    WARN("deflection " << patch_curve[step].deflection * 1e3 << " mm: patch "
+                       << patch_curve[step].contact.patch_length * 1e3 << " mm, chord " << chord * 1e3 << " mm");
     CHECK(patch_curve[step].contact.patch_length > 0.2 * chord);
   }
   const auto forces = fine.contact_forces();
@@ -235,7 +233,7 @@ TEST_CASE("tire in contact: the assembled tangent equals finite differences, sti
   TireOnRoad loaded(60);
   const int slide = loaded.model.add_load_function(LoadFunction::table({{2.0, 0.0}, {3.0, 1.0}, {4.0, 2.0}}));
   loaded.add_contact(flat_road_at(loaded.lowest, RigidMotion::translation(MotionFunction::from_load_function(
-                                                    loaded.model.load_function(slide), 0.01))),
+                                                     loaded.model.load_function(slide), 0.01))),
                      0.3);
   loaded.press(0.020, 5);
   REQUIRE(nodes_in_state(*loaded.contact, ContactState::Stick) >= 3);
@@ -324,8 +322,8 @@ TEST_CASE("145 SR-12 rolling freely on a moving road: spin rate = speed / effect
   // in the patch: the effective rolling radius is v / omega = N l / (2 pi), kinematically.
   const double speed = 5.0, ramp = 0.15, hold = 0.15, deflection = 0.020;
   TireOnRoad rolling;
-  rolling.add_contact(flat_road_at(rolling.lowest, RigidMotion::translation(MotionFunction::ramped_rate(-speed, ramp, 2.0))),
-                      0.3);
+  rolling.add_contact(
+      flat_road_at(rolling.lowest, RigidMotion::translation(MotionFunction::ramped_rate(-speed, ramp, 2.0))), 0.3);
   const double static_load = rolling.press(deflection, 10).back().load;
   rolling.model.release(rolling.tire.spindle, kRz);
   rolling.analysis->set_integrator(Integrator::hht(-0.1));
@@ -356,10 +354,10 @@ TEST_CASE("145 SR-12 rolling freely on a moving road: spin rate = speed / effect
   const double spacing = (xs.back() - xs.front()) / (xs.size() - 1);
   const double kinematic_radius = rolling.tire.tread_nodes.size() * spacing / (2.0 * kPi);
   const double loaded_radius = rolling.inflated_radius - deflection;
-  WARN("rolling at " << speed << " m/s, " << load_sum / samples << " N: spin " << spin_rate << " rad/s, effective radius "
-                     << rolling_radius * 1e3 << " mm (N l / 2 pi " << kinematic_radius * 1e3 << " mm; loaded "
-                     << loaded_radius * 1e3 << " mm, unloaded " << rolling.inflated_radius * 1e3
-                     << " mm); drag " << drag_sum / samples << " N");
+  WARN("rolling at " << speed << " m/s, " << load_sum / samples << " N: spin " << spin_rate
+                     << " rad/s, effective radius " << rolling_radius * 1e3 << " mm (N l / 2 pi "
+                     << kinematic_radius * 1e3 << " mm; loaded " << loaded_radius * 1e3 << " mm, unloaded "
+                     << rolling.inflated_radius * 1e3 << " mm); drag " << drag_sum / samples << " N");
   CHECK(rolling_radius > loaded_radius);
   CHECK(rolling_radius < rolling.inflated_radius);
   CHECK(rolling_radius == Approx(kinematic_radius).epsilon(2e-3));
@@ -367,7 +365,8 @@ TEST_CASE("145 SR-12 rolling freely on a moving road: spin rate = speed / effect
   CHECK(load_sum / samples == Approx(static_load).epsilon(0.01));
 }
 
-TEST_CASE("a tread node jammed against a vertical cleat wall ends the run with a StepFailure", "[road][contact][failure]") {
+TEST_CASE("a tread node jammed against a vertical cleat wall ends the run with a StepFailure",
+          "[road][contact][failure]") {
   // The spindle is held and the road frictionless: a pressed tread node cannot climb a
   // vertical wall quasi-statically. Steps that scrape through at tiny sizes must not let the
   // step dwindle without end: the run stops below the nominal step / 4^max_cuts.
@@ -411,8 +410,8 @@ TEST_CASE("145 SR-12 rolling over a bump: tread nodes pass its rounded and sharp
                                                {start + height + top, y + height},
                                                {start + 2 * height + top, y},
                                                {3.0, y}};
-    tire.add_contact(std::make_shared<RoadProfile>(bump, edge_radius,
-                                                   RigidMotion::translation(MotionFunction::ramped_rate(-5.0, 0.1, 2.0))),
+    tire.add_contact(std::make_shared<RoadProfile>(
+                         bump, edge_radius, RigidMotion::translation(MotionFunction::ramped_rate(-5.0, 0.1, 2.0))),
                      0.3);
     const double static_load = tire.press(deflection, 10).back().load;
     tire.model.release(tire.tire.spindle, kRz);

@@ -21,8 +21,11 @@ constexpr double kPi = 3.14159265358979323846;
 
 std::string rdf(const std::string& units, const std::string& model, const std::string& parameters) {
   return "[MDI_HEADER]\nFILE_TYPE = 'rdf'\nFILE_VERSION = 5.0\nFILE_FORMAT = 'ASCII'\n"
-         "[UNITS]\nLENGTH = '" + units + "'\nFORCE = 'newton'\nANGLE = 'degrees'\nMASS = 'kg'\nTIME = 'second'\n"
-         "[MODEL]\nMETHOD = '2D'\n" + model + "\n[PARAMETERS]\n" + parameters;
+         "[UNITS]\nLENGTH = '" +
+         units +
+         "'\nFORCE = 'newton'\nANGLE = 'degrees'\nMASS = 'kg'\nTIME = 'second'\n"
+         "[MODEL]\nMETHOD = '2D'\n" +
+         model + "\n[PARAMETERS]\n" + parameters;
 }
 
 void check_points(const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& expected,
@@ -83,28 +86,27 @@ TEST_CASE("CSV road profiles: units in the header, names of the columns, left an
 
 TEST_CASE("road data files: a flat road at its OFFSET", "[contact][road_file]") {
   TempDir folder;
-  const RoadShape shape =
-      read_road_data_file(folder.write("flat.rdf", rdf("mm", "ROAD_TYPE = 'flat'", "OFFSET = 25\nMU = 1.0\n")),
-                          std::nullopt);
+  const RoadShape shape = read_road_data_file(
+      folder.write("flat.rdf", rdf("mm", "ROAD_TYPE = 'flat'", "OFFSET = 25\nMU = 1.0\n")), std::nullopt);
   CHECK(shape.kind == RoadShape::Kind::Flat);
   CHECK(shape.level == 0.025);
   CHECK(shape.road_type == "flat");
   // A flat road needs no [PARAMETERS].
-  const std::string bare = "[MDI_HEADER]\nFILE_TYPE = 'rdf'\nFILE_VERSION = 5.0\nFILE_FORMAT = 'ASCII'\n"
-                           "[UNITS]\nLENGTH = 'meter'\nFORCE = 'newton'\nANGLE = 'radians'\nMASS = 'kg'\n"
-                           "TIME = 'second'\n[MODEL]\nMETHOD = '2D'\nROAD_TYPE = 'FLAT'\nFUNCTION_NAME = 'ARC904'\n";
+  const std::string bare =
+      "[MDI_HEADER]\nFILE_TYPE = 'rdf'\nFILE_VERSION = 5.0\nFILE_FORMAT = 'ASCII'\n"
+      "[UNITS]\nLENGTH = 'meter'\nFORCE = 'newton'\nANGLE = 'radians'\nMASS = 'kg'\n"
+      "TIME = 'second'\n[MODEL]\nMETHOD = '2D'\nROAD_TYPE = 'FLAT'\nFUNCTION_NAME = 'ARC904'\n";
   CHECK(read_road_data_file(folder.write("bare.rdf", bare), RoadTrack::Left).level == 0.0);
 }
 
 TEST_CASE("road data files: poly_line tracks in mm and in inches, two, three and four columns",
           "[contact][road_file]") {
   TempDir folder;
-  const std::string three = folder.write(
-      "three.rdf", rdf("mm", "ROAD_TYPE = 'poly_line'",
-                       "OFFSET = 10\n(XZ_DATA)\n{ x z_l z_r }\n0 0 0\n900 0 0\n1000 100 -50\n1240 0 0\n"));
+  const std::string three =
+      folder.write("three.rdf", rdf("mm", "ROAD_TYPE = 'poly_line'",
+                                    "OFFSET = 10\n(XZ_DATA)\n{ x z_l z_r }\n0 0 0\n900 0 0\n1000 100 -50\n1240 0 0\n"));
   check_points(read_road_data_file(three, RoadTrack::Left).points, {{0, 0.01}, {0.9, 0.01}, {1, 0.11}, {1.24, 0.01}});
-  check_points(read_road_data_file(three, RoadTrack::Right).points,
-               {{0, 0.01}, {0.9, 0.01}, {1, -0.04}, {1.24, 0.01}});
+  check_points(read_road_data_file(three, RoadTrack::Right).points, {{0, 0.01}, {0.9, 0.01}, {1, -0.04}, {1.24, 0.01}});
   // Four columns: each track has its own x (here the right one lags by 10 inches).
   const std::string four = folder.write(
       "four.rdf", rdf("inch", "ROAD_TYPE = 'poly_line'", "(XZ_DATA)\n{}\n0 0 10 0\n20 1 30 2\n40 1 50 2\n"));
@@ -112,8 +114,7 @@ TEST_CASE("road data files: poly_line tracks in mm and in inches, two, three and
   check_points(read_road_data_file(four, RoadTrack::Right).points, {{0.254, 0}, {0.762, 0.0508}, {1.27, 0.0508}},
                1e-15);
   // Two columns serve both tracks.
-  const std::string two =
-      folder.write("two.rdf", rdf("meter", "ROAD_TYPE = 'poly_line'", "(XZ_DATA)\n0 0\n1 0.1\n"));
+  const std::string two = folder.write("two.rdf", rdf("meter", "ROAD_TYPE = 'poly_line'", "(XZ_DATA)\n0 0\n1 0.1\n"));
   check_points(read_road_data_file(two, std::nullopt).points, {{0, 0}, {1, 0.1}});
 }
 
@@ -173,10 +174,10 @@ TEST_CASE("road data files: a pot hole's edges and depth, and a bump from a nega
 
 TEST_CASE("road data files: a drum of DIAMETER with a rounded cleat", "[contact][road_file]") {
   TempDir folder;
-  const std::string drum = folder.write(
-      "drum.rdf", rdf("mm", "ROAD_TYPE = 'drum'",
-                      "DIAMETER = 1700\nNUMBER_CLEATS = 1\nCLEAT_HEIGHT = 25\nCLEAT_LENGTH = 20\n"
-                      "CLEAT_STARTING_ANGLE = 10\nCLEAT_BEVEL_EDGE_LENGTH = 5\nCLEAT_EDGE_ROUNDED = 1\n"));
+  const std::string drum =
+      folder.write("drum.rdf", rdf("mm", "ROAD_TYPE = 'drum'",
+                                   "DIAMETER = 1700\nNUMBER_CLEATS = 1\nCLEAT_HEIGHT = 25\nCLEAT_LENGTH = 20\n"
+                                   "CLEAT_STARTING_ANGLE = 10\nCLEAT_BEVEL_EDGE_LENGTH = 5\nCLEAT_EDGE_ROUNDED = 1\n"));
   const RoadShape shape = read_road_data_file(drum, std::nullopt);
   CHECK(shape.kind == RoadShape::Kind::Drum);
   CHECK(shape.diameter == 1.7);
@@ -189,9 +190,8 @@ TEST_CASE("road data files: a drum of DIAMETER with a rounded cleat", "[contact]
   CHECK(surface.project(1.0 * radial, 0.0).gap == Approx(1.0 - 0.875).margin(1e-12));  // on the cleat's top
   const Eigen::Vector2d top(0.0, 1.0);  // 10 degrees from the cleat: the bare drum
   CHECK(surface.project(1.0 * top, 0.0).gap == Approx(1.0 - 0.85).margin(1e-12));
-  const RoadShape bare =
-      read_road_data_file(folder.write("bare.rdf", rdf("meter", "ROAD_TYPE = 'drum'", "DIAMETER = 2.5\n")),
-                          std::nullopt);
+  const RoadShape bare = read_road_data_file(
+      folder.write("bare.rdf", rdf("meter", "ROAD_TYPE = 'drum'", "DIAMETER = 2.5\n")), std::nullopt);
   CHECK(bare.diameter == 2.5);
   CHECK(bare.cleat.height == 0.0);
 }
@@ -287,7 +287,8 @@ tirefe.check{ name = "normal", value = p.normal[2], expected = 1, tolerance = 1e
       {"model:surface{ name = \"s\", file = \"drum.rdf\", offset = 1 }", "'offset' does not apply to a drum surface"},
       {"model:surface{ name = \"s\", type = \"flat\", edge_radius = 0.01 }",
        "'edge_radius' does not apply to a flat surface"},
-      {"model:surface{ name = \"s\", type = \"flat\", file = \"road.txt\" }", "'file' does not apply to a flat surface"},
+      {"model:surface{ name = \"s\", type = \"flat\", file = \"road.txt\" }",
+       "'file' does not apply to a flat surface"},
       {"model:surface{ name = \"s\", type = \"drum\", diameter = 2, level = 1 }",
        "'level' does not apply to a drum surface"},
       {"model:surface{ name = \"s\", type = \"drum\", diameter = 2, file = \"road.txt\" }",

@@ -44,9 +44,7 @@ std::shared_ptr<const PressureSchedule> constant_pressure(double pressure) {
   return std::make_shared<const PressureSchedule>(PressureSchedule::constant(pressure));
 }
 
-Eigen::Vector2d on_circle(double radius, double angle) {
-  return {radius * std::cos(angle), radius * std::sin(angle)};
-}
+Eigen::Vector2d on_circle(double radius, double angle) { return {radius * std::cos(angle), radius * std::sin(angle)}; }
 
 /// One wedge of a 100-element ring, spindle slightly off the origin.
 struct WedgeGeometry {
@@ -109,8 +107,8 @@ TEST_CASE("arch: theta(L) solves eq. 1 to 1e-12 for L/l_sw in (0.05, 0.999), the
     if (theta < 0.0) ++negative_theta;
     // dtheta/dL = -dalpha/dL against a central difference.
     const double h = 1e-7 * l;
-    const double numerical = (solve_arch(chord + h, l).meridian_angle() - solve_arch(chord - h, l).meridian_angle()) /
-                             (2.0 * h);
+    const double numerical =
+        (solve_arch(chord + h, l).meridian_angle() - solve_arch(chord - h, l).meridian_angle()) / (2.0 * h);
     CHECK(-arch.dhalf_angle_dchord == Approx(numerical).epsilon(1e-6));
   }
   CHECK(negative_theta > 50);  // L/l_sw < 2/pi bulges past a semicircle
@@ -144,8 +142,9 @@ TEST_CASE("membrane law: the chord force of a pressurised circular arc, p r cos(
       CHECK(cord.force == Approx(sidewalls * kPressure * radius * std::cos(alpha)).epsilon(1e-12));
       CHECK(cord.force == Approx(sidewalls * kPressure * 0.5 * chord * std::tan(theta)).epsilon(1e-12));
       const double h = 1e-6 * chord;
-      const double numerical = (law.cord_force(chord + h, 0.9, kPressure).force -
-                                law.cord_force(chord - h, 0.9, kPressure).force) / (2.0 * h);
+      const double numerical =
+          (law.cord_force(chord + h, 0.9, kPressure).force - law.cord_force(chord - h, 0.9, kPressure).force) /
+          (2.0 * h);
       // Margin: the round-off of the difference quotient, relative to F/L.
       CHECK(cord.stiffness == Approx(numerical).epsilon(1e-6).margin(1e-8 * std::abs(cord.force) / chord));
     }
@@ -162,8 +161,8 @@ TEST_CASE("bending term: s k_sw (1/r^2 - 1/(r r0)) sin(theta), zero in the refer
     CHECK(law.cord_force(reference_chord, alpha0, 0.0).force == Approx(0.0).margin(1e-9));
     const ArchShape arch = solve_arch(chord, kCordLength);
     const double r = arch.radius(kCordLength), r0 = solve_arch(reference_chord, kCordLength).radius(kCordLength);
-    const double expected = sign * properties.bending_stiffness * (1.0 / (r * r) - 1.0 / (r * r0)) *
-                            std::sin(arch.meridian_angle());
+    const double expected =
+        sign * properties.bending_stiffness * (1.0 / (r * r) - 1.0 / (r * r0)) * std::sin(arch.meridian_angle());
     CHECK(law.cord_force(chord, alpha0, 0.0).force == Approx(expected).epsilon(1e-12));
   }
 }
@@ -194,8 +193,8 @@ TEST_CASE("near-straight cords: the law continues linearly past L*, finite, cont
     }
   }
   // With pressure the continued cord is a stiff spring: about 1.5 n_sw p / alpha*^3.
-  const double stretch_stiffness = law.cord_force(1.01 * l, alpha0, kPressure).stiffness -
-                                   law.cord_force(1.01 * l, alpha0, 0.0).stiffness;
+  const double stretch_stiffness =
+      law.cord_force(1.01 * l, alpha0, kPressure).stiffness - law.cord_force(1.01 * l, alpha0, 0.0).stiffness;
   CHECK(stretch_stiffness == Approx(1.5 * 2.0 * kPressure / 1e-3).epsilon(0.02));
 }
 
@@ -279,11 +278,9 @@ TEST_CASE("sidewall forces are invariant under large rigid-body motions", "[side
     for (double angle : {0.3, 1.7, -2.9, 6.0}) {
       const Eigen::Rotation2Dd rotation(angle);
       SidewallWedge::Vector residual;
-      wedge.evaluate(at_rest(geometry.rigid_motion(angle, {0.7, -0.4})), statics, history, history, residual,
-                     nullptr);
+      wedge.evaluate(at_rest(geometry.rigid_motion(angle, {0.7, -0.4})), statics, history, history, residual, nullptr);
       SidewallWedge::Vector expected = reference;
-      for (int node = 0; node < 3; ++node)
-        expected.segment<2>(3 * node) = rotation * reference.segment<2>(3 * node);
+      for (int node = 0; node < 3; ++node) expected.segment<2>(3 * node) = rotation * reference.segment<2>(3 * node);
       INFO("p = " << pressure << ", angle = " << angle);
       CHECK((residual - expected).norm() <= 1e-12 * reference.norm() + 1e-9);
     }
@@ -310,7 +307,8 @@ TEST_CASE("sidewall damping resists deformation rates only, not a rigid spin", "
   for (const Eigen::Vector2d* node : {&geometry.spindle, &geometry.tread_a, &geometry.tread_b}) {
     const Eigen::Vector2d position = *node + local.displacement.segment<2>(3 * n);
     const Eigen::Vector2d spindle = geometry.spindle + local.displacement.segment<2>(0);
-    local.velocity.segment<2>(3 * n) = drift + spin * Eigen::Vector2d(-(position - spindle).y(), (position - spindle).x());
+    local.velocity.segment<2>(3 * n) =
+        drift + spin * Eigen::Vector2d(-(position - spindle).y(), (position - spindle).x());
     local.velocity[3 * n + 2] = spin;
     ++n;
   }
@@ -450,7 +448,7 @@ TEST_CASE("tread pressure: p w l on each chord, outward, and zero net force on a
     const Eigen::Vector2d chord = deformed[j] - deformed[i];
     CHECK(force.norm() == Approx(0.5 * kPressure * kTreadWidth * chord.norm()).epsilon(1e-13));
     CHECK(std::abs(force.dot(chord)) <= 1e-12 * force.norm() * chord.norm());
-    CHECK(force.dot(deformed[i] + deformed[j]) > 0.0);  // away from the centre
+    CHECK(force.dot(deformed[i] + deformed[j]) > 0.0);                       // away from the centre
     CHECK((residual.segment<2>(0) - residual.segment<2>(3)).norm() == 0.0);  // split equally
     CHECK(residual[2] == 0.0);
     CHECK(residual[5] == 0.0);
@@ -538,8 +536,8 @@ TEST_CASE("inflated ring: round, no spindle reaction, hoop force N = R (p w - F_
     const ArchShape arch = solve_arch(chord, kCordLength);
     const double theta = arch.meridian_angle(), r = arch.radius(kCordLength);
     const double r0 = kCordLength / (2.0 * sidewalls.kernel(0).reference_half_angle(0));
-    const double sidewall_force = 2.0 * kPressure * 0.5 * chord * std::tan(theta) +
-                                  bending * (1.0 / (r * r) - 1.0 / (r * r0)) * std::sin(theta);
+    const double sidewall_force =
+        2.0 * kPressure * 0.5 * chord * std::tan(theta) + bending * (1.0 / (r * r) - 1.0 / (r * r0)) * std::sin(theta);
     const double hoop = radius * (kPressure * kTreadWidth - sidewall_force);
     INFO("R = " << radius << ", L = " << chord << ", theta = " << theta << ", N = " << hoop);
     CHECK(hoop > 1000.0);  // the tread is in tension

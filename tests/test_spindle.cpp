@@ -75,7 +75,7 @@ TEST_CASE("spindle Jacobian H_ss equals central differences of the spindle force
   REQUIRE(summary.nodes_in_contact >= 3);
   CHECK(std::abs(summary.force.x()) > 0.01 * std::abs(summary.force.y()));  // friction acts in the patch
   const double spin_rate = rolling.tire.analysis().state().velocity[dof_index(rolling.tire.tire().spindle, 2)];
-  CHECK(spin_rate < -1.0);                // the road drags the tire into rolling (clockwise)
+  CHECK(spin_rate < -1.0);  // the road drags the tire into rolling (clockwise)
 
   const SpindleReply centre = rolling.solve(0.0, -kDeflection);
   const SpindleJacobian jacobian = jacobian_of(centre);
@@ -145,8 +145,9 @@ TEST_CASE("driven-DOF solves and the Schur complement equal dense linear algebra
   driven.factorize(sparse);
 
   const int u = n - s;
-  const Eigen::MatrixXd schur = dense.bottomRightCorner(s, s) - dense.bottomLeftCorner(s, u) *
-                                                                    dense.topLeftCorner(u, u).lu().solve(dense.topRightCorner(u, s));
+  const Eigen::MatrixXd schur =
+      dense.bottomRightCorner(s, s) -
+      dense.bottomLeftCorner(s, u) * dense.topLeftCorner(u, u).lu().solve(dense.topRightCorner(u, s));
   CHECK((Eigen::MatrixXd(driven.schur_complement()) - schur).norm() < 1e-13 * schur.norm());
 
   Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0), x = rhs;
@@ -163,8 +164,8 @@ TEST_CASE("spindle Jacobian H_ss with a driven spin (a braked wheel) equals cent
   rolling.tire.analysis().newton_settings().residual_tolerance = 1e-12;
   rolling.roll(60);
   const SpindleReply centre = rolling.solve(0.0, -kDeflection);
-  CHECK(force_of(centre)[0] > 100.0);  // the axle holds the braked wheel against the road ...
-  CHECK(force_of(centre)[2] > 10.0);   // ... and the brake a moment against its clockwise spin
+  CHECK(force_of(centre)[0] > 100.0);          // the axle holds the braked wheel against the road ...
+  CHECK(force_of(centre)[2] > 10.0);           // ... and the brake a moment against its clockwise spin
   const double delta[3] = {1e-7, 1e-7, 1e-6};  // m, m, rad
   SpindleJacobian difference;
   for (int j = 0; j < 3; ++j) {
@@ -180,8 +181,8 @@ TEST_CASE("spindle Jacobian H_ss with a driven spin (a braked wheel) equals cent
   const TireParameters parameters = macros::load_tire_parameters("tires.145SR12");
   const double inertia_factor = 1.0 / (rolling.tire.analysis().integrator().beta() * kStep * kStep);
   SpindleJacobian structural = jacobian;
-  structural.diagonal() -= inertia_factor * Eigen::Vector3d(parameters.rim_mass, parameters.rim_mass,
-                                                              parameters.rim_rotary_inertia);
+  structural.diagonal() -=
+      inertia_factor * Eigen::Vector3d(parameters.rim_mass, parameters.rim_mass, parameters.rim_rotary_inertia);
   for (int j = 0; j < 3; ++j) {
     const double scale = structural.col(j).cwiseAbs().maxCoeff();
     CHECK(scale > 0.0);

@@ -25,10 +25,10 @@ namespace tirefe::testing {
 /// given factors, to compare with the kernel's own tangent.
 template <class Kernel>
 typename ElementBlockOf<Kernel>::Matrix finite_difference_tangent(const Kernel& kernel,
-                                                                    const LocalState<Kernel::kDofs>& local,
-                                                                    const EvaluationContext& context,
-                                                                    const typename Kernel::History& committed,
-                                                                    double step = 1e-6) {
+                                                                  const LocalState<Kernel::kDofs>& local,
+                                                                  const EvaluationContext& context,
+                                                                  const typename Kernel::History& committed,
+                                                                  double step = 1e-6) {
   using Vector = typename ElementBlockOf<Kernel>::Vector;
   typename ElementBlockOf<Kernel>::Matrix tangent;
   tangent.setZero();
@@ -56,8 +56,7 @@ typename ElementBlockOf<Kernel>::Matrix finite_difference_tangent(const Kernel& 
     column(&LocalState<Kernel::kDofs>::displacement, context, f.tangent_stiffness / f.force_stiffness);
     if (f.force_damping != 0.0)
       column(&LocalState<Kernel::kDofs>::velocity, damping_only, f.tangent_damping / f.force_damping);
-    if (f.force_mass != 0.0)
-      column(&LocalState<Kernel::kDofs>::acceleration, mass_only, f.tangent_mass / f.force_mass);
+    if (f.force_mass != 0.0) column(&LocalState<Kernel::kDofs>::acceleration, mass_only, f.tangent_mass / f.force_mass);
   }
   return tangent;
 }
@@ -111,8 +110,8 @@ double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kD
   constexpr auto idle = detail::IdleDofs<Kernel>::mask();
   for (int i = 0; i < Kernel::kDofs; ++i)
     if (idle[i])
-      largest = std::max({largest, std::abs(residual[i]), tangent.row(i).cwiseAbs().maxCoeff(),
-                          tangent.col(i).cwiseAbs().maxCoeff()});
+      largest = std::max(
+          {largest, std::abs(residual[i]), tangent.row(i).cwiseAbs().maxCoeff(), tangent.col(i).cwiseAbs().maxCoeff()});
   if constexpr (!detail::ReadsAcceleration<Kernel>::value) {
     LocalState<Kernel::kDofs> at_rest = local;
     at_rest.acceleration.setZero();

@@ -96,8 +96,7 @@ TEST_CASE("a road's outline: the profile exact where the road moved, its rays ou
   CHECK(far.back().x() == Approx(centre.x() + reach).epsilon(1e-15));
 }
 
-TEST_CASE("a tilted flat road's outline: its anchor between two ends the reach past the centre",
-          "[contact][outline]") {
+TEST_CASE("a tilted flat road's outline: its anchor between two ends the reach past the centre", "[contact][outline]") {
   const Eigen::Vector2d anchor(0.0, -0.1), direction = Eigen::Vector2d(1.0, 0.1).normalized();
   const FlatRoad road(anchor, direction);
   const Eigen::Vector2d centre(0.4, 0.5);

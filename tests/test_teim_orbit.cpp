@@ -91,14 +91,16 @@ TEST_CASE("[UNITS] converts every dimension to SI: mm, inch, lbf, lbm, degrees, 
         replaced(kSiHeader, "'meter'", "'MM'") + "[P]\nR = 271.5\nS = 1\nP = 0.25\n", "mm.tir");
     io::TeimOrbitReader reader(file, "tir");
     CHECK(same_bits(*reader.number("P", "R", {1}), 0.2715));
-    CHECK(*reader.number("p", "s", {-2, 1}) == 1e6);  // N/mm^2 = 1e6 N/m^2
+    CHECK(*reader.number("p", "s", {-2, 1}) == 1e6);                // N/mm^2 = 1e6 N/m^2
     CHECK(*reader.number("P", "P", {0, 0, 0, 0, 0, 1}) == 0.25e6);  // pressure without PRESSURE: FORCE/LENGTH^2
     reader.finish();
   }
   SECTION("inch, lbf, lbm, degrees, milliseconds and a PRESSURE unit") {
     std::string header = kSiHeader;
     for (const auto& [from, to] : {std::pair<std::string, std::string>{"'meter'", "'inch'"},
-                                   {"'newton'", "'lbf'"}, {"'radians'", "'degrees'"}, {"'kg'", "'pound_mass'"},
+                                   {"'newton'", "'lbf'"},
+                                   {"'radians'", "'degrees'"},
+                                   {"'kg'", "'pound_mass'"},
                                    {"'second'", "'millisecond'"}})
       header = replaced(header, from, to);
     const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
@@ -151,8 +153,8 @@ TEST_CASE("missing, unknown or misspelt units and headers are errors naming the 
     CHECK_THROWS_WITH(io::TeimOrbitReader(file, "tir"), Contains(message));
   }
   SECTION("a value that is not a number, and keys and sections nobody asked for") {
-    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
-        kSiHeader + "[TREAD]\nWIDTH = wide\nDEPTH = '1'\nWIDHT = 2\n[TRED]\nX = 1\n", "v.tir");
+    const io::TeimOrbitFile file =
+        io::TeimOrbitFile::parse(kSiHeader + "[TREAD]\nWIDTH = wide\nDEPTH = '1'\nWIDHT = 2\n[TRED]\nX = 1\n", "v.tir");
     io::TeimOrbitReader reader(file, "tir");
     CHECK_THROWS_WITH(reader.number("TREAD", "WIDTH", {1}), Contains("v.tir:12: [TREAD] WIDTH = wide is not a finite"));
     CHECK_THROWS_WITH(reader.number("TREAD", "DEPTH", {1}), Contains("v.tir:13: [TREAD] DEPTH = '1' is a string"));

@@ -70,7 +70,8 @@ TEST_CASE("hub-fixed inflated tire: belt rotation (n = 0) and translation (n = 1
   LocalState<9> local;
   local.velocity.setZero();
   local.acceleration.setZero();
-  for (int n = 0; n < 3; ++n) local.displacement.segment<3>(3 * n) = state.displacement.segment<3>(dof_index(nodes[n], 0));
+  for (int n = 0; n < 3; ++n)
+    local.displacement.segment<3>(3 * n) = state.displacement.segment<3>(dof_index(nodes[n], 0));
   const Eigen::Vector2d xa = model.mesh().position(nodes[1]) + local.displacement.segment<2>(3);
   const Eigen::Vector2d xb = model.mesh().position(nodes[2]) + local.displacement.segment<2>(6);
   const double chord = (xb - xa).norm();
@@ -123,7 +124,9 @@ TEST_CASE("hub-fixed inflated tire: belt rotation (n = 0) and translation (n = 1
     // The translation pair may come in any orientation: x and y correlations together.
     Eigen::VectorXd turned = Eigen::VectorXd::Zero(translation.size());
     for (int node : inflated.tire.tread_nodes) turned[dof_index(node, kUy)] = 1.0;
-    const auto pair_mac = [&](int k) { return mac(modes.shapes.col(k), translation) + mac(modes.shapes.col(k), turned); };
+    const auto pair_mac = [&](int k) {
+      return mac(modes.shapes.col(k), translation) + mac(modes.shapes.col(k), turned);
+    };
     if (pair_mac(m) > pair_mac(translation_mode)) translation_mode = m;
   }
   CHECK(pull > 0.5 * parameters.pressure * parameters.tread_width);  // most of p w goes into the sidewalls
@@ -182,7 +185,8 @@ TEST_CASE("tread layer held on the road side adds its stiffness to the hub-fixed
     analysis.set_time_step(0.25);
     analysis.advance(1.0);
     CHECK(tire.contact_nodes == tire.tread_nodes);
-    std::tie(bare_rotation, bare_translation) = ring_mode_frequencies(model, tire.tread_nodes, modal_analysis(analysis, 8));
+    std::tie(bare_rotation, bare_translation) =
+        ring_mode_frequencies(model, tire.tread_nodes, modal_analysis(analysis, 8));
   }
   Model model;
   const Tire tire = build_tire(model, layered, LoadFunction::linear());
@@ -195,7 +199,8 @@ TEST_CASE("tread layer held on the road side adds its stiffness to the hub-fixed
   const State& state = analysis.state();
   for (size_t i = 0; i < tire.tread_nodes.size(); ++i)
     CHECK((state.displacement.segment<2>(dof_index(tire.contact_nodes[i], 0)) -
-           state.displacement.segment<2>(dof_index(tire.tread_nodes[i], 0))).norm() <= 1e-12);
+           state.displacement.segment<2>(dof_index(tire.tread_nodes[i], 0)))
+              .norm() <= 1e-12);
   for (int node : tire.contact_nodes)
     for (int c : {kUx, kUy}) model.prescribe(node, c, state.displacement[dof_index(node, c)], Model::kRampLoadFunction);
   const auto [rotation, translation] = ring_mode_frequencies(model, tire.tread_nodes, modal_analysis(analysis, 8));
@@ -212,8 +217,7 @@ TEST_CASE("tread layer held on the road side adds its stiffness to the hub-fixed
   CHECK(translation > bare_translation);
 }
 
-TEST_CASE("a lone tire, with or without a tread layer, is solved by the RingSolver to KLU's answer",
-          "[tire][solver]") {
+TEST_CASE("a lone tire, with or without a tread layer, is solved by the RingSolver to KLU's answer", "[tire][solver]") {
   // prefer_ring_solver() picks the structured solver where the pattern fits: a ring of
   // belt nodes and its spindle, with a tread layer's contact nodes as satellites of the
   // belt nodes; both inflate to the state a KLU-only analysis reaches.

@@ -144,8 +144,8 @@ TEST_CASE("tire property file errors name the deck line, the file, its line and 
   const Case cases[] = {
       {misspelt, "bad.tir:" + line_of(misspelt, "BENDING_STIFNESS") +
                      ": [TREAD] unknown key 'BENDING_STIFNESS' (did you mean 'BENDING_STIFFNESS'?"},
-      {section, "bad.tir:" + line_of(section, "[TREAD_LAYR]") +
-                    ": unknown section [TREAD_LAYR] (did you mean '[TREAD_LAYER]'?"},
+      {section,
+       "bad.tir:" + line_of(section, "[TREAD_LAYR]") + ": unknown section [TREAD_LAYR] (did you mean '[TREAD_LAYER]'?"},
       {twice, "bad.tir:" + std::to_string(std::stoi(line_of(twice, "MASS = 3")) + 1) +
                   ": [RIM] MASS is given twice (first at line " + line_of(twice, "MASS = 3") + ")"},
       {not_number, "bad.tir:" + line_of(not_number, "0.11m") + ": [TREAD] WIDTH = 0.11m is not a finite number"},

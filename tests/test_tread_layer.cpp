@@ -149,8 +149,10 @@ TEST_CASE("contact node on a held belt node: two modes sqrt(k/m) and their suppo
   model.fix(contact, 2);
   const ModalResult modes = modal_analysis(model, State{}, 2);
   const double two_pi = 2.0 * M_PI, amplitude = 1.0 / std::sqrt(properties.mass);
-  CHECK(modes.frequencies_hz[0] == Approx(std::sqrt(properties.circumferential_stiffness / properties.mass) / two_pi).epsilon(1e-10));
-  CHECK(modes.frequencies_hz[1] == Approx(std::sqrt(properties.radial_stiffness / properties.mass) / two_pi).epsilon(1e-10));
+  CHECK(modes.frequencies_hz[0] ==
+        Approx(std::sqrt(properties.circumferential_stiffness / properties.mass) / two_pi).epsilon(1e-10));
+  CHECK(modes.frequencies_hz[1] ==
+        Approx(std::sqrt(properties.radial_stiffness / properties.mass) / two_pi).epsilon(1e-10));
   CHECK(std::abs(modes.shapes(dof_index(contact, 0), 0)) == Approx(amplitude).epsilon(1e-10));
   CHECK(modes.reactions(dof_index(belt, 0), 0) ==
         Approx(-properties.circumferential_stiffness * modes.shapes(dof_index(contact, 0), 0)).epsilon(1e-8));

@@ -102,15 +102,16 @@ TEST_CASE("quarter car: the wheel-hop frequency is that of the linearised two-ma
 
   std::vector<double> peaks;  // times of the wheel's local maxima
   for (size_t i = 1; i + 1 < wheel.size(); ++i)
-    if (wheel[i].second > wheel[i - 1].second && wheel[i].second >= wheel[i + 1].second) peaks.push_back(wheel[i].first);
+    if (wheel[i].second > wheel[i - 1].second && wheel[i].second >= wheel[i + 1].second)
+      peaks.push_back(wheel[i].first);
   REQUIRE(peaks.size() >= 3);
   const double measured = (peaks.size() - 1) / (peaks.back() - peaks.front());
   // Linearised quarter car: masses m_b and m_u, springs k_s and k_t; the higher
   // eigenfrequency is the hop. m_u = carrier + rim + belt: at ~11 Hz, far below its own
   // modes (~90 Hz), the belt ring moves with the hub (without the belt, 4% too high).
   const TireParameters parameters = macros::load_tire_parameters("tires.145SR12");
-  const double unsprung = kCarrierMass + parameters.rim_mass +
-                          parameters.tread.mass_per_length * M_PI * parameters.outer_diameter;
+  const double unsprung =
+      kCarrierMass + parameters.rim_mass + parameters.tread.mass_per_length * M_PI * parameters.outer_diameter;
   Eigen::Matrix2d stiffness, mass = Eigen::Vector2d(kBodyMass, unsprung).asDiagonal();
   stiffness << kSpring, -kSpring, -kSpring, kSpring + k_tire;
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> modes(stiffness, mass);

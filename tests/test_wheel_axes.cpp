@@ -18,11 +18,11 @@ TEST_CASE("wheel axes: forces the tire exerts on the wheel from the spindle's re
   const Eigen::Vector3d reaction(-250.0, -3000.0, 40.0);
   const Eigen::Vector3d plus = wheel_load_from_reaction(reaction, Heading::PlusX);
   const Eigen::Vector3d minus = wheel_load_from_reaction(reaction, Heading::MinusX);
-  CHECK(plus.x() == 250.0);     // along the heading +x: driving
-  CHECK(minus.x() == -250.0);   // against the heading -x: braking
-  CHECK(plus.y() == 3000.0);    // Fz up: the load, whatever the heading
+  CHECK(plus.x() == 250.0);    // along the heading +x: driving
+  CHECK(minus.x() == -250.0);  // against the heading -x: braking
+  CHECK(plus.y() == 3000.0);   // Fz up: the load, whatever the heading
   CHECK(minus.y() == 3000.0);
-  CHECK(plus.z() == 40.0);      // y_ISO into the page: a counter-clockwise moment M_z = -40 is +40 about it
+  CHECK(plus.z() == 40.0);  // y_ISO into the page: a counter-clockwise moment M_z = -40 is +40 about it
   CHECK(minus.z() == -40.0);
   // Rolling forward: clockwise toward +x, counter-clockwise toward -x.
   CHECK(wheel_spin_rate(-12.5, Heading::PlusX) == 12.5);

@@ -25,8 +25,8 @@ namespace {
 
 int count(const std::string& text, const std::string& pattern) {
   const std::regex expression(pattern);
-  return static_cast<int>(std::distance(std::sregex_iterator(text.begin(), text.end(), expression),
-                                        std::sregex_iterator()));
+  return static_cast<int>(
+      std::distance(std::sregex_iterator(text.begin(), text.end(), expression), std::sregex_iterator()));
 }
 
 std::string read_text(const std::string& path) {
@@ -35,14 +35,15 @@ std::string read_text(const std::string& path) {
 }
 
 XdmfGrid points_grid(const std::string& name) {
+  // clang-format off
   return {name, "Polyvertex", 2, 1, {"/mesh/node_sets/" + name, {2}, true}, {"/mesh/coordinates", {5, 2}},
           {{"displacement", "Vector", "Node", {"/fields/frames/{frame}/displacement", {5, 3}}}}};
+  // clang-format on
 }
 
 }  // namespace
 
-TEST_CASE("XDMF index: a temporal collection per grid, whole datasets per frame, the first grid last",
-          "[io][xdmf]") {
+TEST_CASE("XDMF index: a temporal collection per grid, whole datasets per frame, the first grid last", "[io][xdmf]") {
   XdmfIndex index("run&co.h5");
   XdmfGrid mesh{"mesh", "Mixed", 3, 0, {"/mesh/cells", {11}, true}, {"/mesh/coordinates", {5, 2}}, {}};
   mesh.attributes = {{"displacement", "Vector", "Node", {"/fields/frames/{frame}/displacement", {5, 3}}},
@@ -58,21 +59,31 @@ TEST_CASE("XDMF index: a temporal collection per grid, whole datasets per frame,
   CHECK(count(text, "GridType=\"Collection\" CollectionType=\"Temporal\"") == 3);
   CHECK(count(text, "GridType=\"Uniform\"") == 9);
   // The mesh, added first, is the last collection (the one meshio reads).
-  CHECK(text.find("<Grid Name=\"contact\" GridType=\"Collection\"") < text.find("<Grid Name=\"late\" GridType=\"Collection\""));
-  CHECK(text.find("<Grid Name=\"late\" GridType=\"Collection\"") < text.find("<Grid Name=\"mesh\" GridType=\"Collection\""));
+  CHECK(text.find("<Grid Name=\"contact\" GridType=\"Collection\"") <
+        text.find("<Grid Name=\"late\" GridType=\"Collection\""));
+  CHECK(text.find("<Grid Name=\"late\" GridType=\"Collection\"") <
+        text.find("<Grid Name=\"mesh\" GridType=\"Collection\""));
   // Times read back exactly, in their shortest form.
   CHECK(count(text, "<Time Value=\"0.005\" />") == 3);
   CHECK(count(text, "<Time Value=") == 9);
   CHECK(count(text, "TopologyType=\"Mixed\" NumberOfElements=\"3\">") == 3);
   CHECK(count(text, "TopologyType=\"Polyvertex\" NumberOfElements=\"2\" NodesPerElement=\"1\">") == 6);
   // Every frame names its own whole dataset; the file name is escaped.
-  CHECK(count(text, "Dimensions=\"5 3\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/fields/frames/2/displacement<") == 3);
-  CHECK(count(text, "Dimensions=\"5\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/fields/frames/1/rotation<") == 1);
+  CHECK(
+      count(
+          text,
+          "Dimensions=\"5 3\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/fields/frames/2/displacement<") ==
+      3);
+  CHECK(
+      count(
+          text,
+          "Dimensions=\"5\" DataType=\"Float\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/fields/frames/1/rotation<") ==
+      1);
   CHECK(count(text, "<Attribute Name=\"block\" AttributeType=\"Scalar\" Center=\"Cell\">") == 3);
   CHECK(count(text, "DataType=\"Int\" Precision=\"8\" Format=\"HDF\">run&amp;co.h5:/mesh/cells<") == 3);
   CHECK(count(text, "\\{frame\\}") == 0);
   CHECK(count(text, "HyperSlab|Function") == 0);  // what ParaView 5.11's Xdmf3 readers fail on
-  CHECK(index.size() <= text.size());  // the frames, which are nearly all of it
+  CHECK(index.size() <= text.size());             // the frames, which are nearly all of it
   CHECK(index.size() > 0.9 * text.size());
 }
 
@@ -101,7 +112,8 @@ struct Ring {
     const int spindle = model.mesh().add_node(Eigen::Vector2d(0.1, 0.4));
     for (int i = 0; i < 6; ++i) {
       const double angle = 2.0 * 3.14159265358979 * i / 6;
-      ring.push_back(model.mesh().add_node(Eigen::Vector2d(0.1, 0.4) + 0.3 * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
+      ring.push_back(
+          model.mesh().add_node(Eigen::Vector2d(0.1, 0.4) + 0.3 * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
     }
     model.mesh().add_node(Eigen::Vector2d(2.0, 0.0));  // a node of no tire
     model.mesh().define_node_set("ring", ring);

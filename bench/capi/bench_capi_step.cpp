@@ -5,8 +5,8 @@
 // same machine load. Prints the time per step of each, the differences (median over the
 // steps and from the totals), and the cost of a C call that does no work (the lock and
 // the guard). The C++ and C tires are the same code in libtirefe.so and must agree bit
-// for bit, the C++ reaction seen in the C API's ISO wheel axes (heading +x); the FMU's (its own copy of the code, its tire read from its property file) is
-// compared too.
+// for bit, the C++ reaction seen in the C API's ISO wheel axes (heading +x); the FMU's (its own copy of the code, its
+// tire read from its property file) is compared too.
 //
 //   bench_capi_step [STEPS]      (default 400)
 #include <algorithm>
@@ -65,7 +65,8 @@ class FmuTire {
   void step(double time_step, const Eigen::Vector3d& wheel, double force[3]) {
     static const fmi2ValueReference inputs[] = {0, 1, 2}, outputs[] = {3, 4, 5};
     const fmi2Real position[] = {wheel.x(), wheel.y(), wheel.z()};
-    if (set_real_(component_, inputs, 3, position) != fmi2OK || do_step_(component_, time_, time_step, fmi2True) != fmi2OK ||
+    if (set_real_(component_, inputs, 3, position) != fmi2OK ||
+        do_step_(component_, time_, time_step, fmi2True) != fmi2OK ||
         get_real_(component_, outputs, 3, force) != fmi2OK)
       throw std::runtime_error("an FMU step failed");
     time_ += time_step;
@@ -81,8 +82,8 @@ class FmuTire {
   void* library_ = nullptr;
   fmi2Component component_ = nullptr;
   double time_ = 0.0;
-  fmi2Component (*instantiate_)(fmi2String, fmi2Type, fmi2String, fmi2String, const fmi2CallbackFunctions*,
-                                fmi2Boolean, fmi2Boolean) = nullptr;
+  fmi2Component (*instantiate_)(fmi2String, fmi2Type, fmi2String, fmi2String, const fmi2CallbackFunctions*, fmi2Boolean,
+                                fmi2Boolean) = nullptr;
   fmi2Status (*setup_)(fmi2Component, fmi2Boolean, fmi2Real, fmi2Real, fmi2Boolean, fmi2Real) = nullptr;
   fmi2Status (*enter_)(fmi2Component) = nullptr;
   fmi2Status (*exit_)(fmi2Component) = nullptr;
@@ -98,9 +99,9 @@ int main(int argc, char** argv) {
   const int steps = argc > 1 ? std::atoi(argv[1]) : 400;
   const double h = 1e-3;
   using namespace tirefe;
-  TireOnRoad cpp_tire(macros::load_tire_parameters("tires.145SR12"),
-                      [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); },
-                      RoadContact{0.8});
+  TireOnRoad cpp_tire(
+      macros::load_tire_parameters("tires.145SR12"),
+      [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); }, RoadContact{0.8});
   TireSpindle& spindle = cpp_tire.drive(Integrator::newmark());
   char error[512];
   tirefe_tire* c_tire = nullptr;

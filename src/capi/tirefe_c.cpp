@@ -37,7 +37,7 @@ struct tirefe_tire {
   int spindle_node = -1;
   tirefe::TireSpindle* spindle = nullptr;
   tirefe::Heading heading = tirefe::Heading::PlusX;  // of the wheel axes every value crosses the API in
-  bool has_trial = false;  // a solved step waits for commit or revert
+  bool has_trial = false;                            // a solved step waits for commit or revert
   std::string message;
 };
 
@@ -162,7 +162,8 @@ struct HostTire {
 int read_host_tire(lua_State* L) {
   auto* host = static_cast<HostTire*>(lua_touserdata(L, 1));
   if (lua_getglobal(L, "host_tire") != LUA_TTABLE)
-    throw ModelError("the deck names no tire for the host: end it with host_tire = { model = model, spindle = tire.spindle }");
+    throw ModelError(
+        "the deck names no tire for the host: end it with host_tire = { model = model, spindle = tire.spindle }");
   lua_getfield(L, -1, "model");
   host->deck = &macros::check_model(L, -1);
   lua_getfield(L, -2, "spindle");
@@ -269,9 +270,8 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
   tirefe_options chosen;
   tirefe_default_options(&chosen);
   if (options) chosen = *options;
-  const tirefe_status status = without_handle(error, error_size, [&] {
-    *tire = open_tire(source, parameter_values(overrides, count), chosen).release();
-  });
+  const tirefe_status status = without_handle(
+      error, error_size, [&] { *tire = open_tire(source, parameter_values(overrides, count), chosen).release(); });
   // Building the tire is not a step: a failure to inflate it is the parameters' fault.
   return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
 }
@@ -280,8 +280,7 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
                                    const double* deflections, size_t n, double* forces, char* error,
                                    size_t error_size) {
   if (!source || (count > 0 && !overrides) || (n > 0 && (!deflections || !forces))) {
-    copy_message("tirefe_static_forces: source, overrides, deflections and forces must not be NULL", error,
-                 error_size);
+    copy_message("tirefe_static_forces: source, overrides, deflections and forces must not be NULL", error, error_size);
     return TIREFE_INVALID_ARGUMENT;
   }
   return without_handle(error, error_size, [&] {

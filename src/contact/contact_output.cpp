@@ -47,10 +47,12 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactB
     return &hdf5.create_compressed_extendible(group + name, row, unit);
   };
   auto datasets = std::make_shared<Datasets>(Datasets{&hdf5.create_extendible(group + "time", {}, "s"),
-                                                      field("gap", "m"), field("normal_force", "N"),
+                                                      field("gap", "m"),
+                                                      field("normal_force", "N"),
                                                       field("tangential_force", "N"),
                                                       field("state", "0 open, 1 stick, 2 slip"),
-                                                      field("coordinate", "m"), field("sliding_velocity", "m/s"),
+                                                      field("coordinate", "m"),
+                                                      field("sliding_velocity", "m/s"),
                                                       {}});
   const ContactBlock* source = &block;
   analysis.add_step_observer([datasets, source, every](const Analysis& run, const StepRecord& record) {

@@ -74,7 +74,7 @@ struct ContactHistory {
   double normal_multiplier = 0.0;      // lambda_N [N]
   double tangential_multiplier = 0.0;  // lambda_T [N]
   ContactState state = ContactState::Open;
-  std::int32_t unused_after_state = 0;  // explicit padding: checkpoints copy every byte
+  std::int32_t unused_after_state = 0;                           // explicit padding: checkpoints copy every byte
   double coordinate = std::numeric_limits<double>::quiet_NaN();  // s at the last evaluation [m]
   // Results of the last evaluation (output).
   double gap = std::numeric_limits<double>::infinity();  // [m]

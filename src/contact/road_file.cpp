@@ -75,8 +75,7 @@ struct Obstacle {
 /// and DIRECTION, which must be 0: an obstacle at an angle to the road meets the left and
 /// right wheels at different places. 'more' reads the type's other keys.
 template <class More>
-Obstacle read_obstacle(RoadParameters& parameters, const char* size_key, const std::string& size_meaning,
-                       More&& more) {
+Obstacle read_obstacle(RoadParameters& parameters, const char* size_key, const std::string& size_meaning, More&& more) {
   const auto size = parameters.number(size_key), start = parameters.number("START");
   const auto length = parameters.number("LENGTH");
   const double direction = parameters.number("DIRECTION", kAngle).value_or(0.0);
@@ -134,8 +133,8 @@ std::vector<Eigen::Vector2d> poly_line(RoadParameters& parameters, double offset
   for (size_t row = 0; row < data->rows.size(); ++row) {
     const std::vector<double> values = reader.row_numbers(*data, row, kLength);
     if (values.size() != width)
-      reader.fail(data->row_lines[row], "(XZ_DATA) row has " + std::to_string(values.size()) + " values, expected " +
-                                            std::to_string(width));
+      reader.fail(data->row_lines[row],
+                  "(XZ_DATA) row has " + std::to_string(values.size()) + " values, expected " + std::to_string(width));
     const double x = width == 4 && !left ? values[2] : values[0];
     const double z = width == 2 || left ? values[1] : values[width - 1];
     if (const auto problem = append_point(points, {x, z + offset}))
@@ -166,8 +165,9 @@ RoadShape drum(RoadParameters& parameters, double offset) {
     return shape;
   }
   if (!height || !length || !angle)
-    parameters.fail("NUMBER_CLEATS", "a cleat needs CLEAT_HEIGHT, CLEAT_LENGTH (along the drum surface) and "
-                                     "CLEAT_STARTING_ANGLE (its middle, from the drum's top)");
+    parameters.fail("NUMBER_CLEATS",
+                    "a cleat needs CLEAT_HEIGHT, CLEAT_LENGTH (along the drum surface) and "
+                    "CLEAT_STARTING_ANGLE (its middle, from the drum's top)");
   parameters.require(*height > 0.0, "CLEAT_HEIGHT", "must be positive");
   parameters.require(*length > 0.0, "CLEAT_LENGTH", "must be positive");
   parameters.require(rounded == 0.0 || rounded == 1.0, "CLEAT_EDGE_ROUNDED", "must be 0 or 1");

@@ -311,8 +311,8 @@ void SurfaceCurve::number_arc_length() {
     const Piece& p = pieces_[i];
     if (!std::isfinite(p.begin_) || !std::isfinite(p.end_)) continue;
     balls_[i].centre = p.point(0.5 * (p.begin_ + p.end_));
-    balls_[i].radius = p.arc_ ? 2.0 * p.radius_ * std::sin(std::min(p.length() / p.radius_, 2.0 * kPi) / 4.0)
-                              : 0.5 * p.length();
+    balls_[i].radius =
+        p.arc_ ? 2.0 * p.radius_ * std::sin(std::min(p.length() / p.radius_, 2.0 * kPi) / 4.0) : 0.5 * p.length();
   }
   x_monotone_ = !closed_;
   for (int i = 1; i < count && x_monotone_; ++i) x_monotone_ = x_min_[i] >= x_min_[i - 1] && x_max_[i] >= x_max_[i - 1];

@@ -135,7 +135,7 @@ class SurfaceCurve {
   std::vector<Joint> joints_;  // joints_[i] follows pieces_[i]; the last one only when closed
   std::vector<Corner> corners_;
   std::vector<double> x_min_, x_max_;  // per piece, for the search window of x-monotone curves
-  struct Ball {  // holds a bounded piece: its middle and the distance from there to its ends
+  struct Ball {                        // holds a bounded piece: its middle and the distance from there to its ends
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     double radius = std::numeric_limits<double>::infinity();
   };

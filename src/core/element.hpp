@@ -36,9 +36,9 @@
 namespace tirefe {
 
 struct IntegratorFactors {
-  double force_stiffness = 1.0;  // wK
-  double force_damping = 0.0;    // wC
-  double force_mass = 0.0;       // wM
+  double force_stiffness = 1.0;    // wK
+  double force_damping = 0.0;      // wC
+  double force_mass = 0.0;         // wM
   double tangent_stiffness = 1.0;  // cK
   double tangent_damping = 0.0;    // cC
   double tangent_mass = 0.0;       // cM
@@ -61,7 +61,7 @@ struct IntegratorFactors {
 };
 
 struct EvaluationContext {
-  double time = 0.0;     // time at the end of the step being solved
+  double time = 0.0;  // time at the end of the step being solved
   double time_step = 0.0;
   IntegratorFactors factors;
   bool want_tangent = true;
@@ -143,9 +143,10 @@ namespace detail {
 template <class Kernel, class = void>
 struct HasAugment : std::false_type {};
 template <class Kernel>
-struct HasAugment<Kernel, std::void_t<decltype(std::declval<const Kernel&>().augment(
-                              std::declval<typename Kernel::History&>(),
-                              std::declval<const typename Kernel::History&>()))>> : std::true_type {};
+struct HasAugment<Kernel,
+                  std::void_t<decltype(std::declval<const Kernel&>().augment(
+                      std::declval<typename Kernel::History&>(), std::declval<const typename Kernel::History&>()))>>
+    : std::true_type {};
 
 // Optional kernel declarations that let the block loop skip work:
 //   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
@@ -230,8 +231,7 @@ class ElementBlockOf final : public ElementBlock {
     for (int e = 0; e < size(); ++e) {
       gather(e, state, local);
       trial_[e] = base_[e];
-      kernels_[e].evaluate(local, context, base_[e], trial_[e], residual,
-                           with_tangent ? &tangent : nullptr);
+      kernels_[e].evaluate(local, context, base_[e], trial_[e], residual, with_tangent ? &tangent : nullptr);
       if (!residual.allFinite()) throw_non_finite(e, "residual", residual);
       scatter_residual(e, residual, *target.residual);
       if (with_tangent) scatter_tangent(e, tangent, target.tangent_values);
@@ -262,7 +262,8 @@ class ElementBlockOf final : public ElementBlock {
   std::vector<unsigned char> committed_history_bytes() const override {
     // Plain data owns nothing: numbers and fixed-size Eigen vectors (bitwise copyable,
     // though Eigen does not declare them trivially copyable); no pointers, no containers.
-    static_assert(std::is_trivially_destructible_v<History>, "element history must be plain data (checkpoints copy bytes)");
+    static_assert(std::is_trivially_destructible_v<History>,
+                  "element history must be plain data (checkpoints copy bytes)");
     std::vector<unsigned char> bytes(committed_.size() * sizeof(History), 0);
     // An empty history's one byte is padding, never written: leave it 0 so that two
     // checkpoints of one state are the same bytes (histories with data have no padding).
@@ -272,9 +273,9 @@ class ElementBlockOf final : public ElementBlock {
   }
   void set_history_bytes(const std::vector<unsigned char>& bytes) override {
     if (bytes.size() != committed_.size() * sizeof(History))
-      throw std::invalid_argument("block '" + name_ + "': " + std::to_string(bytes.size()) +
-                                  " bytes of history for " + std::to_string(size()) + " elements of " +
-                                  std::to_string(sizeof(History)) + " bytes");
+      throw std::invalid_argument("block '" + name_ + "': " + std::to_string(bytes.size()) + " bytes of history for " +
+                                  std::to_string(size()) + " elements of " + std::to_string(sizeof(History)) +
+                                  " bytes");
     if (!bytes.empty()) std::memcpy(static_cast<void*>(committed_.data()), bytes.data(), bytes.size());
     base_ = trial_ = committed_;
   }
@@ -323,8 +324,8 @@ class ElementBlockOf final : public ElementBlock {
     while (first < kDofs - 1 && std::isfinite(values[first])) ++first;
     throw NonFiniteResult("element " + std::to_string(e + 1) + " of block '" + name_ + "' (nodes " + nodes +
                           ") produced a non-finite " + what + " at node " +
-                          std::to_string(nodes_[e][first / kDofsPerNode] + 1) + ", " +
-                          kDofNames[first % kDofsPerNode] + " (" + std::to_string(values[first]) + ")");
+                          std::to_string(nodes_[e][first / kDofsPerNode] + 1) + ", " + kDofNames[first % kDofsPerNode] +
+                          " (" + std::to_string(values[first]) + ")");
   }
 
   std::string name_;

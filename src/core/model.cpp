@@ -44,8 +44,8 @@ void Model::release(int node, int component) {
 }
 
 void Model::add_nodal_load(int node, int component, double value, int load_function) {
-  nodal_loads_.push_back({dof_index(mesh_.checked(node), checked_component(component)), value,
-                          checked_load_function(load_function)});
+  nodal_loads_.push_back(
+      {dof_index(mesh_.checked(node), checked_component(component)), value, checked_load_function(load_function)});
 }
 
 void Model::condense_node(int node) {

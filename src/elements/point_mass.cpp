@@ -8,8 +8,8 @@ namespace tirefe {
 void SpringMassProperties::check() const {
   auto require_nonnegative = [](double value, const std::string& name) {
     if (!std::isfinite(value) || value < 0.0)
-      throw ModelError("spring-mass: " + name + " must be a non-negative finite number (got " +
-                       std::to_string(value) + ")");
+      throw ModelError("spring-mass: " + name + " must be a non-negative finite number (got " + std::to_string(value) +
+                       ")");
   };
   const char* components[3] = {"x", "y", "rz"};
   for (int c = 0; c < 3; ++c) {
@@ -33,8 +33,8 @@ void NodalSpringMass::evaluate(const LocalState<kDofs>& local, const EvaluationC
              f.force_mass * inertia_.cwiseProduct(local.acceleration);
   if (!tangent) return;
   tangent->setZero();
-  tangent->diagonal() = f.tangent_stiffness * properties_.stiffness + f.tangent_damping * properties_.damping +
-                        f.tangent_mass * inertia_;
+  tangent->diagonal() =
+      f.tangent_stiffness * properties_.stiffness + f.tangent_damping * properties_.damping + f.tangent_mass * inertia_;
 }
 
 ElementEnergy NodalSpringMass::energy(const LocalState<kDofs>& local, const History&) const {

@@ -18,8 +18,8 @@ namespace tirefe {
 struct SpringMassProperties {
   Eigen::Vector3d stiffness = Eigen::Vector3d::Zero();  // k_x, k_y [N/m], k_rz [N m/rad]
   Eigen::Vector3d damping = Eigen::Vector3d::Zero();    // c_x, c_y [N s/m], c_rz [N m s/rad]
-  double mass = 0.0;            // m [kg], on u_x and u_y
-  double rotary_inertia = 0.0;  // J [kg m^2], on theta_z
+  double mass = 0.0;                                    // m [kg], on u_x and u_y
+  double rotary_inertia = 0.0;                          // J [kg m^2], on theta_z
 
   /// Throws ModelError naming the first negative or non-finite value.
   void check() const;

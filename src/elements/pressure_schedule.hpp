@@ -22,9 +22,7 @@ class PressureSchedule {
       throw ModelError("inflation pressure must be finite (got " + std::to_string(pressure) + ")");
   }
   /// A pressure held at p_0 for all times.
-  static PressureSchedule constant(double pressure) {
-    return PressureSchedule(pressure, LoadFunction::constant(1.0));
-  }
+  static PressureSchedule constant(double pressure) { return PressureSchedule(pressure, LoadFunction::constant(1.0)); }
 
   /// Every wedge and tread load of the tire asks for the same time in one assembly: the
   /// ramp (a std::function, a table search) runs once per time, the rest read the memo.

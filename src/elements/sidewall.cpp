@@ -44,8 +44,10 @@ struct ArchSolution {
 /// second order (error d^3/6, below round-off).
 ArchSolution solve_half_angle(double ratio) {
   const double y = 1.0 - ratio;
+  // clang-format off
   constexpr double c[8] = {6.0, 9.0 / 5.0, 144.0 / 175.0, 78.0 / 175.0, 89226.0 / 336875.0,
                            522063.0 / 3128125.0, 83924688.0 / 766390625.0, 438337548.0 / 5922109375.0};
+  // clang-format on
   double series = c[7];
   for (int k = 6; k >= 0; --k) series = c[k] + y * series;
   double alpha = std::min(std::sqrt(y * series), kPi);
@@ -168,21 +170,19 @@ SidewallWedge::SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector
     reference_tread_[q] = (1.0 - xi) * tread_a + xi * tread_b;
     const Eigen::Vector2d radial = reference_tread_[q] - spindle;
     const double distance = radial.norm();
-    require(distance > properties.rim_radius, "a tread point lies inside the rim (distance " +
-                                                  std::to_string(distance) + " m from the spindle)");
+    require(distance > properties.rim_radius,
+            "a tread point lies inside the rim (distance " + std::to_string(distance) + " m from the spindle)");
     reference_rim_offset_[q] = (properties.rim_radius / distance) * radial;
     reference_half_angle_[q] = law_.reference_half_angle(distance - properties.rim_radius);
   }
 }
 
-SidewallWedge::Kinematics SidewallWedge::kinematics(const Vector& u, int q, double cos_spin,
-                                                    double sin_spin) const {
+SidewallWedge::Kinematics SidewallWedge::kinematics(const Vector& u, int q, double cos_spin, double sin_spin) const {
   const double xi = kGaussPoints[q];
   const Eigen::Vector2d& offset = reference_rim_offset_[q];
   Kinematics k;
   k.rim_offset = {cos_spin * offset.x() - sin_spin * offset.y(), sin_spin * offset.x() + cos_spin * offset.y()};
-  const Eigen::Vector2d tread_point =
-      reference_tread_[q] + (1.0 - xi) * u.segment<2>(3) + xi * u.segment<2>(6);
+  const Eigen::Vector2d tread_point = reference_tread_[q] + (1.0 - xi) * u.segment<2>(3) + xi * u.segment<2>(6);
   k.cord = spindle_ + u.segment<2>(0) + k.rim_offset - tread_point;
   k.chord = k.cord.norm();
   k.e_y = k.cord / k.chord;
@@ -201,8 +201,8 @@ SidewallWedge::CordState SidewallWedge::cord_state(const Vector& displacement, i
   return {k.chord, k.shear_angle};
 }
 
-void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
-                             History&, Vector& residual, Matrix* tangent) const {
+void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
+                             Vector& residual, Matrix* tangent) const {
   const Vector& u = local.displacement;
   const Vector& velocity = local.velocity;
   const IntegratorFactors& f = context.factors;
@@ -250,8 +250,8 @@ void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationCon
     double v_y = 0.0, v_x = 0.0;
     if (damped) {
       // Tread point velocity relative to the rim's rigid motion at x_t (x_t - x_S = rho - P).
-      relative_velocity = shape_a * velocity.segment<2>(3) + shape_b * velocity.segment<2>(6) -
-                          velocity.segment<2>(0) - spin_rate * perpendicular(k.rim_offset - k.cord);
+      relative_velocity = shape_a * velocity.segment<2>(3) + shape_b * velocity.segment<2>(6) - velocity.segment<2>(0) -
+                          spin_rate * perpendicular(k.rim_offset - k.cord);
       v_y = relative_velocity.dot(k.e_y);
       v_x = relative_velocity.dot(k.e_x);
       damping = -(c_r * v_y) * k.e_y - (c_t * v_x) * k.e_x;
@@ -267,15 +267,15 @@ void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationCon
     // u-derivatives: the elastic part scales with cK, the damping force's dependence on
     // u (cord directions, spin term) with wC; the velocity part with cC.
     const Eigen::Vector2d traction = f.tangent_stiffness * elastic + f.force_damping * damping;
-    Eigen::Matrix2d G = f.tangent_stiffness * (cord.stiffness * k.e_y * k.e_y.transpose() +
-                                               ((cord.force + shear_stiffness) * k.e_x - shear_force * k.e_y) *
-                                                   k.e_x.transpose() / k.chord);
+    Eigen::Matrix2d G = f.tangent_stiffness *
+                        (cord.stiffness * k.e_y * k.e_y.transpose() +
+                         ((cord.force + shear_stiffness) * k.e_x - shear_force * k.e_y) * k.e_x.transpose() / k.chord);
     Eigen::Vector2d spin_column = -f.tangent_stiffness * shear_stiffness * k.e_x;
     if (damped) {
       const Eigen::Matrix2d C_d = c_r * k.e_y * k.e_y.transpose() + c_t * k.e_x * k.e_x.transpose();
       const Eigen::Matrix2d C_d_turned = C_d * (Eigen::Matrix2d() << 0.0, -1.0, 1.0, 0.0).finished();  // C_d k x
-      G += f.force_damping * (-(c_r - c_t) * (v_x * k.e_y + v_y * k.e_x) * k.e_x.transpose() / k.chord -
-                              spin_rate * C_d_turned);
+      G += f.force_damping *
+           (-(c_r - c_t) * (v_x * k.e_y + v_y * k.e_x) * k.e_x.transpose() / k.chord - spin_rate * C_d_turned);
       spin_column -= f.force_damping * spin_rate * (C_d * k.rim_offset);
       G += f.tangent_damping * C_d;
       spin_column -= (f.tangent_damping * c_t * k.chord) * k.e_x;

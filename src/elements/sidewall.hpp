@@ -54,9 +54,9 @@ namespace tirefe {
 
 /// The circular arch over a chord L of an inextensible cord of length l_sw (eq. 1).
 struct ArchShape {
-  double half_angle;          // alpha = pi/2 - theta, in (0, pi]
-  double dhalf_angle_dchord;  // d alpha / d L [1/m], from eq. 1 by implicit differentiation
-  double meridian_angle() const;       // theta of eqs. 1-2, in [-pi/2, pi/2)
+  double half_angle;                        // alpha = pi/2 - theta, in (0, pi]
+  double dhalf_angle_dchord;                // d alpha / d L [1/m], from eq. 1 by implicit differentiation
+  double meridian_angle() const;            // theta of eqs. 1-2, in [-pi/2, pi/2)
   double radius(double cord_length) const;  // r = l_sw / (2 alpha)
 };
 
@@ -99,8 +99,8 @@ class SidewallLaw {
 
  private:
   /// F and dF/dalpha on the arch branch, at a half-angle with known cos and sin.
-  void arch_force(double half_angle, double cos_half, double sin_half, double reference_half_angle,
-                  double pressure, double& force, double& dforce_dhalf_angle) const;
+  void arch_force(double half_angle, double cos_half, double sin_half, double reference_half_angle, double pressure,
+                  double& force, double& dforce_dhalf_angle) const;
 
   SidewallProperties properties_;
   double signed_bending_;  // s k_sw (4 / l_sw^2) [N/m]

@@ -43,8 +43,8 @@ TreadBeam::Strains TreadBeam::strains(const Vector& d) const {
   return {stretch.x() * c + stretch.y() * s - 1.0, -stretch.x() * s + stretch.y() * c, (d[5] - d[2]) / length_};
 }
 
-void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
-                         History&, Vector& residual, Matrix* tangent) const {
+void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
+                         Vector& residual, Matrix* tangent) const {
   const Vector& d = local.displacement;
   const Eigen::Vector2d stretch = reference_direction_ + (d.segment<2>(3) - d.segment<2>(0)) / length_;  // x'
   const double beta = reference_angle_ + 0.5 * (d[2] + d[5]);
@@ -96,8 +96,7 @@ void TreadBeam::evaluate(const LocalState<kDofs>& local, const EvaluationContext
 
 TreadBeam::Vector TreadBeam::mass_times(const Vector& x) const {
   // Consistent mass of linear shape functions: L0/6 [2 1; 1 2] per component.
-  const double per_length[3] = {section_.mass_per_length, section_.mass_per_length,
-                                section_.rotary_inertia_per_length};
+  const double per_length[3] = {section_.mass_per_length, section_.mass_per_length, section_.rotary_inertia_per_length};
   Vector product;
   for (int c = 0; c < 3; ++c) {
     const double scale = per_length[c] * length_ / 6.0;
@@ -108,8 +107,7 @@ TreadBeam::Vector TreadBeam::mass_times(const Vector& x) const {
 }
 
 void TreadBeam::add_mass(double factor, Matrix& tangent) const {
-  const double per_length[3] = {section_.mass_per_length, section_.mass_per_length,
-                                section_.rotary_inertia_per_length};
+  const double per_length[3] = {section_.mass_per_length, section_.mass_per_length, section_.rotary_inertia_per_length};
   for (int c = 0; c < 3; ++c) {
     const double scale = factor * per_length[c] * length_ / 6.0;
     tangent(c, c) += 2.0 * scale;

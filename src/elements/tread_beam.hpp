@@ -20,12 +20,12 @@
 namespace tirefe {
 
 struct BeamSection {
-  double axial_stiffness = 0.0;     // EA [N]
-  double shear_stiffness = 0.0;     // GA_s [N]
-  double bending_stiffness = 0.0;   // EI [N m^2]
-  double mass_per_length = 0.0;     // rho A [kg/m]
+  double axial_stiffness = 0.0;            // EA [N]
+  double shear_stiffness = 0.0;            // GA_s [N]
+  double bending_stiffness = 0.0;          // EI [N m^2]
+  double mass_per_length = 0.0;            // rho A [kg/m]
   double rotary_inertia_per_length = 0.0;  // rho I [kg m]
-  double curvature_damping = 0.0;   // c_kappa [N m^2 s]
+  double curvature_damping = 0.0;          // c_kappa [N m^2 s]
 
   /// Throws ModelError naming the first non-physical value.
   void check() const;
@@ -33,7 +33,6 @@ struct BeamSection {
 
 class TreadBeam : public KernelShape<2> {
  public:
-
   TreadBeam(const Eigen::Vector2d& start, const Eigen::Vector2d& end, const BeamSection& section);
 
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,

@@ -28,8 +28,8 @@ Eigen::Vector2d TreadLayer::turned_radial(double angle) const {
   return {c * radial_.x() - s * radial_.y(), s * radial_.x() + c * radial_.y()};
 }
 
-void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
-                          History&, Vector& residual, Matrix* tangent) const {
+void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
+                          Vector& residual, Matrix* tangent) const {
   const IntegratorFactors& f = context.factors;
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
   const Eigen::Vector2d e = turned_radial(local.displacement[5]);
@@ -63,8 +63,8 @@ void TreadLayer::evaluate(const LocalState<kDofs>& local, const EvaluationContex
   if (damped_) add_damping(local, context, e, residual, tangent);
 }
 
-void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationContext& context,
-                             const Eigen::Vector2d& e, Vector& residual, Matrix* tangent) const {
+void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationContext& context, const Eigen::Vector2d& e,
+                             Vector& residual, Matrix* tangent) const {
   const IntegratorFactors& f = context.factors;
   if (f.force_damping == 0.0 && (!tangent || f.tangent_damping == 0.0)) return;  // quasi-static
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
@@ -87,8 +87,8 @@ void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationCon
   const Eigen::Vector2d by_theta = wD * turning_rate(c_r, c_t, e, w);
   const Eigen::Matrix2d by_rate = cC * C;
   const Eigen::Vector2d by_spin = cC * (-C * turned);
-  const Eigen::Matrix2d force_by_d = by_d + by_rate;           // d and d' enter as u_c - u_b
-  const Eigen::Vector2d force_by_theta = by_theta + by_spin;   // theta and theta' of the belt node
+  const Eigen::Matrix2d force_by_d = by_d + by_rate;          // d and d' enter as u_c - u_b
+  const Eigen::Vector2d force_by_theta = by_theta + by_spin;  // theta and theta' of the belt node
   Matrix& K = *tangent;
   K.block<2, 2>(0, 0) += force_by_d;
   K.block<2, 2>(0, 3) -= force_by_d;

@@ -30,11 +30,11 @@
 namespace tirefe {
 
 struct TreadLayerProperties {
-  double radial_stiffness = 0.0;          // k_r [N/m]
-  double circumferential_stiffness = 0.0; // k_t [N/m]
-  double mass = 0.0;                      // m on the contact node [kg]
-  double radial_damping = 0.0;            // c_r [N s/m]
-  double circumferential_damping = 0.0;   // c_t [N s/m]
+  double radial_stiffness = 0.0;           // k_r [N/m]
+  double circumferential_stiffness = 0.0;  // k_t [N/m]
+  double mass = 0.0;                       // m on the contact node [kg]
+  double radial_damping = 0.0;             // c_r [N s/m]
+  double circumferential_damping = 0.0;    // c_t [N s/m]
 };
 
 class TreadLayer : public KernelShape<2> {

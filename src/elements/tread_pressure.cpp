@@ -14,8 +14,8 @@ TreadPressure::TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d
   if (!(reference_chord_.norm() > 0.0)) throw ModelError("tread pressure: the two tread nodes coincide");
 }
 
-void TreadPressure::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&,
-                             History&, Vector& residual, Matrix* tangent) const {
+void TreadPressure::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
+                             Vector& residual, Matrix* tangent) const {
   const Vector& u = local.displacement;
   const IntegratorFactors& f = context.factors;
   const double half_load = 0.5 * pressure_->at(context.time) * width_;  // p w / 2

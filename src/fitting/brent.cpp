@@ -9,7 +9,7 @@ namespace tirefe::fitting {
 
 namespace {
 
-constexpr double kGolden = 1.618033988749895;         // bracket growth
+constexpr double kGolden = 1.618033988749895;          // bracket growth
 constexpr double kGoldenSection = 0.3819660112501051;  // 2 - golden ratio
 
 struct Point {

@@ -22,7 +22,7 @@ std::string trimmed(const std::string& text) {
 std::vector<std::string> split_fields(const std::string& line) {
   std::vector<std::string> fields;
   size_t start = 0;
-  for (size_t comma = line.find(','); ; comma = line.find(',', start)) {
+  for (size_t comma = line.find(',');; comma = line.find(',', start)) {
     fields.push_back(trimmed(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
     if (comma == std::string::npos) return fields;
     start = comma + 1;
@@ -97,6 +97,7 @@ std::string header_list(const std::vector<DataColumn>& columns) {
 }  // namespace
 
 const std::vector<UnitSuffix>& unit_suffixes() {
+  // clang-format off
   static const std::vector<UnitSuffix> units{
       {"m", 1.0, "m"},      {"mm", 1e-3, "m"},      {"cm", 1e-2, "m"},
       {"N", 1.0, "N"},      {"kN", 1e3, "N"},       {"N/m", 1.0, "N/m"},
@@ -106,6 +107,7 @@ const std::vector<UnitSuffix>& unit_suffixes() {
       {"s", 1.0, "s"},      {"ms", 1e-3, "s"},      {"Hz", 1.0, "Hz"},
       {"rad", 1.0, "rad"},  {"deg", 3.14159265358979323846 / 180.0, "rad"},
       {"kg", 1.0, "kg"},    {"m/s", 1.0, "m/s"},    {"km/h", 1.0 / 3.6, "m/s"}};
+  // clang-format on
   return units;
 }
 
@@ -121,7 +123,7 @@ CurveData CurveData::read_csv(const std::string& path) {
     if (content.empty()) continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
     const std::vector<std::string> fields = split_fields(content);
-    if (data.columns_.empty()) {  // the header
+    if (data.columns_.empty()) {                                  // the header
       std::unordered_map<std::string, const std::string*> names;  // name -> header: linear in the columns
       for (const std::string& header : fields) {
         if (header.empty()) throw CurveDataError(where + "empty column name in the header");
@@ -130,8 +132,8 @@ CurveData CurveData::read_csv(const std::string& path) {
         DataColumn column = column_from_header(header, where);
         const auto [named, added] = names.emplace(column.name, &header);
         if (!added)
-          throw CurveDataError(where + "two columns named '" + column.name + "' ('" + *named->second + "', '" +
-                               header + "')");
+          throw CurveDataError(where + "two columns named '" + column.name + "' ('" + *named->second + "', '" + header +
+                               "')");
         data.columns_.push_back(column);
       }
       continue;

@@ -37,10 +37,10 @@ struct UnitSuffix {
 const std::vector<UnitSuffix>& unit_suffixes();
 
 struct DataColumn {
-  std::string header;  // as written, e.g. deflection_mm
-  std::string name;    // without the unit suffix, e.g. deflection
-  std::string unit;    // the suffix ("" if none)
-  std::string si_unit;  // the unit of 'values' ("" if none)
+  std::string header;          // as written, e.g. deflection_mm
+  std::string name;            // without the unit suffix, e.g. deflection
+  std::string unit;            // the suffix ("" if none)
+  std::string si_unit;         // the unit of 'values' ("" if none)
   std::vector<double> values;  // SI
 };
 

@@ -11,8 +11,8 @@ std::vector<double> to_std(const Eigen::VectorXd& values) { return {values.data(
 
 }  // namespace
 
-void write_fit_file(const std::string& path, const FitProblem& problem, const FitResult& result,
-                    const FitAxes& axes, const std::string& deck_path) {
+void write_fit_file(const std::string& path, const FitProblem& problem, const FitResult& result, const FitAxes& axes,
+                    const std::string& deck_path) {
   io::Hdf5File file = io::Hdf5File::create(path);
   file.write_attribute("/", "tirefe_version", std::string(kVersion));
   file.write_attribute("/", "git_commit", std::string(kGitCommit));

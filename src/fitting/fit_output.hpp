@@ -21,8 +21,8 @@ namespace tirefe::fitting {
 
 /// What the data points are, for plots.
 struct FitAxes {
-  Eigen::VectorXd x;                  // abscissa of each data point; empty: none
-  std::string x_label = "x";          // e.g. "deflection [m]"
+  Eigen::VectorXd x;                    // abscissa of each data point; empty: none
+  std::string x_label = "x";            // e.g. "deflection [m]"
   std::string data_label = "measured";  // e.g. "force [N]"
   // The data file's units as written (e.g. "mm") and the SI value of one of them; the
   // values above are SI. "" and 1: the values are as given.

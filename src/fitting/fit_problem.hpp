@@ -103,13 +103,13 @@ struct FitResult {
   FitStatus status = FitStatus::MaxEvaluations;
   std::string message;
   std::string method;
-  Eigen::VectorXd values;  // NaN for parameters that are not identifiable
+  Eigen::VectorXd values;                                       // NaN for parameters that are not identifiable
   double objective = std::numeric_limits<double>::quiet_NaN();  // S at values
   int evaluations = 0;
   int iterations = 0;
   Eigen::VectorXd standard_errors;  // NaN where not available (m == n, at a bound, ...)
   Eigen::MatrixXd correlation;
-  Eigen::VectorXd prediction;       // f at values (empty if never evaluated)
+  Eigen::VectorXd prediction;  // f at values (empty if never evaluated)
   std::vector<std::string> not_identifiable;
   double condition_number = std::numeric_limits<double>::quiet_NaN();  // of the scaled J^T J
   std::vector<FitIteration> history;

@@ -92,8 +92,7 @@ Assessment assess_estimate(const Eigen::MatrixXd& jacobian, const Eigen::VectorX
   for (int a = 0; a < k; ++a) {
     assessment.standard_errors[columns[a]] = std::sqrt(variance * n_inverse(a, a)) / column_norms[a];
     for (int b = 0; b < k; ++b)
-      assessment.correlation(columns[a], columns[b]) =
-          n_inverse(a, b) / std::sqrt(n_inverse(a, a) * n_inverse(b, b));
+      assessment.correlation(columns[a], columns[b]) = n_inverse(a, b) / std::sqrt(n_inverse(a, a) * n_inverse(b, b));
   }
   return assessment;
 }

@@ -16,8 +16,8 @@ std::vector<bool> free_parameters(const Objective& objective, const Eigen::Vecto
                                   const Eigen::VectorXd& gradient) {
   std::vector<bool> free(z.size());
   for (int j = 0; j < z.size(); ++j)
-    free[j] = !((objective.on_lower(j, z[j]) && gradient[j] > 0.0) ||
-                (objective.on_upper(j, z[j]) && gradient[j] < 0.0));
+    free[j] =
+        !((objective.on_lower(j, z[j]) && gradient[j] > 0.0) || (objective.on_upper(j, z[j]) && gradient[j] < 0.0));
   return free;
 }
 

@@ -39,9 +39,9 @@ void validate(const FitProblem& problem, const FitOptions& options) {
   }
   require(problem.data.size() > 0, "no data to fit");
   require(problem.data.allFinite(), "the data contain a value that is not finite");
-  require(problem.weights.size() == 0 || problem.weights.size() == problem.data.size(),
-          std::to_string(problem.weights.size()) + " weights for " + std::to_string(problem.data.size()) +
-              " data points");
+  require(
+      problem.weights.size() == 0 || problem.weights.size() == problem.data.size(),
+      std::to_string(problem.weights.size()) + " weights for " + std::to_string(problem.data.size()) + " data points");
   require(problem.weights.size() == 0 || ((problem.weights.array() > 0.0).all() && problem.weights.allFinite()),
           "every weight must be positive and finite");
   require(options.tolerance > 0.0, "the tolerance must be positive");

@@ -21,10 +21,17 @@ namespace {
 
 // Value references: as in modelDescription.xml (cmake/modelDescription.xml.in).
 enum Reference : fmi2ValueReference {
-  kX = 0, kZ = 1, kSpin = 2,                      // inputs [m, m, rad]
-  kFx = 3, kFz = 4, kMy = 5,                      // outputs [N, N, N m]
-  kPressure = 10, kKsw = 11, kFriction = 12, kHhtAlpha = 13,  // Real parameters
-  kFreeSpin = 14                                  // Boolean parameter
+  kX = 0,
+  kZ = 1,
+  kSpin = 2,  // inputs [m, m, rad]
+  kFx = 3,
+  kFz = 4,
+  kMy = 5,  // outputs [N, N, N m]
+  kPressure = 10,
+  kKsw = 11,
+  kFriction = 12,
+  kHhtAlpha = 13,  // Real parameters
+  kFreeSpin = 14   // Boolean parameter
 };
 
 enum class Phase { Instantiated, Initializing, Stepping, Terminated };
@@ -68,8 +75,10 @@ fmi2Status report(const Instance& instance, fmi2Status status, const std::string
 /// "file:///a/b" or "file:/a/b" as a path.
 std::string path_of_uri(const char* uri) {
   std::string text = uri ? uri : "";
-  if (text.rfind("file://", 0) == 0) text = text.substr(7);
-  else if (text.rfind("file:", 0) == 0) text = text.substr(5);
+  if (text.rfind("file://", 0) == 0)
+    text = text.substr(7);
+  else if (text.rfind("file:", 0) == 0)
+    text = text.substr(5);
   while (text.size() > 1 && text.back() == '/') text.pop_back();
   return text;
 }
@@ -88,8 +97,12 @@ fmi2Status open_tire(Instance& instance) {
 
 double* real_variable(Instance& instance, fmi2ValueReference reference) {
   switch (reference) {
-    case kX: case kZ: case kSpin: return &instance.now.input[reference - kX];
-    case kFx: case kFz: case kMy: return &instance.now.force[reference - kFx];
+    case kX:
+    case kZ:
+    case kSpin: return &instance.now.input[reference - kX];
+    case kFx:
+    case kFz:
+    case kMy: return &instance.now.force[reference - kFx];
     case kPressure: return &instance.pressure;
     case kKsw: return &instance.k_sw;
     case kFriction: return &instance.options.friction;
@@ -199,7 +212,8 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference[], size_t nvr
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[]) {
   Instance& instance = *instance_of(c);
   for (size_t i = 0; i < nvr; ++i) {
-    if (vr[i] != kFreeSpin) return report(instance, fmi2Error, "no Boolean with value reference " + std::to_string(vr[i]));
+    if (vr[i] != kFreeSpin)
+      return report(instance, fmi2Error, "no Boolean with value reference " + std::to_string(vr[i]));
     value[i] = instance.options.free_spin ? fmi2True : fmi2False;
   }
   return fmi2OK;
@@ -208,7 +222,8 @@ fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[]) {
   Instance& instance = *instance_of(c);
   for (size_t i = 0; i < nvr; ++i) {
-    if (vr[i] != kFreeSpin) return report(instance, fmi2Error, "no Boolean with value reference " + std::to_string(vr[i]));
+    if (vr[i] != kFreeSpin)
+      return report(instance, fmi2Error, "no Boolean with value reference " + std::to_string(vr[i]));
     if (instance.phase == Phase::Stepping)
       return report(instance, fmi2Error, "the tire's parameters are fixed once it is initialized");
     instance.options.free_spin = value[i] ? 1 : 0;
@@ -265,8 +280,8 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte[], size_t, fm
 
 // d outputs / d inputs: the consistent spindle Jacobian of the last step (docs/spindle.md).
 fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
-                                        const fmi2ValueReference vKnown_ref[], size_t nKnown,
-                                        const fmi2Real dvKnown[], fmi2Real dvUnknown[]) {
+                                        const fmi2ValueReference vKnown_ref[], size_t nKnown, const fmi2Real dvKnown[],
+                                        fmi2Real dvUnknown[]) {
   Instance& instance = *instance_of(c);
   for (size_t i = 0; i < nUnknown; ++i) {
     if (vUnknown_ref[i] < kFx || vUnknown_ref[i] > kMy)
@@ -298,8 +313,8 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
     return report(instance, fmi2Error, "fmi2DoStep before the tire is initialized");
   if (std::abs(currentCommunicationPoint - instance.now.time) > 1e-9 * (1.0 + std::abs(instance.now.time)))
     return report(instance, fmi2Error,
-               "fmi2DoStep from t = " + std::to_string(currentCommunicationPoint) + ", the FMU is at t = " +
-                   std::to_string(instance.now.time));
+                  "fmi2DoStep from t = " + std::to_string(currentCommunicationPoint) +
+                      ", the FMU is at t = " + std::to_string(instance.now.time));
   const tirefe_spindle_motion motion = {communicationStepSize, instance.now.input[0], instance.now.input[1],
                                         instance.now.input[2]};
   tirefe_spindle_force reply;

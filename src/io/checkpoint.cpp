@@ -89,9 +89,7 @@ Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_
 
 void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, ResultFile* output) {
   const Model& model = analysis.model();
-  auto differs = [](const std::string& what) {
-    return ModelError("the checkpoint is of another model: " + what);
-  };
+  auto differs = [](const std::string& what) { return ModelError("the checkpoint is of another model: " + what); };
   if (checkpoint.node_count != model.mesh().node_count())
     throw differs("it has " + std::to_string(checkpoint.node_count) + " nodes, the deck's model " +
                   std::to_string(model.mesh().node_count()));
@@ -207,7 +205,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
 
 Checkpoint read_checkpoint(const std::string& path) {
   const std::string unfinished = kUnfinished;
-  if (path.size() > unfinished.size() && path.compare(path.size() - unfinished.size(), unfinished.size(), unfinished) == 0)
+  if (path.size() > unfinished.size() &&
+      path.compare(path.size() - unfinished.size(), unfinished.size(), unfinished) == 0)
     throw IoError("restart file '" + path + "' is a checkpoint a run did not finish writing; restart from '" +
                   path.substr(0, path.size() - unfinished.size()) + "'");
   if (!std::filesystem::exists(path)) throw IoError("restart file '" + path + "' does not exist");

@@ -55,8 +55,7 @@ void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, Result
 
 /// Throws ModelError listing every parameter whose value differs from the checkpoint's:
 /// a restart continues the same case, so that the result file's /parameters stay true.
-void check_parameters(const Checkpoint& checkpoint,
-                      const std::vector<std::pair<std::string, std::string>>& parameters);
+void check_parameters(const Checkpoint& checkpoint, const std::vector<std::pair<std::string, std::string>>& parameters);
 
 /// Writes beside 'path' first and renames, so a run killed meanwhile keeps the last checkpoint whole.
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);

@@ -36,7 +36,8 @@ std::string hdf5_error_detail() {
     const size_t start = system_message + system_marker.size();
     detail = detail.substr(start, detail.find('\'', start) - start);
   }
-  std::replace_if(detail.begin(), detail.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      detail.begin(), detail.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   return detail.empty() ? "HDF5 error" : detail;
 }
 
@@ -117,8 +118,8 @@ Hdf5Handle make_string_type() {
 }
 
 Hdf5Handle dataspace_of(const std::vector<hsize_t>& dims) {
-  const hid_t id = dims.empty() ? H5Screate(H5S_SCALAR)
-                                : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
+  const hid_t id =
+      dims.empty() ? H5Screate(H5S_SCALAR) : H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr);
   return Hdf5Handle(check(id, [] { return std::string("cannot create dataspace"); }), H5Sclose);
 }
 
@@ -160,9 +161,9 @@ std::vector<std::string> read_string_elements(hid_t file_type, hsize_t count, Re
 
 template <class Message>
 Hdf5Handle open_single_value_attribute(hid_t file, const std::string& object_path, const std::string& name,
-                                      Message&& message) {
-  Hdf5Handle attribute(check(H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), message),
-                       H5Aclose);
+                                       Message&& message) {
+  Hdf5Handle attribute(
+      check(H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), message), H5Aclose);
   Hdf5Handle space(check(H5Aget_space(attribute.get()), message), H5Sclose);
   if (check(H5Sget_simple_extent_npoints(space.get()), message) != 1) throw IoError(message() + ": not a single value");
   return attribute;
@@ -203,8 +204,8 @@ ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> di
       path_(std::move(path)) {
   count_[0] = 1;
   row_size_ = static_cast<size_t>(element_count(count_));
-  file_space_ = Hdf5Handle(check(H5Dget_space(dataset_.get()), [&] { return describe("open dataset", path_, file_path_); }),
-                           H5Sclose);
+  file_space_ = Hdf5Handle(
+      check(H5Dget_space(dataset_.get()), [&] { return describe("open dataset", path_, file_path_); }), H5Sclose);
   mem_space_ = dataspace_of({static_cast<hsize_t>(row_size_)});
 }
 
@@ -351,14 +352,14 @@ void Hdf5File::write_scalar_attribute(const std::string& object_path, const std:
                                       hid_t mem_type, const void* data) {
   auto message = [&] { return describe("write attribute '" + name + "' of", object_path, path_); };
   const hid_t file = file_.get();
-  const hid_t id = exists(object_path)
-                       ? H5Oopen(file, object_path.c_str(), H5P_DEFAULT)
-                       : H5Gcreate2(file, object_path.c_str(), lcpl_.get(), H5P_DEFAULT, H5P_DEFAULT);
+  const hid_t id = exists(object_path) ? H5Oopen(file, object_path.c_str(), H5P_DEFAULT)
+                                       : H5Gcreate2(file, object_path.c_str(), lcpl_.get(), H5P_DEFAULT, H5P_DEFAULT);
   Hdf5Handle object(check(id, message), H5Oclose);
   if (check(H5Aexists(object.get(), name.c_str()), message) > 0) check(H5Adelete(object.get(), name.c_str()), message);
   Hdf5Handle space = dataspace_of({});
-  Hdf5Handle attribute(check(H5Acreate2(object.get(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), message),
-                       H5Aclose);
+  Hdf5Handle attribute(
+      check(H5Acreate2(object.get(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), message),
+      H5Aclose);
   check(H5Awrite(attribute.get(), mem_type, data), message);
 }
 
@@ -457,8 +458,8 @@ ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, con
   chunk = dims;
   // ~2 KiB chunks for scalar series, up to ~64 KiB for small vector rows, one row for big
   // ones; compressed: ~4 KiB, or one row.
-  chunk[0] = compressed ? std::max<hsize_t>(1, 512 / row_size)
-                        : std::max<hsize_t>(1, std::min<hsize_t>(256, 8192 / row_size));
+  chunk[0] =
+      compressed ? std::max<hsize_t>(1, 512 / row_size) : std::max<hsize_t>(1, std::min<hsize_t>(256, 8192 / row_size));
 
   const int rank = static_cast<int>(dims.size());
   Hdf5Handle space(check(H5Screate_simple(rank, dims.data(), max_dims.data()), message), H5Sclose);
@@ -478,8 +479,8 @@ ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, con
   return datasets_.emplace_back(std::move(created));
 }
 
-void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row,
-                              hsize_t first, hsize_t count, hsize_t width) {
+void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row, hsize_t first,
+                              hsize_t count, hsize_t width) {
   auto message = [&] { return describe("write view", view_path, path_); };
   const std::vector<hsize_t>& dims = source.dims_;
   if (dims.size() != 3 || first + count > dims[2] || count == 0 || (width == 0 ? count != 1 : count > width))
@@ -492,7 +493,8 @@ void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleData
   check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, source_start.data(), nullptr, source_count.data(),
                             nullptr),
         message);
-  const std::vector<hsize_t> view_dims = width == 0 ? std::vector<hsize_t>{entries} : std::vector<hsize_t>{entries, width};
+  const std::vector<hsize_t> view_dims =
+      width == 0 ? std::vector<hsize_t>{entries} : std::vector<hsize_t>{entries, width};
   Hdf5Handle view_space = dataspace_of(view_dims);
   if (width > 0) {
     const std::vector<hsize_t> start{0, 0}, columns{entries, count};

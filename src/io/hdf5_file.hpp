@@ -51,8 +51,8 @@ class ExtendibleDataset {
   ExtendibleDataset(ExtendibleDataset&&) noexcept = default;
   ExtendibleDataset& operator=(ExtendibleDataset&&) noexcept = default;
 
-  void append(const double* row_values);  // row_size() doubles, row-major
-  void append(double scalar);             // only for scalar rows
+  void append(const double* row_values);                 // row_size() doubles, row-major
+  void append(double scalar);                            // only for scalar rows
   void append_rows(const double* values, hsize_t rows);  // rows * row_size() doubles (restarts)
   hsize_t rows() const { return dims_[0] + pending_rows(); }
   size_t row_size() const { return row_size_; }
@@ -60,8 +60,7 @@ class ExtendibleDataset {
 
  private:
   friend class Hdf5File;
-  ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path,
-                    std::string path);
+  ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path, std::string path);
 
   hsize_t pending_rows() const { return static_cast<hsize_t>(pending_.size() / row_size_); }
   /// Writes the rows waiting in memory.
@@ -125,8 +124,7 @@ class Hdf5File {
   // about 4 KiB or one row: for field rows, which are flushed one at a time (a flushed
   // chunk is not rewritten).
   ExtendibleDataset& create_compressed_extendible(const std::string& dataset_path,
-                                                  const std::vector<hsize_t>& row_shape,
-                                                  const std::string& unit = "");
+                                                  const std::vector<hsize_t>& row_shape, const std::string& unit = "");
   // A virtual dataset at 'view_path' that shows row 'row' of 'source' (rows x n x c) without
   // copying it: 'count' columns from 'first' of each of the n entries, padded with zeros
   // to 'width' columns (n x width); width 0 with count 1 gives n values. Readers that want
@@ -159,12 +157,12 @@ class Hdf5File {
  private:
   Hdf5File(std::string path, Hdf5Handle file);
   void publish_copy() const;
-  void write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type,
-                     hid_t mem_type, const void* data);
+  void write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type, hid_t mem_type,
+                     const void* data);
   ExtendibleDataset& create_chunked(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
                                     const std::string& unit, bool compressed);
-  void write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type,
-                              hid_t mem_type, const void* data);
+  void write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type, hid_t mem_type,
+                              const void* data);
   template <class T>
   std::vector<T> read_numeric(const std::string& dataset_path, hid_t mem_type, std::vector<hsize_t>* shape) const;
 
@@ -172,7 +170,7 @@ class Hdf5File {
   std::string working_path_;  // where a published file is written; empty: written at path_
   Hdf5Handle file_;
   bool failed_ = false;  // a flush failed (a full disk): HDF5 can no longer close the file cleanly
-  Hdf5Handle lcpl_;  // link creation: intermediate groups on
+  Hdf5Handle lcpl_;      // link creation: intermediate groups on
   // Declared after file_ so the datasets are closed before the file.
   std::deque<ExtendibleDataset> datasets_;
 };

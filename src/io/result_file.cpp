@@ -47,14 +47,12 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
   // The built-in step channels come first in every history.
   add_channel("time", "s", [](const Analysis&, const StepRecord& step) { return step.time; });
   add_channel("step_size", "s", [](const Analysis&, const StepRecord& step) { return step.step_size; });
-  add_channel("newton_iterations", "", [](const Analysis&, const StepRecord& step) {
-    return static_cast<double>(step.newton_iterations);
-  });
+  add_channel("newton_iterations", "",
+              [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.newton_iterations); });
   add_channel("cuts", "", [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.cuts); });
   add_channel("residual", "N", [](const Analysis&, const StepRecord& step) { return step.residual; });
-  add_channel("augmentations", "", [](const Analysis&, const StepRecord& step) {
-    return static_cast<double>(step.augmentations);
-  });
+  add_channel("augmentations", "",
+              [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.augmentations); });
   add_channel("energy_kinetic", "J", [](const Analysis&, const StepRecord& step) { return step.energy.kinetic; });
   add_channel("energy_strain", "J", [](const Analysis&, const StepRecord& step) { return step.energy.strain; });
   add_channel("external_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.external_work; });
@@ -165,7 +163,9 @@ XdmfGrid ResultFile::node_grid(const std::string& name, const std::string& topol
   XdmfGrid grid{name, topology, cells, nodes_per_cell, connectivity, {"/mesh/coordinates", {nodes, 2}}, {}};
   auto field = [&](const char* field_name, const char* type) {
     const bool vector = std::string(type) == "Vector";
-    grid.attributes.push_back({field_name, type, "Node",
+    grid.attributes.push_back({field_name,
+                               type,
+                               "Node",
                                {std::string("/fields/frames/{frame}/") + field_name,
                                 vector ? std::vector<long long>{nodes, 3} : std::vector<long long>{nodes}}});
   };
@@ -215,8 +215,7 @@ void ResultFile::add_mesh_grids(const Model& model) {
     file_.write_int_vector("/mesh/cell_block", cell_block);
     file_.write_attribute("/mesh/cell_block", "blocks", block_names);
     const long long count = static_cast<long long>(cell_block.size());
-    XdmfGrid mesh = node_grid("mesh", "Mixed", count, 0,
-                              {"/mesh/cells", {static_cast<long long>(cells.size())}, true});
+    XdmfGrid mesh = node_grid("mesh", "Mixed", count, 0, {"/mesh/cells", {static_cast<long long>(cells.size())}, true});
     mesh.attributes.push_back({"block", "Scalar", "Cell", {"/mesh/cell_block", {count}, true}});
     index_.add_grid(mesh);
   }
@@ -248,9 +247,9 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   const long long count = static_cast<long long>(points.size());
   if (count < 2) throw IoError("surface '" + name + "' has fewer than two points to draw");
   const std::string group = "/surfaces/" + name;
-  Surface& surface = surfaces_.emplace_back(Surface{
-      name, std::move(outline),
-      &file_.create_compressed_extendible(group + "/outline", {static_cast<hsize_t>(count), 2}, "m")});
+  Surface& surface = surfaces_.emplace_back(
+      Surface{name, std::move(outline),
+              &file_.create_compressed_extendible(group + "/outline", {static_cast<hsize_t>(count), 2}, "m")});
   // Segments from each point to the next (and from the last back to the first).
   std::vector<long long> segments;
   for (long long i = 0; i + 1 < count + (closed ? 1 : 0); ++i) {
@@ -259,8 +258,10 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   }
   const long long segment_count = static_cast<long long>(segments.size() / 2);
   file_.write_int_matrix(group + "/segments", segment_count, 2, segments.data());
+  // clang-format off
   XdmfGrid grid{name, "Polyline", segment_count, 2, {group + "/segments", {segment_count, 2}, true},
                 {group + "/frames/{frame}", {count, 2}}, {}};
+  // clang-format on
   // The frames written before the surface existed show it where its motion put it then.
   const size_t earlier = frames_written();
   for (size_t frame = 0; frame < earlier; ++frame) {
@@ -383,8 +384,7 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   // Where the structure is: a road is drawn a structure's size beyond it (at least a metre).
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), high = -low;
   for (int node = 0; node < model.mesh().node_count(); ++node) {
-    const Eigen::Vector2d position =
-        model.mesh().position(node) + state.displacement.segment<2>(dof_index(node, kUx));
+    const Eigen::Vector2d position = model.mesh().position(node) + state.displacement.segment<2>(dof_index(node, kUx));
     low = low.cwiseMin(position);
     high = high.cwiseMax(position);
   }

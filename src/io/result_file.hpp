@@ -176,12 +176,12 @@ class ResultFile {
   std::vector<Rim> rims_;
   std::vector<std::string> shown_node_sets_;
   std::vector<Surface> surfaces_;
-  std::vector<double> row_;        // one frame's deformation
+  std::vector<double> row_;                                // one frame's deformation
   Eigen::Vector2d view_centre_ = Eigen::Vector2d::Zero();  // where the last frame's structure is
   double view_reach_ = 1.0;
-  XdmfIndex index_;                   // the frames the file on disk holds
+  XdmfIndex index_;                       // the frames the file on disk holds
   std::vector<double> unflushed_frames_;  // the times of frames written since the last flush
-  size_t frames_indexed_ = 0;  // in the index file
+  size_t frames_indexed_ = 0;             // in the index file
   std::chrono::steady_clock::time_point last_index_write_ = std::chrono::steady_clock::now();
 };
 

@@ -31,9 +31,8 @@ std::string trimmed(const std::string& text) {
 }
 
 bool is_name(const std::string& text) {
-  return !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-  });
+  return !text.empty() && std::all_of(text.begin(), text.end(),
+                                      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
 bool is_quote(char c) { return c == '\'' || c == '"'; }
@@ -100,38 +99,37 @@ struct KnownUnit {
 // Names as ADAMS/Tire and MF-Tyre files write them, and the usual abbreviations
 // (case-insensitive). Exact ratios where the definition is exact (an inch is 0.0254 m).
 const std::vector<KnownUnit>& known_units() {
-  static const std::vector<KnownUnit> units{
-      {"LENGTH", {"meter", "metre", "m"}, 1.0, 1.0},
-      {"LENGTH", {"mm", "millimeter", "millimetre"}, 1.0, 1000.0},
-      {"LENGTH", {"cm", "centimeter", "centimetre"}, 1.0, 100.0},
-      {"LENGTH", {"km", "kilometer", "kilometre"}, 1000.0, 1.0},
-      {"LENGTH", {"inch", "in"}, 127.0, 5000.0},
-      {"LENGTH", {"foot", "ft"}, 381.0, 1250.0},
-      {"LENGTH", {"mile"}, 201168.0, 125.0},
-      {"FORCE", {"newton", "n"}, 1.0, 1.0},
-      {"FORCE", {"kN", "kilo_newton", "kilonewton"}, 1000.0, 1.0},
-      {"FORCE", {"lbf", "pound_force"}, 4.4482216152605, 1.0},
-      {"FORCE", {"kpound_force", "kip"}, 4448.2216152605, 1.0},
-      {"FORCE", {"dyne"}, 1.0, 100000.0},
-      {"FORCE", {"ounce_force", "ozf"}, 0.27801385095378125, 1.0},
-      {"MASS", {"kg", "kilogram"}, 1.0, 1.0},
-      {"MASS", {"gram", "g"}, 1.0, 1000.0},
-      {"MASS", {"tonne"}, 1000.0, 1.0},
-      {"MASS", {"lbm", "pound_mass"}, 0.45359237, 1.0},
-      {"MASS", {"kpound_mass"}, 453.59237, 1.0},
-      {"MASS", {"slug"}, 4.4482216152605, 0.3048},
-      {"MASS", {"ounce_mass"}, 0.028349523125, 1.0},
-      {"TIME", {"second", "sec", "s"}, 1.0, 1.0},
-      {"TIME", {"millisecond", "ms"}, 1.0, 1000.0},
-      {"TIME", {"minute", "min"}, 60.0, 1.0},
-      {"TIME", {"hour"}, 3600.0, 1.0},
-      {"ANGLE", {"radians", "radian", "rad"}, 1.0, 1.0},
-      {"ANGLE", {"degrees", "degree", "deg"}, kPi, 180.0},
-      {"PRESSURE", {"pascal", "pa"}, 1.0, 1.0},
-      {"PRESSURE", {"kPa", "kilopascal"}, 1000.0, 1.0},
-      {"PRESSURE", {"MPa", "megapascal"}, 1e6, 1.0},
-      {"PRESSURE", {"bar"}, 1e5, 1.0},
-      {"PRESSURE", {"psi"}, 4.4482216152605, 0.00064516}};
+  static const std::vector<KnownUnit> units{{"LENGTH", {"meter", "metre", "m"}, 1.0, 1.0},
+                                            {"LENGTH", {"mm", "millimeter", "millimetre"}, 1.0, 1000.0},
+                                            {"LENGTH", {"cm", "centimeter", "centimetre"}, 1.0, 100.0},
+                                            {"LENGTH", {"km", "kilometer", "kilometre"}, 1000.0, 1.0},
+                                            {"LENGTH", {"inch", "in"}, 127.0, 5000.0},
+                                            {"LENGTH", {"foot", "ft"}, 381.0, 1250.0},
+                                            {"LENGTH", {"mile"}, 201168.0, 125.0},
+                                            {"FORCE", {"newton", "n"}, 1.0, 1.0},
+                                            {"FORCE", {"kN", "kilo_newton", "kilonewton"}, 1000.0, 1.0},
+                                            {"FORCE", {"lbf", "pound_force"}, 4.4482216152605, 1.0},
+                                            {"FORCE", {"kpound_force", "kip"}, 4448.2216152605, 1.0},
+                                            {"FORCE", {"dyne"}, 1.0, 100000.0},
+                                            {"FORCE", {"ounce_force", "ozf"}, 0.27801385095378125, 1.0},
+                                            {"MASS", {"kg", "kilogram"}, 1.0, 1.0},
+                                            {"MASS", {"gram", "g"}, 1.0, 1000.0},
+                                            {"MASS", {"tonne"}, 1000.0, 1.0},
+                                            {"MASS", {"lbm", "pound_mass"}, 0.45359237, 1.0},
+                                            {"MASS", {"kpound_mass"}, 453.59237, 1.0},
+                                            {"MASS", {"slug"}, 4.4482216152605, 0.3048},
+                                            {"MASS", {"ounce_mass"}, 0.028349523125, 1.0},
+                                            {"TIME", {"second", "sec", "s"}, 1.0, 1.0},
+                                            {"TIME", {"millisecond", "ms"}, 1.0, 1000.0},
+                                            {"TIME", {"minute", "min"}, 60.0, 1.0},
+                                            {"TIME", {"hour"}, 3600.0, 1.0},
+                                            {"ANGLE", {"radians", "radian", "rad"}, 1.0, 1.0},
+                                            {"ANGLE", {"degrees", "degree", "deg"}, kPi, 180.0},
+                                            {"PRESSURE", {"pascal", "pa"}, 1.0, 1.0},
+                                            {"PRESSURE", {"kPa", "kilopascal"}, 1000.0, 1.0},
+                                            {"PRESSURE", {"MPa", "megapascal"}, 1e6, 1.0},
+                                            {"PRESSURE", {"bar"}, 1e5, 1.0},
+                                            {"PRESSURE", {"psi"}, 4.4482216152605, 0.00064516}};
   return units;
 }
 
@@ -140,9 +138,9 @@ struct BaseQuantity {
   const char* si;
   int Dimension::*exponent;
 };
-const BaseQuantity kBases[] = {{"force", "N", &Dimension::force},     {"mass", "kg", &Dimension::mass},
-                               {"length", "m", &Dimension::length},   {"time", "s", &Dimension::time},
-                               {"angle", "rad", &Dimension::angle},   {"pressure", "Pa", &Dimension::pressure}};
+const BaseQuantity kBases[] = {{"force", "N", &Dimension::force},   {"mass", "kg", &Dimension::mass},
+                               {"length", "m", &Dimension::length}, {"time", "s", &Dimension::time},
+                               {"angle", "rad", &Dimension::angle}, {"pressure", "Pa", &Dimension::pressure}};
 
 /// "a b^2/(c d)" from the bases' names; 'one' when dimensionless.
 std::string format_dimension(const Dimension& dimension, bool si, const char* one) {
@@ -183,8 +181,12 @@ const std::vector<std::pair<std::string, std::string>>& UnitSystem::si_units() {
 
 std::optional<std::string> UnitSystem::set(const std::string& quantity, const std::string& unit) {
   const std::string key = upper(quantity);
-  Scale* target = key == "LENGTH" ? &length_ : key == "FORCE" ? &force_ : key == "MASS" ? &mass_
-                  : key == "TIME" ? &time_ : key == "ANGLE" ? &angle_ : nullptr;
+  Scale* target = key == "LENGTH"  ? &length_
+                  : key == "FORCE" ? &force_
+                  : key == "MASS"  ? &mass_
+                  : key == "TIME"  ? &time_
+                  : key == "ANGLE" ? &angle_
+                                   : nullptr;
   if (!target && key != "PRESSURE")
     return "unknown quantity '" + quantity + "' (known: LENGTH, FORCE, ANGLE, MASS, TIME, PRESSURE)";
   std::vector<std::string> names;
@@ -207,8 +209,8 @@ std::optional<std::string> UnitSystem::set(const std::string& quantity, const st
   const std::string hint = did_you_mean(unit, every);
   std::string word = quantity;
   std::transform(word.begin(), word.end(), word.begin(), [](unsigned char c) { return std::tolower(c); });
-  return quantity + " = '" + unit + "' is not a known " + word + " unit (" +
-         (hint.empty() ? "" : hint + "; ") + "known: " + join(names) + ")";
+  return quantity + " = '" + unit + "' is not a known " + word + " unit (" + (hint.empty() ? "" : hint + "; ") +
+         "known: " + join(names) + ")";
 }
 
 double UnitSystem::to_si(double value, const Dimension& dimension) const {
@@ -394,13 +396,13 @@ std::optional<double> TeimOrbitReader::number(const std::string& section, const 
   return to_number(section, *value, dimension);
 }
 
-double TeimOrbitReader::required_number(const std::string& section, const std::string& key,
-                                        const Dimension& dimension, const std::string& meaning) {
+double TeimOrbitReader::required_number(const std::string& section, const std::string& key, const Dimension& dimension,
+                                        const std::string& meaning) {
   if (const auto value = number(section, key, dimension)) return *value;
   const TeimOrbitSection* found = file_.section(section);
   const std::string unit = dimension_name(dimension);
-  fail(found ? found->line : 0, "missing [" + section + "] " + key + " (" + meaning +
-                                    (dimension.dimensionless() ? "" : ", a " + unit) + ")");
+  fail(found ? found->line : 0,
+       "missing [" + section + "] " + key + " (" + meaning + (dimension.dimensionless() ? "" : ", a " + unit) + ")");
 }
 
 std::optional<std::string> TeimOrbitReader::string(const std::string& section, const std::string& key) {

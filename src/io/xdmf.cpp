@@ -66,7 +66,8 @@ void XdmfIndex::append_frame(Collection& collection, size_t frame) const {
   std::string& out = collection.frames;
   out += "      <Grid Name=\"" + escaped(grid.name) + "\" GridType=\"Uniform\">\n";
   out += "        <Time Value=\"" + exact(times_[frame]) + "\" />\n";
-  out += "        <Topology TopologyType=\"" + grid.topology + "\" NumberOfElements=\"" + std::to_string(grid.cells) + "\"";
+  out += "        <Topology TopologyType=\"" + grid.topology + "\" NumberOfElements=\"" + std::to_string(grid.cells) +
+         "\"";
   if (grid.nodes_per_cell > 0) out += " NodesPerElement=\"" + std::to_string(grid.nodes_per_cell) + "\"";
   out += ">\n";
   data_item(out, file_, grid.connectivity, frame, "          ");

@@ -36,11 +36,11 @@ struct XdmfAttribute {
 
 struct XdmfGrid {
   std::string name;
-  std::string topology;    // XDMF TopologyType: "Mixed", "Polyvertex", "Polyline", ...
+  std::string topology;  // XDMF TopologyType: "Mixed", "Polyvertex", "Polyline", ...
   long long cells = 0;
   int nodes_per_cell = 0;  // written for Polyvertex and Polyline
   XdmfData connectivity;
-  XdmfData geometry;       // points x 2
+  XdmfData geometry;  // points x 2
   std::vector<XdmfAttribute> attributes;
 };
 

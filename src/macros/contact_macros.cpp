@@ -77,9 +77,9 @@ std::optional<RoadTrack> track_of(const MacroArguments& arguments) {
 /// placed on the road by 'start' (along x) and 'offset' (up).
 std::vector<Eigen::Vector2d> file_profile(const std::string& file, const std::optional<RoadShape>& road,
                                           const MacroArguments& arguments) {
-  std::vector<Eigen::Vector2d> points = road                            ? road->points
+  std::vector<Eigen::Vector2d> points = road                          ? road->points
                                         : has_extension(file, ".csv") ? read_road_csv(file, track_of(arguments))
-                                                                        : RoadProfile::read_points(file);
+                                                                      : RoadProfile::read_points(file);
   if (!road && !has_extension(file, ".csv") && arguments.has("track"))
     throw ModelError("'track' needs a file with tracks (.csv or .rdf); '" + file + "' has one profile");
   const Eigen::Vector2d shift(arguments.number("start"), arguments.number("offset"));
@@ -161,9 +161,8 @@ std::shared_ptr<const RigidSurface> build_drum(const MacroArguments& arguments, 
   return std::make_shared<Drum>(diameter, pair_of(arguments, "centre", Eigen::Vector2d::Zero()), motion, cleat);
 }
 
-std::shared_ptr<const RigidSurface> build_profile(const MacroArguments& arguments,
-                                                  const std::optional<RoadShape>& road, const std::string& file,
-                                                  const MotionFunction& motion) {
+std::shared_ptr<const RigidSurface> build_profile(const MacroArguments& arguments, const std::optional<RoadShape>& road,
+                                                  const std::string& file, const MotionFunction& motion) {
   static const SurfaceKeys keys{
       "profile", {"file", "start", "offset", "track", "points", "pothole", "cleat", "level", "edge_radius"}, {}, {}};
   check_surface_keys(arguments, keys, road, file);
@@ -310,8 +309,14 @@ void add_contact_macros(MacroTable& table) {
        "road, inside a drum). Roads and profiles translate along x, drums turn about their centre: by 'speed' "
        "(ramped from rest over 'ramp_time' from 'start_time') or by 'amplitude' times a load function.",
        {{"name", VT::String, true, "", "surface name"},
-        {"type", VT::String, false, "", "kind of surface (required unless 'file' is a road data file)", std::nullopt,
-         Range::Any, {"flat", "drum", "profile"}},
+        {"type",
+         VT::String,
+         false,
+         "",
+         "kind of surface (required unless 'file' is a road data file)",
+         std::nullopt,
+         Range::Any,
+         {"flat", "drum", "profile"}},
         {"point", VT::NumberList, false, "m", "flat: a point of the road {x, y}", std::string("{0, 0}")},
         {"direction", VT::NumberList, false, "", "flat: direction along the road {dx, dy}", std::string("{1, 0}")},
         {"diameter", VT::Number, false, "m", "drum: diameter", std::nullopt, Range::Positive},
@@ -327,8 +332,14 @@ void add_contact_macros(MacroTable& table) {
          "data file (.rdf); relative to the deck's folder"},
         {"start", VT::Number, false, "m", "file: where the file's x = 0 lies along the road", std::string("0")},
         {"offset", VT::Number, false, "m", "file: height added to the file's road", std::string("0")},
-        {"track", VT::String, false, "", "file: the track of a file with a left and a right one", std::nullopt,
-         Range::Any, {"left", "right"}},
+        {"track",
+         VT::String,
+         false,
+         "",
+         "file: the track of a file with a left and a right one",
+         std::nullopt,
+         Range::Any,
+         {"left", "right"}},
         {"points", VT::NumberMatrix, false, "m", "profile: {x, y} points, x not decreasing"},
         {"pothole", VT::NumberList, false, "m", "profile: a pothole {start, length, depth} in a level road"},
         {"cleat", VT::NumberList, false, "m", "profile: a cleat {start, length, height} on a level road"},

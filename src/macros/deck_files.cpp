@@ -63,7 +63,8 @@ void refuse_foreign_file(const fs::path& real, const std::string& shown, const O
 // file's creation to fail with "No such file or directory".
 void create_output_folder(const fs::path& file) {
   auto failure = [&](const fs::path& folder, const std::string& reason) {
-    return ModelError("cannot create the output folder '" + folder.string() + "' for '" + file.string() + "': " + reason);
+    return ModelError("cannot create the output folder '" + folder.string() + "' for '" + file.string() +
+                      "': " + reason);
   };
   fs::path made;
   for (const fs::path& part : file.parent_path()) {

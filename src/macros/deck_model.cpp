@@ -24,18 +24,16 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
     report_step(record);
     if (const int signal = stop_signal().load()) {
       if (output_) output_->flush();
-      throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                               " after step " + std::to_string(record.step) + " at t = " +
-                               std::to_string(record.time) +
+      throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " after step " +
+                               std::to_string(record.step) + " at t = " + std::to_string(record.time) +
                                (output_ ? "; '" + output_->path() + "' holds every completed step" : ""));
     }
   });
   analysis_.set_step_end_hook([this](Analysis&, const StepRecord& record) {
     if (checkpoint_file_.empty()) return;
     const bool by_steps = checkpoint_steps_ > 0 && record.step % checkpoint_steps_ == 0;
-    const bool by_time = checkpoint_minutes_ > 0.0 &&
-                         std::chrono::steady_clock::now() - last_checkpoint_ >=
-                             std::chrono::duration<double>(60.0 * checkpoint_minutes_);
+    const bool by_time = checkpoint_minutes_ > 0.0 && std::chrono::steady_clock::now() - last_checkpoint_ >=
+                                                          std::chrono::duration<double>(60.0 * checkpoint_minutes_);
     if (by_steps || by_time) write_checkpoint(checkpoint_file_);
   });
 }
@@ -80,8 +78,9 @@ void DeckModel::schedule_checkpoints(const std::string& file, int steps, double 
 void DeckModel::set_wheel_heading(int spindle, Heading heading) {
   for (const auto& [node, other] : wheel_headings_)
     if (other != heading)
-      throw ModelError(std::string("this model's tires head ") + heading_name(other) + ": give every tire heading = \"" +
-                       heading_name(other) + "\" (one result file states one heading)");
+      throw ModelError(std::string("this model's tires head ") + heading_name(other) +
+                       ": give every tire heading = \"" + heading_name(other) +
+                       "\" (one result file states one heading)");
   wheel_headings_[spindle] = heading;
 }
 
@@ -95,8 +94,8 @@ Heading DeckModel::wheel_heading(int node) const {
 void DeckModel::require_state(const std::string& what) const {
   if (restart_ && skipped_steps_)
     throw ModelError(what + " needs the state at t = " + std::to_string(analysis_.state().time) +
-                     ", which a restart skips (it continues from t = " +
-                     std::to_string(restart_->analysis.state.time) + ")");
+                     ", which a restart skips (it continues from t = " + std::to_string(restart_->analysis.state.time) +
+                     ")");
 }
 
 void DeckModel::load_checkpoint() {
@@ -135,7 +134,8 @@ void DeckModel::define_section(const std::string& name, const BeamSection& secti
 
 const BeamSection& DeckModel::section(const std::string& name) const {
   auto found = sections_.find(name);
-  if (found == sections_.end()) throw ModelError("no beam section named '" + name + "' (define it with model:section{...})");
+  if (found == sections_.end())
+    throw ModelError("no beam section named '" + name + "' (define it with model:section{...})");
   return found->second;
 }
 

@@ -134,7 +134,7 @@ class DeckModel {
   std::map<std::string, int> load_functions_;
   std::map<std::string, std::shared_ptr<const RigidSurface>> surfaces_;
   std::map<int, std::unique_ptr<TireSpindle>> spindles_;  // by 0-based node; declared after analysis_, which they drive
-  std::map<int, Heading> wheel_headings_;  // by spindle node
+  std::map<int, Heading> wheel_headings_;                 // by spindle node
   std::unique_ptr<io::ResultFile> output_;
   std::vector<std::function<void(io::ResultFile&)>> output_descriptions_;  // until it opens
   bool calls_lua_ = false;

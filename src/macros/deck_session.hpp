@@ -38,8 +38,8 @@ struct DeckProcesses {
 };
 
 /// Makes the exchange a vehicle asks its tires through; owners[i] is the process of tire i.
-using TireExchangeFactory = std::function<std::unique_ptr<TireExchange>(
-    std::vector<TireSpindle*> tires, std::vector<int> owners, bool threads)>;
+using TireExchangeFactory = std::function<std::unique_ptr<TireExchange>(std::vector<TireSpindle*> tires,
+                                                                        std::vector<int> owners, bool threads)>;
 
 struct DeckSession {
   std::string output_dir = "results";

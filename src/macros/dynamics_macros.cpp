@@ -67,8 +67,7 @@ int undamped_modes(lua_State* L, DeckModel& deck, const MacroArguments& argument
   return 2;
 }
 
-int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments, const std::string& label,
-                 int count) {
+int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments, const std::string& label, int count) {
   DampedModalSettings settings;
   settings.damping = arguments.boolean("damped");
   settings.spin_rate = arguments.number_or("spin_rate", 0.0);
@@ -93,8 +92,10 @@ int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments,
   }
   push_numbers(L, result.frequencies_hz);
   // Per mode {|fx|, |fy|, |mz|}: the amplitude of the complex support reaction.
-  if (node >= 0) push_reactions(L, node, result.reactions, [](std::complex<double> force) { return std::abs(force); });
-  else lua_pushnil(L);
+  if (node >= 0)
+    push_reactions(L, node, result.reactions, [](std::complex<double> force) { return std::abs(force); });
+  else
+    lua_pushnil(L);
   push_numbers(L, result.damping_ratios);
   return 3;
 }
@@ -114,7 +115,8 @@ void add_dynamics_macros(MacroTable& table) {
       {{"initial",
         "Sets initial displacement and/or velocity of a DOF of a node or a set before the first dynamic step; "
         "the initial acceleration is then computed from equilibrium.",
-        {node_key(), set_key(),
+        {node_key(),
+         set_key(),
          {"dof", VT::String, true, "", "DOF component", std::nullopt, Range::Any, dof_names()},
          {"displacement", VT::Number, false, "m or rad", "initial displacement"},
          {"velocity", VT::Number, false, "m/s or rad/s", "initial velocity"}},
@@ -137,8 +139,8 @@ void add_dynamics_macros(MacroTable& table) {
         "(docs/dynamics.md).",
         {{"modes", VT::Integer, true, "", "number of modes", std::nullopt, Range::Positive},
          {"label", VT::String, false, "", "name of the /modes group (default: the time)"},
-         {"reaction_node", VT::Integer, false, "", "node whose support reaction per mode is returned",
-          std::nullopt, Range::Positive},
+         {"reaction_node", VT::Integer, false, "", "node whose support reaction per mode is returned", std::nullopt,
+          Range::Positive},
          {"damped", VT::Boolean, false, "", "include the damping matrix (the quadratic eigenproblem)",
           std::string("false")},
          {"spin_rate", VT::Number, false, "rad/s",

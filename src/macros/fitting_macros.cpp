@@ -31,15 +31,14 @@ using VT = ValueType;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 const MacroSpec& parameter_entry_spec() {
-  static const MacroSpec spec{
-      "fit.parameters",
-      "",
-      {{"name", VT::String, true, "", "parameter name"},
-       {"initial", VT::Number, true, "", "starting value"},
-       {"lower", VT::Number, false, "", "lower bound"},
-       {"upper", VT::Number, false, "", "upper bound"},
-       {"log", VT::Boolean, false, "", "search ln(value)", std::string("false")}},
-      ""};
+  static const MacroSpec spec{"fit.parameters",
+                              "",
+                              {{"name", VT::String, true, "", "parameter name"},
+                               {"initial", VT::Number, true, "", "starting value"},
+                               {"lower", VT::Number, false, "", "lower bound"},
+                               {"upper", VT::Number, false, "", "upper bound"},
+                               {"log", VT::Boolean, false, "", "search ln(value)", std::string("false")}},
+                              ""};
   return spec;
 }
 
@@ -186,12 +185,12 @@ fitting::PredictionModel lua_model(lua_State* L, const RegistryReference& functi
 fitting::FitOptions fit_options(const MacroArguments& arguments, DeckSession& session) {
   fitting::FitOptions options;
   if (arguments.has("method"))
-    options.method = arguments.string("method") == "brent" ? fitting::FitMethod::Brent
-                                                           : fitting::FitMethod::LevenbergMarquardt;
+    options.method =
+        arguments.string("method") == "brent" ? fitting::FitMethod::Brent : fitting::FitMethod::LevenbergMarquardt;
   options.tolerance = arguments.number("tolerance");
   options.max_evaluations = static_cast<int>(arguments.integer("max_evaluations"));
   options.differences = arguments.string("differences") == "central" ? fitting::FiniteDifference::Central
-                                                                      : fitting::FiniteDifference::Forward;
+                                                                     : fitting::FiniteDifference::Forward;
   options.relative_step = arguments.number("relative_step");
   options.log = !session.quiet && arguments.boolean("log") ? &session.progress.output() : nullptr;
   return options;
@@ -265,7 +264,8 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
 
   const long long curve_points = arguments.integer("curve_points");
   if (curve_points > 10000)
-    throw std::invalid_argument("'curve_points' = " + std::to_string(curve_points) + " is more than a plot needs "
+    throw std::invalid_argument("'curve_points' = " + std::to_string(curve_points) +
+                                " is more than a plot needs "
                                 "(at most 10000)");
   fitting::FitAxes axes;
   std::optional<fitting::CurveData> curve;  // the data file
@@ -305,9 +305,9 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
   const RegistryReference function(L);
   problem.model = lua_model(L, function, columns, problem.parameters);
   // Checked before the fit's work, which a refused name would waste.
-  const std::string output =
-      arguments.has("output") ? deck_output_path(session, arguments.string("output"), OutputFile::hdf5("a fit result file"))
-                              : "";
+  const std::string output = arguments.has("output") ? deck_output_path(session, arguments.string("output"),
+                                                                        OutputFile::hdf5("a fit result file"))
+                                                     : "";
   const fitting::FitResult result = fitting::fit(problem, fit_options(arguments, session));
 
   if (!output.empty() && curve && axes.x.size() > 1 && curve_points >= 2 && result.values.allFinite()) {
@@ -324,7 +324,7 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
         axes.curve_prediction = on_grid;
       }
     } catch (const fitting::EvaluationError&) {  // the model failed on the grid: no curve
-    } catch (const std::invalid_argument&) {      // it returned something else than numbers: no curve
+    } catch (const std::invalid_argument&) {     // it returned something else than numbers: no curve
     }
   }
   if (!output.empty()) fitting::write_fit_file(output, problem, result, axes, session.deck_path);
@@ -358,17 +358,30 @@ void add_fitting_macros(MacroTable& table) {
           "CSV file with a header of column names with unit suffixes (deflection_mm, force_N), relative to the "
           "deck's folder"},
          {"data_column", VT::String, false, "", "the column of data_file holding the measured values"},
-         {"x", VT::NumberList, false, "", "abscissa of the data points, for the plot (data_file: its first other "
-                                          "column)"},
+         {"x", VT::NumberList, false, "",
+          "abscissa of the data points, for the plot (data_file: its first other "
+          "column)"},
          {"weights", VT::NumberList, false, "", "relative weight of each data point (default 1)", std::nullopt,
           Range::Positive},
-         {"method", VT::String, false, "", "default: brent for one parameter, else levenberg_marquardt",
-          std::nullopt, Range::Any, {"brent", "levenberg_marquardt"}},
+         {"method",
+          VT::String,
+          false,
+          "",
+          "default: brent for one parameter, else levenberg_marquardt",
+          std::nullopt,
+          Range::Any,
+          {"brent", "levenberg_marquardt"}},
          {"tolerance", VT::Number, false, "", "stop when every parameter changes by less than this fraction",
           std::string("1e-6"), Range::Positive},
          {"max_evaluations", VT::Integer, false, "", "model evaluations before giving up", std::string("100"),
           Range::Positive},
-         {"differences", VT::String, false, "", "finite-difference derivatives", std::string("forward"), Range::Any,
+         {"differences",
+          VT::String,
+          false,
+          "",
+          "finite-difference derivatives",
+          std::string("forward"),
+          Range::Any,
           {"forward", "central"}},
          {"relative_step", VT::Number, false, "", "finite-difference step relative to the parameter",
           std::string("1e-6"), Range::Positive},

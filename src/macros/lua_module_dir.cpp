@@ -53,8 +53,8 @@ std::string find_module_dir() {
   std::error_code error;
   const fs::path build_tree = fs::weakly_canonical(TIREFE_BINARY_DIR, error);
   if (!error && inside(file, build_tree) && holds_modules(TIREFE_LUA_DIR)) return TIREFE_LUA_DIR;
-  throw ModelError("cannot find tirefe's Lua modules: not in '" + installed.string() +
-                   "' (next to " + file.string() + "); set TIREFE_LUA_PATH to the folder holding tire_on_road.lua");
+  throw ModelError("cannot find tirefe's Lua modules: not in '" + installed.string() + "' (next to " + file.string() +
+                   "); set TIREFE_LUA_PATH to the folder holding tire_on_road.lua");
 }
 
 }  // namespace

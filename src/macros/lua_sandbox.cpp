@@ -318,8 +318,8 @@ void LuaSandbox::stop_hook(lua_State* L, lua_Debug*) {
   // From now on every instruction raises again: a deck catching the error with pcall
   // cannot go on, the error climbs to the top.
   lua_sethook(L, stop_hook, LUA_MASKCOUNT, 1);
-  raise_deck_error(L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                          " while the deck ran Lua code");
+  raise_deck_error(
+      L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " while the deck ran Lua code");
 }
 
 LuaSandbox* LuaSandbox::from(lua_State* L) {
@@ -331,7 +331,7 @@ LuaSandbox* LuaSandbox::from(lua_State* L) {
 
 void LuaSandbox::open_safe_libraries() {
   lua_State* L = state();
-  static const luaL_Reg libraries[] = {{LUA_GNAME, luaopen_base},       {LUA_TABLIBNAME, luaopen_table},
+  static const luaL_Reg libraries[] = {{LUA_GNAME, luaopen_base},        {LUA_TABLIBNAME, luaopen_table},
                                        {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
                                        {LUA_UTF8LIBNAME, luaopen_utf8},  {LUA_COLIBNAME, luaopen_coroutine}};
   for (const auto& library : libraries) {
@@ -526,11 +526,11 @@ int lua_parameters(lua_State* L) {
     const std::string default_text = luaL_tolstring(L, -1, nullptr);
     lua_pop(L, 2);
     if (type == LUA_TNIL)
-      raise_deck_error(L, "command-line parameter '" + key + "' is not declared by the deck (declared: " +
-                              join(declared) + ")");
+      raise_deck_error(
+          L, "command-line parameter '" + key + "' is not declared by the deck (declared: " + join(declared) + ")");
     if (type != LUA_TNUMBER && type != LUA_TBOOLEAN && type != LUA_TSTRING)
-      raise_deck_error(L, "command-line parameter '" + key + "' cannot override a " + lua_typename(L, type) +
-                              " default");
+      raise_deck_error(L,
+                       "command-line parameter '" + key + "' cannot override a " + lua_typename(L, type) + " default");
     if (!push_parsed(L, type, is_integer, text)) {
       const char* expected = type == LUA_TBOOLEAN ? "true or false" : is_integer ? "an integer" : "a number";
       raise_deck_error(L, "command-line parameter '" + key + "=" + text + "' must be " + expected +

@@ -38,9 +38,9 @@ struct ParameterSpec {
   std::string doc;
   // Shown in the docs; for scalar types also the value the plain accessors return when the key is absent.
   std::optional<std::string> default_value = std::nullopt;
-  Range range = Range::Any;  // applies to numbers and to every entry of number lists/matrices
+  Range range = Range::Any;               // applies to numbers and to every entry of number lists/matrices
   std::vector<std::string> choices = {};  // allowed values of a String key (empty: any)
-  long long maximum = kIntegerLimit;       // the largest value of an Integer key or IntegerList entry
+  long long maximum = kIntegerLimit;      // the largest value of an Integer key or IntegerList entry
 };
 
 struct MacroSpec {

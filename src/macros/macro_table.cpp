@@ -56,8 +56,8 @@ int call_module_macro(lua_State* L) {
 int call_model_macro(lua_State* L) {
   const auto& macro = macro_table().model_macros[lua_tointeger(L, lua_upvalueindex(1))];
   if (!luaL_testudata(L, 1, kModelMetatable))
-    raise_deck_error(L, "model:" + macro.spec.name + " must be called with a colon on a model (model:" +
-                            macro.spec.name + "{...})");
+    raise_deck_error(
+        L, "model:" + macro.spec.name + " must be called with a colon on a model (model:" + macro.spec.name + "{...})");
   ensure_argument_table(L, 2);
   std::string failure;
   try {
@@ -134,8 +134,9 @@ DeckModel& check_model(lua_State* L, int index) {
   auto* handle = static_cast<ModelHandle*>(luaL_testudata(L, index, kModelMetatable));
   if (!handle) raise_deck_error(L, "expected a model made by tirefe.model{...}");
   if (!handle->model)
-    raise_deck_error(L, "this model was closed when Lua collected it (a finaliser kept it): "
-                        "keep the model in a variable for as long as the deck uses it");
+    raise_deck_error(L,
+                     "this model was closed when Lua collected it (a finaliser kept it): "
+                     "keep the model in a variable for as long as the deck uses it");
   DeckModel& deck = *handle->model;
   if (!deck.stale().empty()) raise_deck_error(L, deck.stale());
   if (!deck.busy_with().empty())
@@ -179,11 +180,10 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
   lua_setfield(L, -2, "__metatable");
   lua_pop(L, 1);
 
-  sandbox.set_parameters_observer(
-      [&session](const std::vector<std::pair<std::string, std::string>>& resolved) {
-        session.parameters = resolved;
-        if (session.restart) io::check_parameters(*session.restart, resolved);  // at the deck's parameters line
-      });
+  sandbox.set_parameters_observer([&session](const std::vector<std::pair<std::string, std::string>>& resolved) {
+    session.parameters = resolved;
+    if (session.restart) io::check_parameters(*session.restart, resolved);  // at the deck's parameters line
+  });
   lua_getglobal(L, "tirefe");
   for (size_t i = 0; i < table.module_macros.size(); ++i) {
     lua_pushinteger(L, static_cast<lua_Integer>(i));

@@ -21,8 +21,8 @@ using VT = ValueType;
 
 const ParameterSpec kNodeKey = node_key();
 const ParameterSpec kSetKey = set_key();
-const ParameterSpec kLoadFunctionKey{"load_function", VT::String, false, "",
-                                     "name of the load function scaling the value", std::string("ramp")};
+const ParameterSpec kLoadFunctionKey{
+    "load_function", VT::String, false, "", "name of the load function scaling the value", std::string("ramp")};
 const std::vector<std::string> kDofNames = dof_names();
 
 int component_of(const std::string& name) { return dof_component(name); }
@@ -56,12 +56,11 @@ int section_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
 
 void add_beam(DeckModel& deck, const BeamSection& section, int start, int end) {
   Model& model = deck.model();
-  auto* block = dynamic_cast<ElementBlockOf<TreadBeam>*>(
-      [&]() -> ElementBlock* {
-        for (const auto& existing : model.blocks())
-          if (existing->name() == "beams") return existing.get();
-        return &model.add_block<TreadBeam>("beams");
-      }());
+  auto* block = dynamic_cast<ElementBlockOf<TreadBeam>*>([&]() -> ElementBlock* {
+    for (const auto& existing : model.blocks())
+      if (existing->name() == "beams") return existing.get();
+    return &model.add_block<TreadBeam>("beams");
+  }());
   block->add({start, end}, TreadBeam(model.mesh().position(start), model.mesh().position(end), section));
 }
 
@@ -93,17 +92,18 @@ int load_function_macro(lua_State* L, DeckModel& deck, const MacroArguments& arg
   arguments.push_value("fn");
   const int reference = luaL_ref(L, LUA_REGISTRYINDEX);
   deck.note_lua_callback();
-  deck.define_load_function(name, LoadFunction([L, reference, name](double time) {
-    lua_rawgeti(L, LUA_REGISTRYINDEX, reference);
-    lua_pushnumber(L, time);
-    lua_call(L, 1, 1);
-    int is_number = 0;
-    const double factor = lua_tonumberx(L, -1, &is_number);
-    lua_pop(L, 1);
-    if (!is_number || !std::isfinite(factor))
-      throw ModelError("load function '" + name + "' returned no finite number at t = " + std::to_string(time));
-    return factor;
-  }));
+  deck.define_load_function(
+      name, LoadFunction([L, reference, name](double time) {
+        lua_rawgeti(L, LUA_REGISTRYINDEX, reference);
+        lua_pushnumber(L, time);
+        lua_call(L, 1, 1);
+        int is_number = 0;
+        const double factor = lua_tonumberx(L, -1, &is_number);
+        lua_pop(L, 1);
+        if (!is_number || !std::isfinite(factor))
+          throw ModelError("load function '" + name + "' returned no finite number at t = " + std::to_string(time));
+        return factor;
+      }));
   return 0;
 }
 
@@ -214,7 +214,9 @@ int step_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
 int solve_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   if (arguments.has("dt")) deck.analysis().set_time_step(arguments.number("dt"));
   const double now = deck.analysis().state().time, target = arguments.number("to");
-  if (!(target > now)) throw ModelError("'to' (" + std::to_string(target) + ") must be later than the current time " + std::to_string(now));
+  if (!(target > now))
+    throw ModelError("'to' (" + std::to_string(target) + ") must be later than the current time " +
+                     std::to_string(now));
   return push_step_summary(L, deck.advance(target - now));
 }
 
@@ -243,8 +245,8 @@ NodalQuantity quantity_reader(const std::string& quantity) {
 }
 
 const char* quantity_unit(const std::string& quantity, int component) {
-  static const char* units[5][3] = {{"m", "m", "rad"}, {"m/s", "m/s", "rad/s"}, {"m/s^2", "m/s^2", "rad/s^2"},
-                                    {"N", "N", "N m"}, {"N", "N", "N m"}};
+  static const char* units[5][3] = {
+      {"m", "m", "rad"}, {"m/s", "m/s", "rad/s"}, {"m/s^2", "m/s^2", "rad/s^2"}, {"N", "N", "N m"}, {"N", "N", "N m"}};
   const char* names[4] = {"displacement", "velocity", "acceleration", "reaction"};
   if (quantity == "position") return units[0][component];
   int row = 4;
@@ -260,10 +262,10 @@ double summed_quantity(const Analysis& analysis, NodalQuantity reader, const std
   return total;
 }
 
-const std::vector<std::string> kNodalQuantities{"displacement", "velocity", "acceleration", "reaction",
-                                                "external_force", "position"};
-const std::vector<std::string> kQuantities{"displacement", "velocity",       "acceleration", "reaction",
-                                           "external_force", "position",     "spindle_force", "spin_rate"};
+const std::vector<std::string> kNodalQuantities{"displacement", "velocity",       "acceleration",
+                                                "reaction",     "external_force", "position"};
+const std::vector<std::string> kQuantities{"displacement",   "velocity", "acceleration",  "reaction",
+                                           "external_force", "position", "spindle_force", "spin_rate"};
 const std::vector<std::string> kWheelComponents{"fx", "fz", "my"};
 
 // ---- a tire's wheel quantities: ISO 8855 wheel axes (tire/wheel_axes.hpp) -----------
@@ -315,14 +317,12 @@ Reading reading_of(DeckModel& deck, const MacroArguments& arguments, const std::
 int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::string quantity = arguments.string("quantity");
   const Reading reading = reading_of(deck, arguments, quantity);
-  const std::string unit = is_wheel_quantity(quantity)
-                               ? wheel_unit(quantity, arguments)
-                               : quantity_unit(quantity, component_of(arguments.string("dof")));
+  const std::string unit = is_wheel_quantity(quantity) ? wheel_unit(quantity, arguments)
+                                                       : quantity_unit(quantity, component_of(arguments.string("dof")));
   const double scale = arguments.number("scale");
-  deck.output_or_default().add_channel(arguments.string("name"), unit,
-                                       [reading, scale](const Analysis& analysis, const StepRecord&) {
-                                         return scale * reading(analysis);
-                                       });
+  deck.output_or_default().add_channel(
+      arguments.string("name"), unit,
+      [reading, scale](const Analysis& analysis, const StepRecord&) { return scale * reading(analysis); });
   return 0;
 }
 
@@ -376,8 +376,8 @@ int model_macro(lua_State* L, DeckSession& session, const MacroArguments& argume
 int check_macro(lua_State*, DeckSession& session, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
   const double value = arguments.number("value"), expected = arguments.number("expected");
-  const double allowed = arguments.has("relative") ? arguments.number("relative") * std::abs(expected)
-                                                   : arguments.number("tolerance");
+  const double allowed =
+      arguments.has("relative") ? arguments.number("relative") * std::abs(expected) : arguments.number("tolerance");
   const bool passed = std::abs(value - expected) <= allowed;
   session.checks.push_back({name, passed});
   session.progress.clear();
@@ -391,21 +391,32 @@ int progress_macro(lua_State*, DeckSession& session, const MacroArguments& argum
   return 0;
 }
 
-const ParameterSpec kDofsKey{"dofs", VT::StringList, false, "", "DOFs to constrain", std::string("{\"ux\", \"uy\", \"rz\"}"),
-                             Range::Any, kDofNames};
+const ParameterSpec kDofsKey{
+    "dofs",     VT::StringList, false, "", "DOFs to constrain", std::string("{\"ux\", \"uy\", \"rz\"}"),
+    Range::Any, kDofNames};
 const ParameterSpec kDofKey{"dof", VT::String, true, "", "DOF component", std::nullopt, Range::Any, kDofNames};
-const ParameterSpec kNodalQuantityKey{"quantity", VT::String, false, "", "nodal quantity", std::string("displacement"),
-                                      Range::Any, kNodalQuantities};
+const ParameterSpec kNodalQuantityKey{
+    "quantity", VT::String, false, "", "nodal quantity", std::string("displacement"), Range::Any, kNodalQuantities};
 // history and value: a nodal quantity by DOF, or a tire's spindle force or spin rate in its wheel axes.
-const ParameterSpec kQuantityDofKey{"dof", VT::String, false, "", "DOF component (nodal quantities)", std::nullopt,
-                                    Range::Any, kDofNames};
-const ParameterSpec kQuantityKey{"quantity", VT::String, false, "",
+const ParameterSpec kQuantityDofKey{"dof",        VT::String, false,    "", "DOF component (nodal quantities)",
+                                    std::nullopt, Range::Any, kDofNames};
+const ParameterSpec kQuantityKey{"quantity",
+                                 VT::String,
+                                 false,
+                                 "",
                                  "nodal quantity, or at node = tire.spindle the tire's spindle_force (give component) "
                                  "or spin_rate in ISO 8855 wheel axes (docs/output.md)",
-                                 std::string("displacement"), Range::Any, kQuantities};
-const ParameterSpec kComponentKey{"component", VT::String, false, "",
+                                 std::string("displacement"),
+                                 Range::Any,
+                                 kQuantities};
+const ParameterSpec kComponentKey{"component",
+                                  VT::String,
+                                  false,
+                                  "",
                                   "spindle_force: fx, fz [N] or my [N m], the force the tire exerts on the wheel",
-                                  std::nullopt, Range::Any, kWheelComponents};
+                                  std::nullopt,
+                                  Range::Any,
+                                  kWheelComponents};
 
 }  // namespace
 
@@ -466,16 +477,21 @@ void add_model_macros(MacroTable& table) {
         "tirefe.progress{ end_time = 8.0 }"},
        progress_macro});
 
-  auto add = [&table](MacroSpec spec, ModelHandler handler) { table.model_macros.push_back({std::move(spec), handler}); };
-  add({"node", "Adds a node at a reference position; returns its number (from 1).",
+  auto add = [&table](MacroSpec spec, ModelHandler handler) {
+    table.model_macros.push_back({std::move(spec), handler});
+  };
+  add({"node",
+       "Adds a node at a reference position; returns its number (from 1).",
        {{"x", VT::Number, true, "m", "reference x"}, {"y", VT::Number, true, "m", "reference y"}},
        "local tip = model:node{ x = 1.0, y = 0.0 }"},
       node_macro);
-  add({"node_set", "Names a list of nodes (supports, loads and output can then refer to the set).",
+  add({"node_set",
+       "Names a list of nodes (supports, loads and output can then refer to the set).",
        {{"name", VT::String, true, "", "set name"}, {"nodes", VT::IntegerList, true, "", "node numbers"}},
        "model:node_set{ name = \"root\", nodes = {1} }"},
       node_set_macro);
-  add({"section", "Defines a named beam section (the tread beam's properties).",
+  add({"section",
+       "Defines a named beam section (the tread beam's properties).",
        {{"name", VT::String, true, "", "section name"},
         {"EA", VT::Number, true, "N", "axial stiffness", std::nullopt, Range::Positive},
         {"GA", VT::Number, true, "N", "shear stiffness GA_s", std::nullopt, Range::Positive},
@@ -502,24 +518,33 @@ void add_model_macros(MacroTable& table) {
         {"fn", VT::Function, false, "", "a Lua function of time (instead of points)"}},
        "model:load_function{ name = \"hold\", points = {{0, 0}, {1, 1}, {5, 1}} }"},
       load_function_macro);
-  add({"fix", "Fixes DOFs of a node or a node set (zero displacement).",
-       {kNodeKey, kSetKey, kDofsKey}, "model:fix{ set = \"root\", dofs = {\"ux\", \"uy\", \"rz\"} }"},
+  add({"fix",
+       "Fixes DOFs of a node or a node set (zero displacement).",
+       {kNodeKey, kSetKey, kDofsKey},
+       "model:fix{ set = \"root\", dofs = {\"ux\", \"uy\", \"rz\"} }"},
       fix_macro);
-  add({"prescribe", "Prescribes a DOF's displacement: value * load_function(t).",
+  add({"prescribe",
+       "Prescribes a DOF's displacement: value * load_function(t).",
        {kNodeKey, kSetKey, kDofKey, {"value", VT::Number, true, "m or rad", "displacement scale"}, kLoadFunctionKey},
        "model:prescribe{ node = 3, dof = \"uy\", value = -0.02 }"},
       prescribe_macro);
-  add({"release", "Frees DOFs that were fixed or prescribed.",
+  add({"release",
+       "Frees DOFs that were fixed or prescribed.",
        {kNodeKey, kSetKey, {"dofs", VT::StringList, true, "", "DOFs to free", std::nullopt, Range::Any, kDofNames}},
        "model:release{ node = 1, dofs = {\"rz\"} }"},
       release_macro);
-  add({"load", "Applies nodal forces and moments scaled by a load function (default ramp: f = t).",
-       {kNodeKey, kSetKey, {"fx", VT::Number, false, "N", "force along x"},
-        {"fy", VT::Number, false, "N", "force along y"}, {"mz", VT::Number, false, "N m", "moment about z"},
+  add({"load",
+       "Applies nodal forces and moments scaled by a load function (default ramp: f = t).",
+       {kNodeKey,
+        kSetKey,
+        {"fx", VT::Number, false, "N", "force along x"},
+        {"fy", VT::Number, false, "N", "force along y"},
+        {"mz", VT::Number, false, "N m", "moment about z"},
         kLoadFunctionKey},
        "model:load{ node = tip, fy = -10.0 }"},
       load_macro);
-  add({"integrator", "Chooses the solution procedure: quasi-static, Newmark or HHT-alpha (docs/dynamics.md).",
+  add({"integrator",
+       "Chooses the solution procedure: quasi-static, Newmark or HHT-alpha (docs/dynamics.md).",
        {{"type", VT::String, true, "", "static, newmark or hht", std::nullopt, Range::Any, integrator_names()},
         {"beta", VT::Number, false, "", "Newmark beta", std::string("0.25"), Range::Positive},
         {"gamma", VT::Number, false, "", "Newmark gamma", std::string("0.5"), Range::Positive},
@@ -530,14 +555,16 @@ void add_model_macros(MacroTable& table) {
          std::string("same_acceleration"), Range::Any, predictor_names()}},
        "model:integrator{ type = \"hht\", alpha = -0.1 }"},
       integrator_macro);
-  add({"newton", "Newton-Raphson settings.",
+  add({"newton",
+       "Newton-Raphson settings.",
        {{"tolerance", VT::Number, false, "", "on |R| / R_ref", std::string("1e-9"), Range::Positive},
         {"max_iterations", VT::Integer, false, "", "per step before the step is cut", std::string("25"),
          Range::Positive},
         {"log", VT::Boolean, false, "", "print every iteration's residual norm", std::string("false")}},
        "model:newton{ tolerance = 1e-10, log = true }"},
       newton_macro);
-  add({"step_control", "Automatic step cutting and growth.",
+  add({"step_control",
+       "Automatic step cutting and growth.",
        {{"min_dt", VT::Number, false, "s", "smallest step before giving up", std::string("0"), Range::NonNegative},
         {"max_dt", VT::Number, false, "s", "largest step (0: the nominal dt)", std::string("0"), Range::NonNegative},
         {"max_cuts", VT::Integer, false, "", "halvings of one step", std::string("10"), Range::NonNegative, {}, 50},
@@ -552,25 +579,29 @@ void add_model_macros(MacroTable& table) {
          std::string("100"), Range::NonNegative}},
        "model:step_control{ max_cuts = 6 }"},
       step_control_macro);
-  add({"dt", "Sets the nominal time (or load) step (FEAP's DT).",
-       {{"value", VT::Number, true, "s", "step", std::nullopt, Range::Positive}}, "model:dt{ value = 0.1 }"},
+  add({"dt",
+       "Sets the nominal time (or load) step (FEAP's DT).",
+       {{"value", VT::Number, true, "s", "step", std::nullopt, Range::Positive}},
+       "model:dt{ value = 0.1 }"},
       dt_macro);
   add({"step",
        "Solves one step of dt with Newton iterations (FEAP's TIME + LOOP/TANG/NEXT), cutting it if needed. "
        "Returns {steps, newton_iterations, cuts, time}.",
-       {{"dt", VT::Number, false, "s", "new nominal step", std::nullopt, Range::Positive}}, "model:step()"},
+       {{"dt", VT::Number, false, "s", "new nominal step", std::nullopt, Range::Positive}},
+       "model:step()"},
       step_macro);
-  add({"solve", "Advances to time 'to' in steps of dt. Returns {steps, newton_iterations, cuts, time}.",
-       {{"to", VT::Number, true, "s", "end time"}, {"dt", VT::Number, false, "s", "new nominal step", std::nullopt,
-                                                     Range::Positive}},
+  add({"solve",
+       "Advances to time 'to' in steps of dt. Returns {steps, newton_iterations, cuts, time}.",
+       {{"to", VT::Number, true, "s", "end time"},
+        {"dt", VT::Number, false, "s", "new nominal step", std::nullopt, Range::Positive}},
        "model:solve{ to = 1.0, dt = 0.1 }"},
       solve_macro);
   add({"output",
        "Opens the model's HDF5 result file (docs/output.md); a relative path lands in the output folder "
        "(--output-dir, default results/). Without this call the first step opens <deck name>.h5.",
        {{"file", VT::String, true, "", "file name"},
-        {"fields_every", VT::Integer, false, "", "write displacement fields every n steps (0: never)",
-         std::string("0"), Range::NonNegative},
+        {"fields_every", VT::Integer, false, "", "write displacement fields every n steps (0: never)", std::string("0"),
+         Range::NonNegative},
         {"fields_interval", VT::Number, false, "s",
          "write displacement fields every this much time, whatever the step sizes (0: never)", std::string("0"),
          Range::NonNegative}},
@@ -579,13 +610,18 @@ void add_model_macros(MacroTable& table) {
   add({"history",
        "Adds a history channel written at every step: a nodal quantity (summed over a set), or a tire's spindle "
        "force or spin rate in ISO 8855 wheel axes.",
-       {{"name", VT::String, true, "", "channel name (/history/<name>)"}, kNodeKey, kSetKey, kQuantityDofKey,
-        kQuantityKey, kComponentKey,
+       {{"name", VT::String, true, "", "channel name (/history/<name>)"},
+        kNodeKey,
+        kSetKey,
+        kQuantityDofKey,
+        kQuantityKey,
+        kComponentKey,
         {"scale", VT::Number, false, "", "factor on the value (-1: the force on a support instead of its reaction)",
          std::string("1")}},
        "model:history{ name = \"spindle_fz\", node = tire.spindle, quantity = \"spindle_force\", component = \"fz\" }"},
       history_macro);
-  add({"value", "Returns a nodal quantity at the current time (summed over a set), or a tire's spindle force or spin rate.",
+  add({"value",
+       "Returns a nodal quantity at the current time (summed over a set), or a tire's spindle force or spin rate.",
        {kNodeKey, kSetKey, kQuantityDofKey, kQuantityKey, kComponentKey},
        "local v = model:value{ node = tip, dof = \"uy\" }"},
       value_macro);
@@ -598,7 +634,9 @@ void add_model_macros(MacroTable& table) {
        "model:result{ name = \"fz_on_top_Hz\", value = 88.0, unit = \"Hz\" }"},
       result_macro);
   add({"time", "Returns the current time.", {}, "local t = model:time()"}, time_macro);
-  add({"print", "Prints a nodal quantity for a node or a set (FEAP's DISP).", {kNodeKey, kSetKey, kNodalQuantityKey},
+  add({"print",
+       "Prints a nodal quantity for a node or a set (FEAP's DISP).",
+       {kNodeKey, kSetKey, kNodalQuantityKey},
        "model:print{ set = \"tip\" }"},
       print_macro);
 }

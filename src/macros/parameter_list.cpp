@@ -17,13 +17,13 @@ std::string parameter_table(const std::string& deck_path, const std::vector<Para
   if (parameters.empty()) return deck_path + " declares no parameters (tirefe.parameters{...})\n";
   std::vector<std::vector<std::string>> rows{{"name", "default", "unit", "meaning"}};
   for (const auto& parameter : parameters)
-    rows.push_back({parameter.name, parameter.default_text, parameter.unit.empty() ? "-" : parameter.unit,
-                    parameter.meaning});
+    rows.push_back(
+        {parameter.name, parameter.default_text, parameter.unit.empty() ? "-" : parameter.unit, parameter.meaning});
   size_t widths[3] = {0, 0, 0};
   for (const auto& row : rows)
     for (size_t column = 0; column < 3; ++column) widths[column] = std::max(widths[column], row[column].size());
-  std::string table = deck_path + ": " + std::to_string(parameters.size()) +
-                      " parameters, set on the command line as name=value\n";
+  std::string table =
+      deck_path + ": " + std::to_string(parameters.size()) + " parameters, set on the command line as name=value\n";
   for (const auto& row : rows) {
     std::string line = "  ";
     for (size_t column = 0; column < 3; ++column)

@@ -71,8 +71,7 @@ void add_post_macros(MacroTable& table) {
          {"values", VT::NumberList, true, "", "sample values"},
          {"from", VT::Number, true, "s", "window start"},
          {"to", VT::Number, true, "s", "window end"},
-         {"min_frequency", VT::Number, false, "Hz", "lowest frequency of the band", std::string("10"),
-          Range::Positive},
+         {"min_frequency", VT::Number, false, "Hz", "lowest frequency of the band", std::string("10"), Range::Positive},
          {"max_frequency", VT::Number, false, "Hz", "highest frequency of the band", std::string("200"),
           Range::Positive}},
         "local fx = tirefe.ringing{ time = times, values = forces, from = 7.59, to = 7.71, min_frequency = 15 }\n"
@@ -89,8 +88,7 @@ void add_post_macros(MacroTable& table) {
          {"from", VT::Number, true, "s", "window start"},
          {"to", VT::Number, true, "s", "window end"},
          {"min_frequency", VT::Number, false, "Hz", "lowest frequency searched", std::string("5"), Range::Positive},
-         {"max_frequency", VT::Number, false, "Hz", "highest frequency searched", std::string("400"),
-          Range::Positive},
+         {"max_frequency", VT::Number, false, "Hz", "highest frequency searched", std::string("400"), Range::Positive},
          {"max_decay_rate", VT::Number, false, "1/s", "largest decay rate searched", std::string("200"),
           Range::Positive}},
         "local fz = tirefe.oscillation{ time = times, values = forces, from = 7.52, to = 7.56 }\n"

@@ -22,16 +22,16 @@ struct TireFileKey {
   const char* section;
   const char* key;
   Dimension dimension;
-  const char* parameter;   // the model:tire key
+  const char* parameter;    // the model:tire key
   double file_scale = 1.0;  // file value = file_scale * parameter (0.5: a radius for a diameter)
 };
 
 constexpr Dimension kLength{1};
 constexpr Dimension kForce{0, 1};
 constexpr Dimension kMass{0, 0, 1};
-constexpr Dimension kPerLength2Force{-2, 1};        // N/m^2
-constexpr Dimension kDamping{-2, 1, 0, 1};          // N s/m^2
-constexpr Dimension kMassPerLength{-1, 0, 1};       // kg/m
+constexpr Dimension kPerLength2Force{-2, 1};   // N/m^2
+constexpr Dimension kDamping{-2, 1, 0, 1};     // N s/m^2
+constexpr Dimension kMassPerLength{-1, 0, 1};  // kg/m
 
 // In file order. [DIMENSION] UNLOADED_RADIUS and RIM_RADIUS and [OPERATING_CONDITIONS]
 // INFLPRES are the standard names of MF-Tyre files; the other sections are tirefe's own.
@@ -114,8 +114,8 @@ int write_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& a
     writer.number(key.key, key.file_scale * value, meaning + (unit.empty() ? "" : " [" + unit + "]"));
   }
   lua_pop(L, 1);
-  const std::string path = deck_output_path(session, arguments.string("file"),
-                                             {"a tire property file (tirefe.write_tire)", "a tire property file", "$---"});
+  const std::string path = deck_output_path(
+      session, arguments.string("file"), {"a tire property file (tirefe.write_tire)", "a tire property file", "$---"});
   if (session.processes.rank == 0) writer.save(path);  // every process runs the deck: one writes
   lua_pushstring(L, path.c_str());
   return 1;
@@ -131,9 +131,9 @@ int push_tire_property_file(lua_State* L, const std::string& path) {
     reader.fail(file.section("MODEL") ? file.section("MODEL")->line : 0,
                 std::string("missing [MODEL] PROPERTY_FILE_FORMAT = '") + kFormat + "'");
   if (!io::same_name(*format, kFormat))
-    reader.fail(reader.line("MODEL", "PROPERTY_FILE_FORMAT"),
-                "[MODEL] PROPERTY_FILE_FORMAT = '" + *format + "': tirefe reads the data of its own ring tire ('" +
-                    kFormat + "'), not of another tire model");
+    reader.fail(reader.line("MODEL", "PROPERTY_FILE_FORMAT"), "[MODEL] PROPERTY_FILE_FORMAT = '" + *format +
+                                                                  "': tirefe reads the data of its own ring tire ('" +
+                                                                  kFormat + "'), not of another tire model");
   std::vector<std::optional<double>> values;
   for (const TireFileKey& key : kTireFileKeys) values.push_back(reader.number(key.section, key.key, key.dimension));
   reader.finish();  // a misspelt key is reported as such, not as a missing one
@@ -172,8 +172,8 @@ std::string tire_property_file_reference() {
   for (const TireFileKey& key : kTireFileKeys) {
     const ParameterSpec& parameter = tire_parameter(key.parameter);
     const std::string need = parameter.required ? "required" : "default " + parameter.default_value.value_or("none");
-    out += std::string("| `[") + key.section + "]` | `" + key.key + "` | " + io::dimension_name(key.dimension) +
-           " | " + io::si_unit(key.dimension) + " | `" + key.parameter + "`" +
+    out += std::string("| `[") + key.section + "]` | `" + key.key + "` | " + io::dimension_name(key.dimension) + " | " +
+           io::si_unit(key.dimension) + " | `" + key.parameter + "`" +
            (key.file_scale != 1.0 ? " / 2 (the file holds the radius)" : "") + " | " + parameter.doc + " (" + need +
            ") |\n";
   }

@@ -51,9 +51,9 @@ TireParameters tire_parameters(const MacroArguments& arguments) {
 int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const TireParameters parameters = tire_parameters(arguments);
   const std::string name = arguments.string("name");
-  const Tire tire = build_tire(deck.model(), parameters,
-                               deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))),
-                               name);
+  const Tire tire =
+      build_tire(deck.model(), parameters,
+                 deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))), name);
   // Spindle equations last, as the spindle-force condensation and the RingSolver's border
   // want them; a tread layer's contact nodes join the RingSolver as satellites of the belt.
   deck.model().condense_node(tire.spindle);
@@ -151,7 +151,14 @@ void add_tire_macros(MacroTable& table) {
         "touch the road: the layer's nodes, or the tread nodes without a layer). "
         "docs/tire.md explains every parameter and where the 145 SR-12 values come from.",
         {{"name", VT::String, false, "", "prefix of the tire's blocks and node sets", std::string("tire")},
-         {"elements", VT::Integer, false, "", "number of wedges N", std::string("100"), Range::Positive, {},
+         {"elements",
+          VT::Integer,
+          false,
+          "",
+          "number of wedges N",
+          std::string("100"),
+          Range::Positive,
+          {},
           kMaxTireElements},
          positive("outer_diameter", "m", "unloaded, uninflated diameter at the tread nodes"),
          positive("rim_diameter", "m", "effective rim diameter"),
@@ -186,10 +193,15 @@ void add_tire_macros(MacroTable& table) {
          positive("rim_rotary_inertia", "kg m^2", "rim and hub rotary inertia"),
          {"x", VT::Number, false, "m", "spindle x", std::string("0")},
          {"y", VT::Number, false, "m", "spindle y", std::string("0")},
-         {"heading", VT::String, false, "",
+         {"heading",
+          VT::String,
+          false,
+          "",
           "direction of travel over the road, the x axis of the spindle forces' ISO 8855 wheel axes (docs/output.md): "
           "+x on a road moving to -x, -x on a drum whose top moves to +x",
-          std::string("+x"), Range::Any, {"+x", "-x"}}},
+          std::string("+x"),
+          Range::Any,
+          {"+x", "-x"}}},
         "local tire = model:tire(require(\"tires.145SR12\"))"},
        tire_macro});
 }

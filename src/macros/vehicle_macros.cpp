@@ -172,7 +172,8 @@ void read_corner(lua_State* L, int i, VehicleCorners& read) {
   read.headings.push_back(deck.wheel_heading(node));
   TireSpindle* spindle = deck.driven_spindle(node);
   if (!spindle) spindle = &deck.drive_spindle(node, SpinMode::Free);
-  if (spindle->spin() != SpinMode::Free) throw ModelError("corner '" + corner.name + "': the spindle spin must be free");
+  if (spindle->spin() != SpinMode::Free)
+    throw ModelError("corner '" + corner.name + "': the spindle spin must be free");
   read.corners.push_back(corner);
   read.decks.push_back(&deck);
   read.spindles.push_back(spindle);
@@ -213,7 +214,7 @@ VehicleSettings settings_of(const MacroArguments& arguments, const std::vector<D
   settings.alpha = scheme.alpha();
   settings.residual_tolerance = arguments.number("tolerance");
   settings.jacobian = arguments.string("jacobian") == "direct" ? SpindleJacobianSource::Direct
-                                                                : SpindleJacobianSource::FiniteDifference;
+                                                               : SpindleJacobianSource::FiniteDifference;
   return settings;
 }
 
@@ -234,8 +235,10 @@ void add_vehicle_channels(const std::vector<DeckModel*>& decks, const Vehicle& v
       file.add_channel("vehicle_roll", "rad", channel([](const Vehicle& v) { return v.state().displacement[2]; }));
     }
     file.add_channel("jounce", "m", channel([c](const Vehicle& v) { return v.jounce(c); }));
-    file.add_channel("wheel_z", "m", channel([c](const Vehicle& v) { return v.state().displacement[v.wheel_vertical_dof(c)]; }));
-    file.add_channel("wheel_x", "m", channel([c](const Vehicle& v) { return v.state().displacement[v.wheel_fore_aft_dof(c)]; }));
+    file.add_channel("wheel_z", "m",
+                     channel([c](const Vehicle& v) { return v.state().displacement[v.wheel_vertical_dof(c)]; }));
+    file.add_channel("wheel_x", "m",
+                     channel([c](const Vehicle& v) { return v.state().displacement[v.wheel_fore_aft_dof(c)]; }));
   }
 }
 
@@ -284,9 +287,13 @@ double run_vehicle(Vehicle& vehicle, const std::vector<DeckModel*>& decks, const
 void push_vehicle_results(lua_State* L, const VehicleStatistics& s, double wall, const VehicleSeries& series) {
   lua_createtable(L, 0, 16);
   const std::pair<const char*, double> totals[] = {
-      {"steps", s.steps}, {"corrector_iterations", s.corrector_iterations}, {"tire_solves", s.tire_solves},
-      {"tire_newton_iterations", static_cast<double>(s.tire_newton_iterations)}, {"cuts", s.cuts},
-      {"backtracks", s.backtracks}, {"wall_time", wall}};
+      {"steps", s.steps},
+      {"corrector_iterations", s.corrector_iterations},
+      {"tire_solves", s.tire_solves},
+      {"tire_newton_iterations", static_cast<double>(s.tire_newton_iterations)},
+      {"cuts", s.cuts},
+      {"backtracks", s.backtracks},
+      {"wall_time", wall}};
   for (const auto& [name, value] : totals) {
     lua_pushnumber(L, value);
     lua_setfield(L, -2, name);
@@ -411,8 +418,15 @@ void add_vehicle_macros(MacroTable& table) {
           "windows {{from, to, dt}, ...} of absolute time stepped with their own dt (finer at an obstacle, coarser where nothing happens)"},
          {"gravity", VT::Number, false, "m/s^2", "acting on the body and the carriers", std::string("9.81"),
           Range::NonNegative},
-         {"tolerance", VT::Number, false, "", "corrector: |r|_inf / total weight", std::string("1e-8"), Range::Positive},
-         {"jacobian", VT::String, false, "", "spindle Jacobian of the corrector", std::string("direct"), Range::Any,
+         {"tolerance", VT::Number, false, "", "corrector: |r|_inf / total weight", std::string("1e-8"),
+          Range::Positive},
+         {"jacobian",
+          VT::String,
+          false,
+          "",
+          "spindle Jacobian of the corrector",
+          std::string("direct"),
+          Range::Any,
           {"direct", "difference"}},
          {"threads", VT::Boolean, false, "", "solve the tires concurrently", std::string("true")},
          {"history_every", VT::Integer, false, "", "steps between entries of the returned series", std::string("1"),

@@ -32,9 +32,9 @@ class MpiTireGroup final : public TireExchange {
   void share(std::vector<SpindleReply>& replies);
 
   MPI_Comm comm_;
-  std::vector<int> local_;               // the tires this rank solves, ascending
-  std::unique_ptr<TireGroup> solver_;    // local_ in this process
-  std::vector<int> gathered_tire_;       // tire of each gathered reply: rank 0's tires first, ...
+  std::vector<int> local_;                       // the tires this rank solves, ascending
+  std::unique_ptr<TireGroup> solver_;            // local_ in this process
+  std::vector<int> gathered_tire_;               // tire of each gathered reply: rank 0's tires first, ...
   std::vector<int> byte_counts_, byte_offsets_;  // per rank, in the gathered replies
   std::vector<SpindleRequest> local_requests_;
   std::vector<SpindleReply> local_replies_, gathered_;

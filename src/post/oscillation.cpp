@@ -80,9 +80,9 @@ Oscillation dominant_oscillation(const std::vector<double>& times, const std::ve
   const double omega_cell = kTwoPi * frequency_step, sigma_cell = search.max_decay_rate / decay_steps;
   for (int sweep = 0; sweep < 3; ++sweep) {
     best_omega = golden_section_minimum([&](double omega) { return misfit(window, omega, best_sigma); },
-                                std::max(best_omega - omega_cell, 1e-9), best_omega + omega_cell);
+                                        std::max(best_omega - omega_cell, 1e-9), best_omega + omega_cell);
     best_sigma = golden_section_minimum([&](double sigma) { return misfit(window, best_omega, sigma); },
-                                std::max(best_sigma - sigma_cell, 0.0), best_sigma + sigma_cell);
+                                        std::max(best_sigma - sigma_cell, 0.0), best_sigma + sigma_cell);
   }
   Eigen::Vector4d c;
   const double residual = misfit(window, best_omega, best_sigma, &c);

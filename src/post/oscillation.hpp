@@ -18,18 +18,18 @@
 namespace tirefe::post {
 
 struct Oscillation {
-  double frequency = 0.0;      // [Hz]
-  double amplitude = 0.0;      // of the sinusoid at the window's start
-  double decay_rate = 0.0;     // sigma [1/s]
-  double peak_to_peak = 0.0;   // of the raw samples in the window
-  double rms_misfit = 0.0;     // of the fit, in the units of the samples
+  double frequency = 0.0;     // [Hz]
+  double amplitude = 0.0;     // of the sinusoid at the window's start
+  double decay_rate = 0.0;    // sigma [1/s]
+  double peak_to_peak = 0.0;  // of the raw samples in the window
+  double rms_misfit = 0.0;    // of the fit, in the units of the samples
   int samples = 0;
 };
 
 struct OscillationSearch {
-  double min_frequency = 5.0;    // [Hz]
-  double max_frequency = 400.0;  // [Hz]
-  double max_decay_rate = 200.0; // [1/s]
+  double min_frequency = 5.0;     // [Hz]
+  double max_frequency = 400.0;   // [Hz]
+  double max_decay_rate = 200.0;  // [1/s]
 };
 
 /// The dominant oscillation of 'values' sampled at 'times' within [from, to]. Throws

@@ -6,8 +6,8 @@
 
 namespace tirefe::post {
 
-RingingReading read_ringing(const std::vector<double>& times, const std::vector<double>& values, double from,
-                            double to, const RingingBand& band) {
+RingingReading read_ringing(const std::vector<double>& times, const std::vector<double>& values, double from, double to,
+                            const RingingBand& band) {
   const SignalWindow window = prepare_window(times, values, from, to);
   RingingReading reading;
   reading.samples = window.raw_samples;

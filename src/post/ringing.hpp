@@ -21,18 +21,18 @@ struct RingingBand {
 };
 
 struct RingingReading {
-  double frequency = 0.0;    // mean of the two estimators [Hz]
-  double uncertainty = 0.0;  // half their difference [Hz]
-  SpectralPeak spectrum;     // Hann spectrum peak
-  DampedComponent pencil;    // matrix-pencil component (frequency 0 if none in the band)
-  double peak_to_peak = 0.0; // of the raw samples in the window
-  int samples = 0;           // raw samples in the window
+  double frequency = 0.0;     // mean of the two estimators [Hz]
+  double uncertainty = 0.0;   // half their difference [Hz]
+  SpectralPeak spectrum;      // Hann spectrum peak
+  DampedComponent pencil;     // matrix-pencil component (frequency 0 if none in the band)
+  double peak_to_peak = 0.0;  // of the raw samples in the window
+  int samples = 0;            // raw samples in the window
 };
 
 /// Reads the window [from, to] of (times, values). Throws std::invalid_argument as
 /// prepare_window() and spectrum_peak() do, and when no damped sinusoid of the
 /// decomposition lies in the band.
-RingingReading read_ringing(const std::vector<double>& times, const std::vector<double>& values, double from,
-                            double to, const RingingBand& band = {});
+RingingReading read_ringing(const std::vector<double>& times, const std::vector<double>& values, double from, double to,
+                            const RingingBand& band = {});
 
 }  // namespace tirefe::post

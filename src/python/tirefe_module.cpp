@@ -42,12 +42,12 @@ class Tire {
     options.friction = friction;
     options.hht_alpha = hht_alpha;
     options.free_spin = free_spin ? 1 : 0;
-    if (heading != "+x" && heading != "-x") throw py::value_error("heading must be \"+x\" or \"-x\", not \"" + heading + "\"");
+    if (heading != "+x" && heading != "-x")
+      throw py::value_error("heading must be \"+x\" or \"-x\", not \"" + heading + "\"");
     options.heading = heading == "+x" ? 1 : -1;
     char error[512] = "";
-    raise_on_failure(tirefe_open(source.c_str(), overrides.data(), overrides.size(), &options, &tire_, error,
-                                 sizeof error),
-                     error);
+    raise_on_failure(
+        tirefe_open(source.c_str(), overrides.data(), overrides.size(), &options, &tire_, error, sizeof error), error);
   }
   ~Tire() { tirefe_close(tire_); }
   Tire(const Tire&) = delete;
@@ -181,7 +181,8 @@ PYBIND11_MODULE(tirefe, module) {
            "Trial step to the wheel centre's position: (force[3], jacobian[3, 3]) with jacobian[i, j] = d force_i / d "
            "(x, z, spin)_j.")
       .def("solve_velocity", &Tire::solve_velocity, py::arg("time_step"), py::arg("vx"), py::arg("vz"),
-           py::arg("spin_rate") = 0.0, "Trial step to the end-of-step spindle velocities; the Jacobian is d force / d v.")
+           py::arg("spin_rate") = 0.0,
+           "Trial step to the end-of-step spindle velocities; the Jacobian is d force / d v.")
       .def("commit", &Tire::commit, "Accepts the last trial step.")
       .def("revert", &Tire::revert, "Forgets the last trial step.")
       .def("state", &Tire::state, "The committed time and spindle position, velocity and force.")

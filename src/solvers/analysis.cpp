@@ -8,8 +8,7 @@
 
 namespace tirefe {
 
-Analysis::Analysis(Model& model)
-    : model_(model), assembler_(model) {}
+Analysis::Analysis(Model& model) : model_(model), assembler_(model) {}
 
 void Analysis::use_ring_solver(std::vector<int> ring_nodes, std::vector<int> border_nodes) {
   for (const std::vector<int>* nodes : {&ring_nodes, &border_nodes})
@@ -29,8 +28,9 @@ void Analysis::require_equations() const {
   int elements = 0;
   for (const auto& block : model_.blocks()) elements += block->size();
   if (elements == 0)
-    throw ModelError("the model has no elements: there are no equations to solve (add beams, a tire or other "
-                     "elements before solving)");
+    throw ModelError(
+        "the model has no elements: there are no equations to solve (add beams, a tire or other "
+        "elements before solving)");
   if (model_.dof_map().equation_count() == 0)
     throw ModelError("the model has no equations to solve: every DOF is fixed or prescribed (release some)");
 }
@@ -38,7 +38,8 @@ void Analysis::require_equations() const {
 void Analysis::set_integrator(const Integrator& integrator) {
   // Entering dynamics needs accelerations in equilibrium with the current state; a
   // request still pending (new initial conditions) survives a change of scheme.
-  carried_.acceleration_pending = integrator.is_dynamic() && (carried_.acceleration_pending || !integrator_.is_dynamic());
+  carried_.acceleration_pending =
+      integrator.is_dynamic() && (carried_.acceleration_pending || !integrator_.is_dynamic());
   integrator_ = integrator;
   carried_.old_forces_valid = false;
 }
@@ -68,8 +69,9 @@ void Analysis::prepare() {
     solvers_.stop_driving();
   } else if (!solvers_.driving()) {
     if (!integrator_.is_dynamic())
-      throw ModelError("driven DOFs need a dynamic integrator (Newmark or HHT): the quasi-static tangent of a "
-                       "structure held only at its driven DOFs is singular");
+      throw ModelError(
+          "driven DOFs need a dynamic integrator (Newmark or HHT): the quasi-static tangent of a "
+          "structure held only at its driven DOFs is singular");
     std::vector<int> equations;
     for (int dof : driven_dofs_) {
       if (model_.dof_map().is_prescribed(dof))
@@ -105,7 +107,8 @@ void Analysis::set_driven_displacements(const Eigen::Ref<const Eigen::VectorXd>&
 }
 
 void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const {
-  for (size_t i = 0; i < driven_dofs_.size(); ++i) forces[static_cast<Eigen::Index>(i)] = residual_all_[driven_dofs_[i]];
+  for (size_t i = 0; i < driven_dofs_.size(); ++i)
+    forces[static_cast<Eigen::Index>(i)] = residual_all_[driven_dofs_[i]];
 }
 
 const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
@@ -120,7 +123,8 @@ void Analysis::size_state() {
   if (carried_.state.displacement.size() != dofs) {
     // Nodes added since the last step start at rest.
     const int old_size = static_cast<int>(carried_.state.displacement.size());
-    for (Eigen::VectorXd* field : {&carried_.state.displacement, &carried_.state.velocity, &carried_.state.acceleration}) {
+    for (Eigen::VectorXd* field :
+         {&carried_.state.displacement, &carried_.state.velocity, &carried_.state.acceleration}) {
       field->conservativeResize(dofs);
       field->tail(dofs - old_size).setZero();
     }
@@ -204,8 +208,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     return true;
   } catch (const std::exception& failure) {  // ConvergenceFailure, NonFiniteResult, SingularMatrix
     model_.revert_history();
-    if (log_)
-      *log_ << "  step to t = " << trial_.time << " (dt = " << step << ") rejected: " << failure.what() << "\n";
+    if (log_) *log_ << "  step to t = " << trial_.time << " (dt = " << step << ") rejected: " << failure.what() << "\n";
     last_failure_ = failure.what();
     return false;
   }
@@ -215,20 +218,23 @@ void Analysis::finish_step(double step) {
   // residual_all_ must hold the physical residual M a + g - F of the new state, whose
   // prescribed entries are the reactions: the last Newton evaluation's, as the integrator
   // turns it.
-  integrator_.to_physical_residual(carried_.external_old, external_new_, carried_.old_internal_forces,
-                                   [this, step](Eigen::VectorXd& internal) {
-                                     EvaluationContext context;
-                                     context.time = trial_.time;
-                                     context.time_step = step;
-                                     context.want_tangent = false;
-                                     context.factors = Integrator::internal_force_factors();
-                                     assembler_.assemble(context, trial_, internal);
-                                   },
-                                   residual_all_);
-  const double work = energy_.step_work(carried_.state, trial_, carried_.external_old, external_new_, carried_.reactions,
-                                         residual_all_, driven_dofs_);  // before the reactions and the state move on
+  integrator_.to_physical_residual(
+      carried_.external_old, external_new_, carried_.old_internal_forces,
+      [this, step](Eigen::VectorXd& internal) {
+        EvaluationContext context;
+        context.time = trial_.time;
+        context.time_step = step;
+        context.want_tangent = false;
+        context.factors = Integrator::internal_force_factors();
+        assembler_.assemble(context, trial_, internal);
+      },
+      residual_all_);
+  const double work =
+      energy_.step_work(carried_.state, trial_, carried_.external_old, external_new_, carried_.reactions, residual_all_,
+                        driven_dofs_);  // before the reactions and the state move on
   carried_.reactions.setZero(model_.mesh().dof_count());
-  for (const auto& constraint : model_.prescribed_dofs()) carried_.reactions[constraint.dof] = residual_all_[constraint.dof];
+  for (const auto& constraint : model_.prescribed_dofs())
+    carried_.reactions[constraint.dof] = residual_all_[constraint.dof];
   for (int dof : driven_dofs_) carried_.reactions[dof] = residual_all_[dof];
   carried_.reactions_valid = true;
   model_.commit_history();

@@ -129,7 +129,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   const DrivenDofSolver::SmallMatrix& driven_tangent();
 
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
-    controller_.add_observer([this, observer = std::move(observer)](const StepRecord& record) { observer(*this, record); });
+    controller_.add_observer(
+        [this, observer = std::move(observer)](const StepRecord& record) { observer(*this, record); });
   }
   /// Runs after every observer of an accepted step (a checkpoint: the step's output is complete then).
   void set_step_end_hook(std::function<void(Analysis&, const StepRecord&)> hook) {

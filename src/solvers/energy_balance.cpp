@@ -18,7 +18,9 @@ double EnergyBalance::step_work(const State& old_state, const State& new_state, 
   const Eigen::VectorXd& u_old = old_state.displacement;
   const Eigen::VectorXd& u_new = new_state.displacement;
   double work = 0.5 * (loads_old + loads_new).dot(u_new - u_old);
-  const auto held_work = [&](int dof) { return 0.5 * (reactions_old[dof] + reactions_new[dof]) * (u_new[dof] - u_old[dof]); };
+  const auto held_work = [&](int dof) {
+    return 0.5 * (reactions_old[dof] + reactions_new[dof]) * (u_new[dof] - u_old[dof]);
+  };
   for (const auto& constraint : model_.prescribed_dofs()) work += held_work(constraint.dof);
   for (int dof : driven_dofs) work += held_work(dof);
   return work;

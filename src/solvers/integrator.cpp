@@ -23,9 +23,10 @@ std::string number_text(double value) {
 // refused as input slips: they only add damping and period error.
 Integrator Integrator::newmark(double beta, double gamma) {
   if (!(gamma >= 0.5 && gamma <= 1.0) || !(beta >= 0.5 * gamma && beta <= 1.0))
-    throw ModelError("Newmark needs 1/2 <= gamma <= 1 and gamma/2 <= beta <= 1 (unconditionally stable; "
-                     "average acceleration: beta = 1/4, gamma = 1/2); got beta = " +
-                     number_text(beta) + ", gamma = " + number_text(gamma));
+    throw ModelError(
+        "Newmark needs 1/2 <= gamma <= 1 and gamma/2 <= beta <= 1 (unconditionally stable; "
+        "average acceleration: beta = 1/4, gamma = 1/2); got beta = " +
+        number_text(beta) + ", gamma = " + number_text(gamma));
   return Integrator(Kind::Newmark, beta, gamma, 0.0);
 }
 
@@ -93,13 +94,15 @@ void Integrator::predict(const State& committed, double step, State& trial) cons
   if (predictor_ == Predictor::SameAcceleration) {  // the Newmark formulas below with a_{n+1} = a_n, summed exactly
     trial.acceleration = committed.acceleration;
     trial.velocity = committed.velocity + step * committed.acceleration;
-    trial.displacement = committed.displacement + step * committed.velocity + (0.5 * step * step) * committed.acceleration;
+    trial.displacement =
+        committed.displacement + step * committed.velocity + (0.5 * step * step) * committed.acceleration;
     return;
   }
   if (predictor_ == Predictor::ZeroAcceleration)
     trial.acceleration.setZero(committed.acceleration.size());
   else  // SameDisplacement: the acceleration that keeps u_{n+1} = u_n
-    trial.acceleration = (-1.0 / (beta_ * step)) * committed.velocity - ((0.5 - beta_) / beta_) * committed.acceleration;
+    trial.acceleration =
+        (-1.0 / (beta_ * step)) * committed.velocity - ((0.5 - beta_) / beta_) * committed.acceleration;
   // The Newmark formulas with the predicted a_{n+1}.
   trial.velocity = committed.velocity + step * ((1.0 - gamma_) * committed.acceleration + gamma_ * trial.acceleration);
   trial.displacement = committed.displacement + step * committed.velocity +
@@ -110,7 +113,8 @@ void Integrator::update_rates(const State& committed, double step, int dof, Stat
   if (!is_dynamic()) return;
   const double a_old = committed.acceleration[dof];
   const double a_new = (trial.displacement[dof] - committed.displacement[dof] - step * committed.velocity[dof] -
-                        step * step * (0.5 - beta_) * a_old) / (beta_ * step * step);
+                        step * step * (0.5 - beta_) * a_old) /
+                       (beta_ * step * step);
   trial.acceleration[dof] = a_new;
   trial.velocity[dof] = committed.velocity[dof] + step * ((1.0 - gamma_) * a_old + gamma_ * a_new);
 }

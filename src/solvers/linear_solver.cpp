@@ -34,7 +34,8 @@ struct KluSolver::Klu {
   }
   void check_status(const char* what) const {
     if (common.status == KLU_SINGULAR)
-      throw SingularMatrix(std::string(what) + ": the tangent matrix is singular (a mechanism, an unconstrained "
+      throw SingularMatrix(std::string(what) +
+                           ": the tangent matrix is singular (a mechanism, an unconstrained "
                            "rigid-body motion, or a DOF no element stiffens; check the boundary conditions)");
     if (common.status < 0)
       throw std::runtime_error(std::string(what) + " failed (KLU status " + std::to_string(common.status) + ")");
@@ -60,10 +61,9 @@ void KluSolver::factorize(const Matrix& matrix) {
   double* values = const_cast<double*>(matrix.valuePtr());
   klu_common* common = &klu_->common;
   if (klu_->numeric) {
-    const bool refactored =
-        klu_refactor(column_starts, row_indices, values, klu_->symbolic, klu_->numeric, common) &&
-        klu_rcond(klu_->symbolic, klu_->numeric, common) && std::isfinite(common->rcond) &&
-        common->rcond > kMinimumPivotRatio;
+    const bool refactored = klu_refactor(column_starts, row_indices, values, klu_->symbolic, klu_->numeric, common) &&
+                            klu_rcond(klu_->symbolic, klu_->numeric, common) && std::isfinite(common->rcond) &&
+                            common->rcond > kMinimumPivotRatio;
     if (refactored) {
       ++refactorizations_;
       return;
@@ -86,8 +86,8 @@ void KluSolver::solve(Eigen::VectorXd& right_hand_side) const {
 }
 
 void KluSolver::solve(Eigen::MatrixXd& right_hand_sides) const {
-  klu_solve(klu_->symbolic, klu_->numeric, size_, static_cast<int>(right_hand_sides.cols()),
-            right_hand_sides.data(), &klu_->common);
+  klu_solve(klu_->symbolic, klu_->numeric, size_, static_cast<int>(right_hand_sides.cols()), right_hand_sides.data(),
+            &klu_->common);
   klu_->check_status("triangular solve");
 }
 

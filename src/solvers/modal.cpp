@@ -69,8 +69,9 @@ struct Linearisation {
     mass = 0.5 * (mass + mass.transpose());
     mass_factor.compute(mass);
     if (mass_factor.info() != Eigen::Success)
-      throw ModelError("modal analysis: the mass matrix is not positive definite; every free DOF needs mass "
-                       "(give beams a rotary inertia rhoI > 0 and point masses a rotary inertia J > 0)");
+      throw ModelError(
+          "modal analysis: the mass matrix is not positive definite; every free DOF needs mass "
+          "(give beams a rotary inertia rhoI > 0 and point masses a rotary inertia J > 0)");
   }
   /// L^-1 A L^-T.
   Eigen::MatrixXd whitened(const Eigen::MatrixXd& matrix) const {
@@ -292,8 +293,8 @@ std::vector<Root> shift_invert_roots(const Eigen::MatrixXd& stiffness, const Eig
     if (energy.info() == Eigen::Success) break;
   }
   if (energy.info() != Eigen::Success) return {};
-  const auto stiffness_root = energy.matrixU();          // K_s + s M = R^T R
-  const auto mass_root = linear.mass_factor.matrixU();   // M = L L^T, L^T
+  const auto stiffness_root = energy.matrixU();         // K_s + s M = R^T R
+  const auto mass_root = linear.mass_factor.matrixU();  // M = L L^T, L^T
   // In energy coordinates q = [R phi; L^T v], S q = T [-K^-1 (M v + C phi); phi], T = diag(R, L^T).
   const auto apply = [&](const Eigen::VectorXd& q) {
     const Eigen::VectorXd phi = stiffness_root.solve(q.head(n)), velocity = mass_root.solve(q.tail(n));
@@ -322,7 +323,9 @@ std::vector<Root> shift_invert_roots(const Eigen::MatrixXd& stiffness, const Eig
     basis.col(size++) = candidate / length;
     return true;
   };
-  const auto random_vector = [&]() { return Eigen::VectorXd(Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return normal(random); })); };
+  const auto random_vector = [&]() {
+    return Eigen::VectorXd(Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return normal(random); }));
+  };
   while (size < std::min<Eigen::Index>(kBlock, size_limit)) add(random_vector());
   const auto image_up_to = [&](Eigen::Index last) {
     for (; imaged <= last; ++imaged) images.col(imaged) = apply(basis.col(imaged));
@@ -357,8 +360,8 @@ std::vector<Root> shift_invert_roots(const Eigen::MatrixXd& stiffness, const Eig
         return Eigen::VectorXcd(matrix * shape.real() + Complex(0.0, 1.0) * (matrix * shape.imag()));
       };
       const Eigen::VectorXcd residual = times(stiffness) + lambda * times(damping) + lambda * lambda * times(mass);
-      errors.push_back(residual.norm() / ((scale_k + std::abs(lambda) * scale_c + std::norm(lambda) * scale_m) *
-                                          shape.norm()));
+      errors.push_back(residual.norm() /
+                       ((scale_k + std::abs(lambda) * scale_c + std::norm(lambda) * scale_m) * shape.norm()));
       roots.push_back({lambda, shape});
     }
     std::vector<size_t> order(roots.size());
@@ -404,7 +407,8 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
   if (result.symmetric) {
     // L^-1 K L^-T y = omega^2 y with phi = L^-T y: mass-orthonormal shapes. This is what
     // Eigen's GeneralizedSelfAdjointEigenSolver does, but it ignores a failed Cholesky.
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(linear.whitened(0.5 * (stiffness + stiffness.transpose())));
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(
+        linear.whitened(0.5 * (stiffness + stiffness.transpose())));
     vectors = linear.mass_factor.matrixU().solve(solver.eigenvectors());
     // The Rayleigh quotients phi^T K phi / phi^T M phi: quadratic in the shapes' error, where
     // the solver's eigenvalues are good to round-off of the largest one only.
@@ -416,8 +420,10 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
       // A complex pair (Eigen puts Im > 0 first) gives the real plane of Re v and Im v at mu.
       const Complex value = solver.eigenvalues()[j];
       const Eigen::VectorXcd vector = solver.eigenvectors().col(value.imag() < 0.0 ? j - 1 : j);
-      if (value.imag() < 0.0) vectors.col(j) = vector.imag();
-      else vectors.col(j) = vector.real();
+      if (value.imag() < 0.0)
+        vectors.col(j) = vector.imag();
+      else
+        vectors.col(j) = vector.real();
       eigenvalues[j] = value.real();
     }
   }
@@ -443,7 +449,8 @@ ModalResult modal_analysis(Model& model, const State& state, int mode_count, con
     result.shapes.col(i) = on_all_dofs(dofs, shape);
   }
   ForceProbe probe(assembler, linear.state);
-  for (int i = 0; i < count; ++i) result.reactions.col(i) = prescribed_rows(dofs, probe.stiffness(result.shapes.col(i)));
+  for (int i = 0; i < count; ++i)
+    result.reactions.col(i) = prescribed_rows(dofs, probe.stiffness(result.shapes.col(i)));
   return result;
 }
 

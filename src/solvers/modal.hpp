@@ -108,10 +108,10 @@ struct ModalSettings {
 struct ModalResult {
   std::vector<double> frequencies_hz;  // ascending by omega^2; 0 for rigid-body modes
   std::vector<bool> rigid_body;
-  std::vector<double> eigenvalues;     // omega^2 [rad^2/s^2]: Rayleigh quotients (symmetric K), real parts (unsymmetric)
-  Eigen::MatrixXd shapes;              // dof_count x n: phi^T M phi = 1, largest entry positive, 0 at prescribed DOFs
-  Eigen::MatrixXd reactions;           // dof_count x n: K phi at prescribed DOFs, 0 at free DOFs
-  bool symmetric = true;               // which solver ran
+  std::vector<double> eigenvalues;  // omega^2 [rad^2/s^2]: Rayleigh quotients (symmetric K), real parts (unsymmetric)
+  Eigen::MatrixXd shapes;           // dof_count x n: phi^T M phi = 1, largest entry positive, 0 at prescribed DOFs
+  Eigen::MatrixXd reactions;        // dof_count x n: K phi at prescribed DOFs, 0 at free DOFs
+  bool symmetric = true;            // which solver ran
 };
 
 /// How the quadratic eigenproblem is solved (header): densely, by shift-invert block
@@ -120,8 +120,8 @@ struct ModalResult {
 enum class DampedSolver { Automatic, Dense, ShiftInvert };
 
 struct DampedModalSettings {
-  bool damping = true;    // include C (false: the gyroscopic modes of the undamped model)
-  double spin_rate = 0.0; // Omega [rad/s] about z: modes in the frame turning with the tire
+  bool damping = true;     // include C (false: the gyroscopic modes of the undamped model)
+  double spin_rate = 0.0;  // Omega [rad/s] about z: modes in the frame turning with the tire
   double rigid_body_tolerance = 1e-13;
   DampedSolver solver = DampedSolver::Automatic;
 };

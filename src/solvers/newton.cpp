@@ -10,8 +10,8 @@ namespace tirefe {
 namespace {
 std::string format_norms(int iteration, double norm, double relative, double increment) {
   char line[128];
-  std::snprintf(line, sizeof line, "    newton %2d  |R| %.3e  |R|/Rref %.3e  |du| %.2e\n", iteration, norm,
-                relative, increment);
+  std::snprintf(line, sizeof line, "    newton %2d  |R| %.3e  |R|/Rref %.3e  |du| %.2e\n", iteration, norm, relative,
+                increment);
   return line;
 }
 }  // namespace
@@ -38,8 +38,8 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     const bool converged = relative <= settings_.residual_tolerance ||
                            (report_.iterations > 0 && relative_increment <= settings_.increment_tolerance);
     // A cycle: the residual grows and has not halved over the last two increments.
-    const bool cycling = report_.iterations >= settings_.line_search_from && !(norm < previous_norm) &&
-                         !(norm < 0.5 * norm_two_back);
+    const bool cycling =
+        report_.iterations >= settings_.line_search_from && !(norm < previous_norm) && !(norm < 0.5 * norm_two_back);
     if (!converged && cycling && halvings < settings_.max_backtracks) {
       // Back along the increment to half the fraction applied.
       step_back_ = -0.5 * step_fraction * increment_;  // no allocation once sized
@@ -54,8 +54,8 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
                                std::to_string(report_.iterations));
     if (converged) return report_;
     if (relative > settings_.divergence_ratio)
-      throw ConvergenceFailure("Newton iterations diverge (|R|/Rref = " + std::to_string(relative) +
-                               " at iteration " + std::to_string(report_.iterations) + ")");
+      throw ConvergenceFailure("Newton iterations diverge (|R|/Rref = " + std::to_string(relative) + " at iteration " +
+                               std::to_string(report_.iterations) + ")");
     if (report_.iterations == settings_.max_iterations)
       throw ConvergenceFailure("no convergence in " + std::to_string(settings_.max_iterations) +
                                " Newton iterations (|R|/Rref = " + std::to_string(relative) + ")");
@@ -68,8 +68,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     increment_ = -residual_;
     linear_solver.solve(increment_);
     if (!increment_.allFinite())
-      throw ConvergenceFailure("the Newton increment is not finite at iteration " +
-                               std::to_string(report_.iterations));
+      throw ConvergenceFailure("the Newton increment is not finite at iteration " + std::to_string(report_.iterations));
     norm_two_back = previous_norm;
     previous_norm = norm;
     step_fraction = 1.0;

@@ -30,7 +30,7 @@ class ConvergenceFailure : public std::runtime_error {
 
 struct NewtonSettings {
   int max_iterations = 25;
-  double residual_tolerance = 1e-9;  // on |R| / R_ref
+  double residual_tolerance = 1e-9;    // on |R| / R_ref
   double increment_tolerance = 1e-13;  // on |du|_inf / (1 + |u|_inf): round-off level
   double divergence_ratio = 1e8;
   int line_search_from = 2;  // increments taken whole before backtracking starts
@@ -39,8 +39,8 @@ struct NewtonSettings {
 };
 
 struct NewtonReport {
-  int iterations = 0;   // linear solves performed
-  int backtracks = 0;   // halvings of an increment
+  int iterations = 0;  // linear solves performed
+  int backtracks = 0;  // halvings of an increment
   double reference_force = 0.0;
   std::vector<double> residual_norms;  // |R| at each evaluation, the last one converged
 };

@@ -161,7 +161,8 @@ void RingSolver::analyze(const Matrix& pattern) {
   };
   for (int k = 0; k < chain_; ++k) place(ring_nodes_[k + 1], 3 * k, false);
   place(ring_nodes_[0], 3 * chain_, false);
-  for (size_t j = 0; j < border_nodes_.size(); ++j) place(border_nodes_[j], 3 * chain_ + 3 + 3 * static_cast<int>(j), true);
+  for (size_t j = 0; j < border_nodes_.size(); ++j)
+    place(border_nodes_[j], 3 * chain_ + 3 + 3 * static_cast<int>(j), true);
   // The nodes of the remaining equations are satellites, if find_hosts() finds them a host.
   satellite_nodes_.clear();
   satellite_hosts_.clear();
@@ -238,8 +239,9 @@ void RingSolver::check_same_pattern(const Matrix& matrix) const {
                     std::equal(pattern_starts_.begin(), pattern_starts_.end(), matrix.outerIndexPtr()) &&
                     std::equal(pattern_rows_.begin(), pattern_rows_.end(), matrix.innerIndexPtr());
   if (!same)
-    throw std::logic_error("ring solver: the matrix's sparsity pattern is not the one analyze() saw "
-                           "(analyse again after the model's structure changes)");
+    throw std::logic_error(
+        "ring solver: the matrix's sparsity pattern is not the one analyze() saw "
+        "(analyse again after the model's structure changes)");
 }
 
 template <class Work>
@@ -402,7 +404,8 @@ void RingSolver::forward(double* y) const {
   const int border = width_ - 3;
   Vector3 z0(y + 3 * chain_);
   lu_solve(s.topLeftCorner<3, 3>(), &swaps_[3 * chain_], z0);
-  if (border > 0) Eigen::Map<Eigen::VectorXd>(y + 3 * chain_ + 3, border) -= s.bottomLeftCorner(border, 3).lazyProduct(z0);
+  if (border > 0)
+    Eigen::Map<Eigen::VectorXd>(y + 3 * chain_ + 3, border) -= s.bottomLeftCorner(border, 3).lazyProduct(z0);
 }
 
 template <int Width>

@@ -64,8 +64,7 @@ void StepController::advance_span(SteppedSystem& system, double target) {
     sizes_.current = step;
     notify(record);
     if (system.time() < target - time_round_off)
-      check_step_budget(system, static_cast<int>(records_.size() - first), duration / sizes_.nominal,
-                        record.step_size);
+      check_step_budget(system, static_cast<int>(records_.size() - first), duration / sizes_.nominal, record.step_size);
   }
 }
 
@@ -80,8 +79,9 @@ void StepController::check_step_budget(const SteppedSystem& system, int steps_ta
   const double allowed = control_.step_budget * (std::ceil(nominal_steps - 1e-9) + 1.0);
   if (steps_taken < allowed) return;
   std::ostringstream message;
-  message << "the step budget ran out at t = " << system.time() << ": " << steps_taken << " steps where dt = "
-          << sizes_.nominal << " asks for " << std::ceil(nominal_steps - 1e-9) << " (the last dt = " << step
+  message << "the step budget ran out at t = " << system.time() << ": " << steps_taken
+          << " steps where dt = " << sizes_.nominal << " asks for " << std::ceil(nominal_steps - 1e-9)
+          << " (the last dt = " << step
           << "); steps that converge only far below dt point to a model out of balance or too light "
           << "(a tiny rotary inertia). Check the loads, supports and masses, or raise "
           << "model:step_control{ step_budget = " << control_.step_budget << " }";

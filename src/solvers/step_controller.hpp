@@ -22,12 +22,12 @@ class StepFailure : public std::runtime_error {
 };
 
 struct StepControl {
-  double min_step = 0.0;     // 0: no lower bound beyond max_cuts
-  double max_step = 0.0;     // 0: the nominal step
-  int max_cuts = 10;         // halvings of one step
-  int depth = 0;             // no step below the nominal one halved this often (0: 2 max_cuts)
-  int easy_iterations = 4;   // grow the step after converging in this many iterations or fewer
-  double growth = 2.0;       // growth factor back toward the nominal step
+  double min_step = 0.0;       // 0: no lower bound beyond max_cuts
+  double max_step = 0.0;       // 0: the nominal step
+  int max_cuts = 10;           // halvings of one step
+  int depth = 0;               // no step below the nominal one halved this often (0: 2 max_cuts)
+  int easy_iterations = 4;     // grow the step after converging in this many iterations or fewer
+  double growth = 2.0;         // growth factor back toward the nominal step
   int max_augmentations = 20;  // augmented-Lagrangian updates per step
   // One advance may take at most step_budget steps per nominal step it spans (plus
   // step_budget): a step that keeps converging only at a small fraction of the nominal one
@@ -37,8 +37,8 @@ struct StepControl {
 };
 
 struct StepRecord {
-  int step = 0;           // accepted steps since the start
-  double time = 0.0;      // at the end of the step
+  int step = 0;       // accepted steps since the start
+  double time = 0.0;  // at the end of the step
   double step_size = 0.0;
   int newton_iterations = 0;
   int cuts = 0;           // cuts taken before this step converged

@@ -84,8 +84,8 @@ void TireParameters::check() const {
     require(tread_layer.mass_per_length > 0, "tread_layer_mass_per_length",
             "must be positive when the tread layer is on (the contact nodes need mass)", tread_layer.mass_per_length);
   } else {
-    require(tread_layer.mass_per_length == 0, "tread_layer_mass_per_length",
-            "needs the tread layer's stiffnesses", tread_layer.mass_per_length);
+    require(tread_layer.mass_per_length == 0, "tread_layer_mass_per_length", "needs the tread layer's stiffnesses",
+            tread_layer.mass_per_length);
     require(tread_layer.radial_damping == 0, "tread_layer_radial_damping", "needs the tread layer's stiffnesses",
             tread_layer.radial_damping);
     require(tread_layer.circumferential_damping == 0, "tread_layer_circumferential_damping",
@@ -106,7 +106,8 @@ Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pre
   tire.spindle = mesh.add_node(parameters.centre);
   for (int i = 0; i < count; ++i) {
     const double angle = 2.0 * kPi * i / count;
-    tire.tread_nodes.push_back(mesh.add_node(parameters.centre + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
+    tire.tread_nodes.push_back(
+        mesh.add_node(parameters.centre + radius * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
   }
   mesh.define_node_set(name + "_spindle", {tire.spindle});
   mesh.define_node_set(name + "_tread", tire.tread_nodes);

@@ -27,24 +27,24 @@ namespace tirefe {
 /// The tread rubber between the belt and the road, per unit length of circumference.
 /// Off (the paper's model: the belt nodes touch the road) while both stiffnesses are 0.
 struct TreadLayerParameters {
-  double radial_stiffness = 0.0;          // [N/m^2]: normal force per m of circumference per m of compression
-  double circumferential_stiffness = 0.0; // [N/m^2]: shear force per m of circumference per m of shift
-  double mass_per_length = 0.0;           // rubber carried by the contact nodes [kg/m]
-  double radial_damping = 0.0;            // [N s/m^2]: dashpot of the rubber's hysteresis, per m of circumference
-  double circumferential_damping = 0.0;   // [N s/m^2]
+  double radial_stiffness = 0.0;           // [N/m^2]: normal force per m of circumference per m of compression
+  double circumferential_stiffness = 0.0;  // [N/m^2]: shear force per m of circumference per m of shift
+  double mass_per_length = 0.0;            // rubber carried by the contact nodes [kg/m]
+  double radial_damping = 0.0;             // [N s/m^2]: dashpot of the rubber's hysteresis, per m of circumference
+  double circumferential_damping = 0.0;    // [N s/m^2]
   bool enabled() const { return radial_stiffness > 0.0 || circumferential_stiffness > 0.0; }
 };
 
 struct TireParameters {
   int elements = 100;
-  double outer_diameter = 0.0;   // unloaded, uninflated, at the tread nodes [m]
-  double rim_diameter = 0.0;     // effective rim diameter [m]
-  double tread_width = 0.0;      // width the pressure acts on [m]
-  BeamSection tread;             // tread (belt) beam section
-  SidewallProperties sidewall;   // rim_radius is set from rim_diameter
-  double rim_mass = 0.0;         // rim + hub mass [kg]
+  double outer_diameter = 0.0;      // unloaded, uninflated, at the tread nodes [m]
+  double rim_diameter = 0.0;        // effective rim diameter [m]
+  double tread_width = 0.0;         // width the pressure acts on [m]
+  BeamSection tread;                // tread (belt) beam section
+  SidewallProperties sidewall;      // rim_radius is set from rim_diameter
+  double rim_mass = 0.0;            // rim + hub mass [kg]
   double rim_rotary_inertia = 0.0;  // rim + hub rotary inertia [kg m^2]
-  double pressure = 0.0;         // inflation pressure [Pa]
+  double pressure = 0.0;            // inflation pressure [Pa]
   TreadLayerParameters tread_layer;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  // spindle position [m]
 
@@ -54,9 +54,9 @@ struct TireParameters {
 
 struct Tire {
   std::string name;
-  int spindle = -1;               // 0-based node index
-  std::vector<int> tread_nodes;   // 0-based, counter-clockwise from the +x axis
-  std::vector<int> contact_nodes; // the tread-layer nodes, or the tread nodes without a layer
+  int spindle = -1;                // 0-based node index
+  std::vector<int> tread_nodes;    // 0-based, counter-clockwise from the +x axis
+  std::vector<int> contact_nodes;  // the tread-layer nodes, or the tread nodes without a layer
   std::shared_ptr<PressureSchedule> pressure;
   TireParameters parameters;
 };

@@ -35,8 +35,9 @@ class ForceCurve {
 
  private:
   size_t segment(double argument) const {
-    const auto above = std::upper_bound(points_.begin() + 1, points_.end() - 1, argument,
-                                        [](double value, const std::pair<double, double>& p) { return value < p.first; });
+    const auto above =
+        std::upper_bound(points_.begin() + 1, points_.end() - 1, argument,
+                         [](double value, const std::pair<double, double>& p) { return value < p.first; });
     return static_cast<size_t>(above - points_.begin()) - 1;
   }
   double slope(size_t i) const {

@@ -41,10 +41,10 @@ struct SpindleReply {
   /// jacobian[i][j] = d force_i / d (x, y, spin)_j: H_ss of docs/model.md eq. 27 (row and
   /// column 2 zero when the spin is free).
   double jacobian[3][3] = {};
-  double time = 0.0;           // at the end of the solved step (Commit, Revert: the committed one) [s]
-  int newton_iterations = 0;   // of the tire, this request
-  int augmentations = 0;       // contact multiplier updates, this request
-  char message[160] = {};      // why a request failed
+  double time = 0.0;          // at the end of the solved step (Commit, Revert: the committed one) [s]
+  int newton_iterations = 0;  // of the tire, this request
+  int augmentations = 0;      // contact multiplier updates, this request
+  char message[160] = {};     // why a request failed
 };
 
 using SpindleJacobian = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;

@@ -24,12 +24,14 @@ TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, 
   const std::vector<int>& touching = tire_.contact_nodes;
   road_level_ = std::numeric_limits<double>::infinity();
   for (int node : touching)
-    road_level_ = std::min(road_level_, model_.mesh().position(node).y() + analysis_->state().displacement[dof_index(node, 1)]);
+    road_level_ =
+        std::min(road_level_, model_.mesh().position(node).y() + analysis_->state().displacement[dof_index(node, 1)]);
   const std::shared_ptr<const RigidSurface> surface = road(road_level_);
   ContactParameters penalties;
   penalties.friction = contact.friction;
   penalties.normal_penalty = structural_penalty(*analysis_, touching, contact.penalty_factor);
-  penalties.tangential_penalty = structural_tangential_penalty(*analysis_, touching, *surface, contact.tangential_factor);
+  penalties.tangential_penalty =
+      structural_tangential_penalty(*analysis_, touching, *surface, contact.tangential_factor);
   contact_ = &add_contact_block(model_, "contact", surface, touching, penalties, analysis_->state().time);
 }
 

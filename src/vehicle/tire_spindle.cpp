@@ -6,7 +6,9 @@
 namespace tirefe {
 
 TireSpindle::TireSpindle(Analysis& analysis, int spindle, SpinMode spin)
-    : analysis_(analysis), spindle_(analysis.model().mesh().checked(spindle)), spin_(spin),
+    : analysis_(analysis),
+      spindle_(analysis.model().mesh().checked(spindle)),
+      spin_(spin),
       driven_count_(spin == SpinMode::Free ? 2 : 3) {
   if (!analysis.integrator().is_dynamic())
     throw ModelError("the spindle force needs a dynamic tire analysis (Newmark or HHT)");
@@ -66,14 +68,9 @@ void TireSpindle::revert() { analysis_.discard_trial_step(); }
 SpindleReply TireSpindle::serve(const SpindleRequest& request) {
   try {
     switch (request.command) {
-      case SpindleCommand::Solve:
-        return solve_step(request.input);
-      case SpindleCommand::Commit:
-        commit();
-        break;
-      case SpindleCommand::Revert:
-        revert();
-        break;
+      case SpindleCommand::Solve: return solve_step(request.input);
+      case SpindleCommand::Commit: commit(); break;
+      case SpindleCommand::Revert: revert(); break;
     }
     // The committed step, for a host that does not hold this tire (another MPI rank).
     SpindleReply reply;

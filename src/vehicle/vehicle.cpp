@@ -20,7 +20,10 @@ constexpr int kMaxBacktracks = 4;
 }  // namespace
 
 Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, VehicleSettings settings)
-    : body_(std::move(body)), corners_(std::move(corners)), tires_(tires), settings_(settings),
+    : body_(std::move(body)),
+      corners_(std::move(corners)),
+      tires_(tires),
+      settings_(settings),
       integrator_(settings.alpha == 0.0 ? Integrator::newmark() : Integrator::hht(settings.alpha)) {
   if (corners_.empty()) throw ModelError("a vehicle needs at least one corner");
   if (tires_.size() != static_cast<int>(corners_.size()))
@@ -126,7 +129,8 @@ void Vehicle::solve_tires(double h) {
       request_positions(h, trial_.displacement);
       for (auto& request : requests_) (column == 0 ? request.input.x : request.input.y) += settings_.difference_step;
       serve();
-      for (size_t i = 0; i < count; ++i) perturbed_forces_[2 * i + column] = Eigen::Vector2d(replies_[i].force[0], replies_[i].force[1]);
+      for (size_t i = 0; i < count; ++i)
+        perturbed_forces_[2 * i + column] = Eigen::Vector2d(replies_[i].force[0], replies_[i].force[1]);
     }
     request_positions(h, trial_.displacement);
     serve();
@@ -192,8 +196,8 @@ bool Vehicle::solve_step(double h) {
     if (residual_.lpNorm<Eigen::Infinity>() <= settings_.residual_tolerance * reference) return true;
     if (iteration == settings_.max_iterations) {
       std::ostringstream message;
-      message << "no corrector convergence in " << iteration << " iterations (|r| = "
-              << residual_.lpNorm<Eigen::Infinity>() << " N)";
+      message << "no corrector convergence in " << iteration
+              << " iterations (|r| = " << residual_.lpNorm<Eigen::Infinity>() << " N)";
       last_failure_ = message.str();
       return false;
     }

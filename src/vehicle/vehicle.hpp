@@ -34,10 +34,10 @@
 namespace tirefe {
 
 struct Suspension {
-  ForceCurve spring;              // force [N] on the body (up) vs jounce d [m]
-  ForceCurve damper;              // force [N] on the body (up) vs jounce rate [m/s]
-  double bumper_gap = 0.0;        // jounce where the bumper starts [m]
-  double bumper_stiffness = 0.0;  // k_b: bumper force k_b (d - gap)^2 [N/m^2]
+  ForceCurve spring;                // force [N] on the body (up) vs jounce d [m]
+  ForceCurve damper;                // force [N] on the body (up) vs jounce rate [m/s]
+  double bumper_gap = 0.0;          // jounce where the bumper starts [m]
+  double bumper_stiffness = 0.0;    // k_b: bumper force k_b (d - gap)^2 [N/m^2]
   double fore_aft_stiffness = 0.0;  // carrier to body along x [N/m]
   double fore_aft_damping = 0.0;    // [N s/m]
 };
@@ -58,8 +58,8 @@ struct Body {
 enum class SpindleJacobianSource { Direct, FiniteDifference };
 
 struct VehicleSettings {
-  double gravity = 9.81;           // [m/s^2]
-  double alpha = 0.0;              // HHT alpha, as the tires' integrator
+  double gravity = 9.81;             // [m/s^2]
+  double alpha = 0.0;                // HHT alpha, as the tires' integrator
   double residual_tolerance = 1e-8;  // on |r|_inf / total weight
   int max_iterations = 25;           // corrector iterations before the step is cut
   int max_cuts = 4;                  // halvings of one step
@@ -69,8 +69,8 @@ struct VehicleSettings {
 
 struct VehicleStatistics {
   int steps = 0;
-  int corrector_iterations = 0;   // Newton iterations of the vehicle (Jacobian solves)
-  int tire_solves = 0;            // spindle solves, each tire counted
+  int corrector_iterations = 0;  // Newton iterations of the vehicle (Jacobian solves)
+  int tire_solves = 0;           // spindle solves, each tire counted
   long tire_newton_iterations = 0;
   int cuts = 0;
   int backtracks = 0;  // corrector increments halved because a tire could not follow
@@ -79,8 +79,8 @@ struct VehicleStatistics {
 class Vehicle : private SteppedSystem {
  public:
   /// Corner i rides on tires.tire(i) (spin free), whose current spindle position is the
-  /// design position; the tires may be solved in threads or on other MPI ranks. A single corner makes a quarter car (heave only); more add pitch
-  /// and roll. Starts at rest at the design position.
+  /// design position; the tires may be solved in threads or on other MPI ranks. A single corner makes a quarter car
+  /// (heave only); more add pitch and roll. Starts at rest at the design position.
   Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, VehicleSettings settings);
   Vehicle(const Vehicle&) = delete;
   Vehicle& operator=(const Vehicle&) = delete;
