@@ -1,9 +1,11 @@
--- Pressing a held spindle down onto a road or drum: to a depth, or until it carries a load.
+-- Pressing a held spindle down onto a road or drum: to a depth, along a load-deflection
+-- curve, or until it carries a load.
 --
 --   local press = require("press")
 --   local path = press.path(model, tire.spindle, "press")  -- spindle height follows the path
 --   ...                                                    -- inflation, then the contact
 --   path:move_to(0.020, 4, 0.25)                           -- to a depth, in 4 steps of 0.25 s
+--   path:load_curve({ 0.005, 0.010 }, 0.001)               -- the loads at depths on the way
 --   path:to_load{ load = 3800 }                            -- quasi-static secant steps
 --
 -- The spindle's downward travel (the depth) follows a path of (time, depth) points, linear
@@ -52,16 +54,35 @@ function Path:load()
 end
 
 -- Moves the spindle linearly from the depth held now to 'depth' [m] in 'steps' steps of
--- dt [s] (quasi-static, or dynamic if the model has an integrator). Returns the load then.
+-- dt [s] (quasi-static, or dynamic if the model has an integrator). Returns the path, so
+-- that path:move_to(...):load() reads the load there; a deck to be restarted reads none.
 function Path:move_to(depth, steps, dt)
   local start = self.model:time()
-  local finish = start + steps * dt
+  self:extend(start, start + steps * dt, depth)
+  self.model:solve{ to = start + steps * dt, dt = dt }
+  return self
+end
+
+-- The loads [N] at 'depths' [m], reached in turn on one straight move from the depth held
+-- now to the last of them, over 1 s in steps of 'step' [m] of depth: a load-deflection curve.
+function Path:load_curve(depths, step)
+  local start, deepest = self.model:time(), depths[#depths]
+  local from = self:depth(start)
+  self:extend(start, start + 1.0, deepest)
+  local loads = {}
+  for i, depth in ipairs(depths) do
+    self.model:solve{ to = start + (depth - from) / (deepest - from), dt = step / (deepest - from) }
+    loads[i] = self:load()
+  end
+  return loads
+end
+
+-- Extends the path from (start, the depth held) to (finish, depth).
+function Path:extend(start, finish, depth)
   local from = { start, self:depth(start) }
   if start > self.points[#self.points][1] then self.points[#self.points + 1] = from end
   self.points[#self.points + 1] = { finish, depth }
   self:prescribe{ from, { finish, depth } }
-  self.model:solve{ to = finish, dt = dt }
-  return self:load()
 end
 
 -- Presses from depth 0 to the spindle load args.load [N] and returns the depth reached.
@@ -79,7 +100,7 @@ function Path:to_load(args)
   if relative == nil then relative = 1e-3 end
   local schedule = args.schedule or { { target / (args.stiffness or 170e3), 5 } }
   local curve = { { 0.0, 0.0 } }
-  for _, move in ipairs(schedule) do curve[#curve + 1] = { move[1], self:move_to(move[1], move[2], args.dt or 0.1) } end
+  for _, move in ipairs(schedule) do curve[#curve + 1] = { move[1], self:move_to(move[1], move[2], args.dt or 0.1):load() } end
   local function met(load) return relative and math.abs(load - target) < relative * target end
   for _ = 1, args.corrections or 8 do
     local depth, load = curve[#curve][1], curve[#curve][2]
@@ -91,7 +112,8 @@ function Path:to_load(args)
       local before = curve[#curve - 1]
       next_depth = depth + (target - load) / ((load - before[2]) / (depth - before[1]))
     end
-    curve[#curve + 1] = { next_depth, self:move_to(next_depth, args.correction_steps or 1, args.correction_dt or 0.05) }
+    local steps, dt = args.correction_steps or 1, args.correction_dt or 0.05
+    curve[#curve + 1] = { next_depth, self:move_to(next_depth, steps, dt):load() }
   end
   self.curve = curve
   local depth, load = curve[#curve][1], curve[#curve][2]
