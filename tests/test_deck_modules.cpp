@@ -1,4 +1,4 @@
-// Tests of the deck library modules in lua/ (drum, press, series, rolling), each through a
+// Tests of the deck library modules in lua/ (drum, press, series, rolling, stepping), each through a
 // small self-checking deck run in the sandbox.
 #include <catch2/catch.hpp>
 
@@ -138,6 +138,68 @@ tirefe.check{ name = "the depth is then held [m]", value = path:depth(model:time
 tirefe.check{ name = "and the load with it [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 6);
+}
+
+TEST_CASE("lua/press.lua: moves to depths, a load-deflection curve, a depth schedule with chord corrections",
+          "[lua][modules][press]") {
+  // The 145 SR-12 (60 wedges) inflated on a held hub over a frictionless flat road.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("press_moves_deck.lua", R"(
+local press = require("press")
+-- A frictionless road: the quasi-static load depends on the depth alone, not on the way there.
+local function pressed_tire(title)
+  local tp = require("tires.145SR12")
+  tp.elements = 60
+  local model = tirefe.model{ title = title }
+  local tire, level = require("tire_on_road").inflated(model, tp)
+  model:surface{ name = "road", type = "flat", point = { 0, level } }
+  model:contact{ surface = "road", set = tire.contact_set, friction = 0 }
+  return model, press.path(model, tire.spindle, "press"), tire
+end
+
+-- A move: linear in time from the depth held, held after it.
+local model, path, tire = pressed_tire("move")
+local load = path:move_to(0.008, 4, 0.25):load()
+tirefe.check{ name = "move: the spindle at -depth [m]", value = model:value{ node = tire.spindle, dof = "uy" },
+              expected = -0.008, tolerance = 0 }
+tirefe.check{ name = "move: 4 steps of 0.25 s from 1 s [s]", value = model:time(), expected = 2.0, tolerance = 0 }
+tirefe.check{ name = "move: depth halfway [m]", value = path:depth(1.5), expected = 0.004, relative = 1e-15 }
+tirefe.check{ name = "move: held before it [m]", value = path:depth(0.5), expected = 0, tolerance = 0 }
+
+-- A load-deflection curve on one straight move: its loads are the moves' loads.
+local curve_model, curve_path = pressed_tire("curve")
+local loads = curve_path:load_curve({ 0.004, 0.008, 0.012 }, 0.001)
+tirefe.check{ name = "curve: three loads", value = #loads, expected = 3, tolerance = 0 }
+tirefe.check{ name = "curve: the load at 8 mm = the move's [N]", value = loads[2], expected = load, relative = 1e-6 }
+tirefe.check{ name = "curve: a tire's stiffness, 150-200 N/mm [N/m]", value = (loads[3] - loads[1]) / 0.008,
+              expected = 175e3, tolerance = 25e3 }
+tirefe.check{ name = "curve: ends at the last depth [m]", value = curve_path:depth(), expected = 0.012, tolerance = 0 }
+tirefe.check{ name = "curve: 1 s long [s]", value = curve_model:time(), expected = 2.0, tolerance = 1e-12 }
+
+-- To a load by a depth schedule and two chord corrections, taken whatever the load.
+local chord_model, chord_path = pressed_tire("chord")
+local depth = chord_path:to_load{ load = 2500, schedule = { { 0.006, 2 }, { 0.010, 2 } }, dt = 0.25, update = "chord",
+                                  corrections = 2, correction_steps = 2, correction_dt = 0.1, relative = false }
+local curve = chord_path.curve
+tirefe.check{ name = "chord: origin, schedule and corrections", value = #curve, expected = 5, tolerance = 0 }
+tirefe.check{ name = "chord: the schedule's last depth [m]", value = curve[3][1], expected = 0.010, tolerance = 0 }
+tirefe.check{ name = "chord: depth x target / load [m]", value = curve[5][1],
+              expected = curve[4][1] * 2500 / curve[4][2], tolerance = 0 }
+tirefe.check{ name = "chord: returns the last depth [m]", value = depth, expected = curve[5][1], tolerance = 0 }
+tirefe.check{ name = "chord: the load read after the move [N]", value = chord_path:load(), expected = curve[5][2],
+              tolerance = 0 }
+tirefe.check{ name = "chord: 1 s inflation, the schedule, two corrections [s]", value = chord_model:time(),
+              expected = 1 + 4 * 0.25 + 2 * 2 * 0.1, relative = 1e-15 }
+tirefe.check{ name = "chord: within 1 % of the load [N]", value = chord_path:load(), expected = 2500, relative = 0.01 }
+
+-- Secant steps to a load that cannot be met in one correction: an error.
+local _, short_path = pressed_tire("short")
+local ok, message = pcall(short_path.to_load, short_path, { load = 2500, corrections = 0 })
+tirefe.check{ name = "no correction left: an error", value = ok and 1 or 0, expected = 0, tolerance = 0 }
+tirefe.check{ name = "the error names the load", value = message:find("did not reach the load 2500 N") and 1 or 0,
+              expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 18);
 }
 
 TEST_CASE("lua/stepping.lua steps on a schedule, lands on the end and records channels", "[lua][modules]") {
