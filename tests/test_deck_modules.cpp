@@ -1,5 +1,5 @@
-// Tests of the deck library modules in lua/ (drum, press, series, rolling, stepping), each through a
-// small self-checking deck run in the sandbox.
+// Tests of the deck library modules in lua/ (drum, press, series, rolling, stepping, cleat_summary),
+// each through a small self-checking deck run in the sandbox.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -227,6 +227,107 @@ tirefe.check{ name = "steps include the cut pieces", value = totals.steps, expec
 tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 0.1, tolerance = 1e-15 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
+}
+
+TEST_CASE("lua/stepping.lua sets the integrator by name", "[lua][modules]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("integrator_deck.lua", R"(
+-- The integrator by name: a stand-in model keeps what it was given.
+local given
+local stand_in = { integrator = function(_, args) given = args end }
+local stepping = require("stepping")
+stepping.integrator(stand_in, { type = "newmark", gamma = 0.6, alpha = -0.1 })
+tirefe.check{ name = "Newmark: beta = (gamma + 1/2)^2 / 4", value = given.beta, expected = 0.3025, relative = 1e-15 }
+tirefe.check{ name = "Newmark: gamma as given", value = given.gamma, expected = 0.6, tolerance = 0 }
+stepping.integrator(stand_in, { type = "hht", alpha = -0.1, gamma = 0.6 })
+tirefe.check{ name = "HHT: alpha as given", value = given.alpha, expected = -0.1, tolerance = 0 }
+tirefe.check{ name = "HHT: the scheme's own gamma", value = given.gamma == nil and 1 or 0, expected = 1, tolerance = 0 }
+local ok, message = pcall(stepping.integrator, stand_in, { type = "euler" })
+local refused = not ok and message:find("not 'euler'", 1, true)
+tirefe.check{ name = "another name is an error naming it", value = refused and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 5);
+}
+
+TEST_CASE("lua/cleat_summary.lua reads the last full-speed passage of made-up forces", "[lua][modules][drum]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("cleat_summary_deck.lua", R"(
+-- Made-up spindle forces of a 0.5 s spin-up rig: from each passage's first touch Fx rings at
+-- 35 Hz (damping ratio 0.1) and Fz at 85 Hz (0.05), each gone by the next passage; the tire
+-- rolls on a radius of 0.27 m.
+local rig = require("drum").rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 0.5 }
+local passages = rig:passages{ cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 3.5 }
+local lag = require("cleat_ringing").reach / rig.speed
+local function ring(t, f, zeta, amplitude)
+  local value = 0
+  for _, passage in ipairs(passages) do
+    local tau = t - (passage.on - lag)
+    if tau > 0 then
+      value = value + amplitude * math.exp(-zeta * 2 * math.pi * f * tau) * math.sin(2 * math.pi * f * tau)
+    end
+  end
+  return value
+end
+local record = { time = {}, fx = {}, fz = {}, spin = {} }
+for k = 0, 6000 do
+  local t = 2.0 + k * 2.5e-4
+  record.time[#record.time + 1], record.spin[#record.spin + 1] = t, rig:surface_speed(t) / 0.27
+  record.fx[#record.fx + 1], record.fz[#record.fz + 1] = ring(t, 35, 0.1, -2000), 3800 + ring(t, 85, 0.05, 3000)
+end
+-- A stand-in model: its results kept, its contact nodes on a regular 100-gon of radius 0.27 m.
+local results, contact = {}, {}
+for i = 1, 100 do contact[i] = i end
+local model = { result = function(_, args) results[args.name] = args.value end,
+                value = function(_, args)
+                  local angle = 2 * math.pi * args.node / 100
+                  return 0.27 * (args.dof == "ux" and math.cos(angle) or math.sin(angle))
+                end }
+local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
+  ring_time = 0.15, end_time = 3.5, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+tirefe.check{ name = "the last passage rung out by 3.5 s", value = summary.passage.on, expected = passages[3].on,
+              tolerance = 0 }
+-- A damped sinusoid's first two extrema, at tan(omega tau) = omega / sigma, give its peak to peak.
+local function peak_to_peak(f, zeta, amplitude)
+  local omega = 2 * math.pi * f
+  local sigma = zeta * omega
+  local first = math.atan(omega / sigma) / omega
+  local function at(tau) return amplitude * math.exp(-sigma * tau) * math.sin(omega * tau) end
+  return math.abs(at(first) - at(first + math.pi / omega))
+end
+tirefe.check{ name = "Fx peak to peak [N]", value = summary.fx_peak_to_peak, expected = peak_to_peak(35, 0.1, 2000),
+              relative = 2e-3 }
+tirefe.check{ name = "Fz peak to peak [N]", value = summary.fz_peak_to_peak, expected = peak_to_peak(85, 0.05, 3000),
+              relative = 2e-3 }
+tirefe.check{ name = "written to the results [N]", value = results.fz_peak_to_peak, expected = summary.fz_peak_to_peak,
+              tolerance = 0 }
+tirefe.check{ name = "Fx ringing after the cleat [Hz]", value = summary.ringing.fx_leaving.pencil_frequency,
+              expected = 35, relative = 0.01 }
+tirefe.check{ name = "Fz ringing after the cleat [Hz]", value = summary.ringing.fz_leaving.pencil_frequency,
+              expected = 85, relative = 0.01 }
+tirefe.check{ name = "no measured column given", value = summary.measured == nil and 1 or 0, expected = 1,
+              tolerance = 0 }
+tirefe.check{ name = "impacts a turn apart [s]", value = summary.impact_period, expected = rig:turn_time(),
+              tolerance = 2.5e-4 }
+tirefe.check{ name = "a turn = pi D / v [s]", value = rig:turn_time(), expected = math.pi * 1.7 / (51.3 / 3.6),
+              relative = 1e-15 }
+tirefe.check{ name = "rolling radius = speed / spin [m]", value = summary.rolling_radius, expected = 0.27,
+              relative = 1e-12 }
+tirefe.check{ name = "belt radius: the 100-gon's perimeter / 2 pi [m]", value = summary.belt_radius,
+              expected = 0.27 * 100 * math.sin(math.pi / 100) / math.pi, relative = 1e-12 }
+local no_passage = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
+  ring_time = 0.15, end_time = 2.9, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+tirefe.check{ name = "none rung out by 2.9 s: an empty summary", value = next(no_passage) == nil and 1 or 0,
+              expected = 1, tolerance = 0 }
+local cleat = { cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 2.9 }
+local ok, message = pcall(rig.require_full_speed_passage, rig, cleat, 0.15)
+local refused = not ok and message:find("give end_time >= 2.985 s", 1, true)
+tirefe.check{ name = "a run too short is refused, naming the end_time needed", value = refused and 1 or 0,
+              expected = 1, tolerance = 0 }
+cleat.end_time = 3.0
+tirefe.check{ name = "a run long enough is taken",
+              value = pcall(rig.require_full_speed_passage, rig, cleat, 0.15) and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 14);
 }
 
 TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes",
