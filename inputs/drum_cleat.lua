@@ -50,11 +50,10 @@ local p = tirefe.parameters{
 }
 tirefe.progress{ end_time = p.end_time }
 
-for _, name in ipairs{ "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time",
-                       "dt", "dt_max", "dt_cleat", "ring_time", "fields_interval" } do
-  if not (p[name] > 0) then error(string.format("parameter %s = %g must be positive", name, p[name])) end
-end
-if p.cleat_height < 0 then error("parameter cleat_height must not be negative") end
+local guard = require("guard")
+guard.positive(p, { "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time", "dt",
+                    "dt_max", "dt_cleat", "ring_time", "fields_interval" })
+guard.non_negative(p, { "cleat_height" })
 if p.end_time <= 2.0 + p.dt then error("parameter end_time must be later than the 2 s of inflation and pressing") end
 
 -- The rig (lua/drum.lua): the drum's turn, the cleat's passages under the tire and the

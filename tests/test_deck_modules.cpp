@@ -1,5 +1,5 @@
-// Tests of the deck library modules in lua/ (drum, press, series, rolling, stepping, cleat_summary),
-// each through a small self-checking deck run in the sandbox.
+// Tests of the deck library modules in lua/ (drum, press, series, rolling, stepping, cleat_summary,
+// guard), each through a small self-checking deck run in the sandbox.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -328,6 +328,28 @@ tirefe.check{ name = "a run long enough is taken",
               value = pcall(rig.require_full_speed_passage, rig, cleat, 0.15) and 1 or 0, expected = 1, tolerance = 0 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 14);
+}
+
+TEST_CASE("lua/guard.lua refuses a parameter out of its range, by name", "[lua][modules]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("guard_deck.lua", R"(
+local guard = require("guard")
+local p = { load = 3800, dt = 0, height = 0, depth = -0.01, nan = 0 / 0 }
+local function refusal(check, names)
+  local ok, message = pcall(check, p, names)
+  return ok and "" or message
+end
+tirefe.check{ name = "positive: 3800 passes", value = #refusal(guard.positive, { "load" }), expected = 0, tolerance = 0 }
+tirefe.check{ name = "positive: 0 is refused by name", value = refusal(guard.positive, { "load", "dt" })
+              == "parameter dt = 0 must be positive" and 1 or 0, expected = 1, tolerance = 0 }
+tirefe.check{ name = "positive: NaN is refused", value = #refusal(guard.positive, { "nan" }) > 0 and 1 or 0,
+              expected = 1, tolerance = 0 }
+tirefe.check{ name = "non-negative: 0 passes", value = #refusal(guard.non_negative, { "height" }), expected = 0,
+              tolerance = 0 }
+tirefe.check{ name = "non-negative: -0.01 is refused by name", value = refusal(guard.non_negative, { "depth" })
+              == "parameter depth = -0.01 must not be negative" and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 5);
 }
 
 TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes",
