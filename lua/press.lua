@@ -67,8 +67,7 @@ end
 -- now to the last of them, over 1 s in steps of 'step' [m] of depth: a load-deflection curve.
 function Path:load_curve(depths, step)
   local start, deepest = self.model:time(), depths[#depths]
-  local from = self:depth(start)
-  self:extend(start, start + 1.0, deepest)
+  local from = self:extend(start, start + 1.0, deepest)
   local loads = {}
   for i, depth in ipairs(depths) do
     self.model:solve{ to = start + (depth - from) / (deepest - from), dt = step / (deepest - from) }
@@ -77,12 +76,13 @@ function Path:load_curve(depths, step)
   return loads
 end
 
--- Extends the path from (start, the depth held) to (finish, depth).
+-- Extends the path from (start, the depth held) to (finish, depth); returns the depth held.
 function Path:extend(start, finish, depth)
   local from = { start, self:depth(start) }
   if start > self.points[#self.points][1] then self.points[#self.points + 1] = from end
   self.points[#self.points + 1] = { finish, depth }
   self:prescribe{ from, { finish, depth } }
+  return from[2]
 end
 
 -- Presses from depth 0 to the spindle load args.load [N] and returns the depth reached.
@@ -100,7 +100,9 @@ function Path:to_load(args)
   if relative == nil then relative = 1e-3 end
   local schedule = args.schedule or { { target / (args.stiffness or 170e3), 5 } }
   local curve = { { 0.0, 0.0 } }
-  for _, move in ipairs(schedule) do curve[#curve + 1] = { move[1], self:move_to(move[1], move[2], args.dt or 0.1):load() } end
+  for _, move in ipairs(schedule) do
+    curve[#curve + 1] = { move[1], self:move_to(move[1], move[2], args.dt or 0.1):load() }
+  end
   local function met(load) return relative and math.abs(load - target) < relative * target end
   for _ = 1, args.corrections or 8 do
     local depth, load = curve[#curve][1], curve[#curve][2]
