@@ -50,11 +50,10 @@ local p = tirefe.parameters{
 }
 tirefe.progress{ end_time = p.end_time }
 
-for _, name in ipairs{ "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time",
-                       "dt", "dt_max", "dt_cleat", "ring_time", "fields_interval" } do
-  if not (p[name] > 0) then error(string.format("parameter %s = %g must be positive", name, p[name])) end
-end
-if p.cleat_height < 0 then error("parameter cleat_height must not be negative") end
+local guard = require("guard")
+guard.positive(p, { "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time", "dt",
+                    "dt_max", "dt_cleat", "ring_time", "fields_interval" })
+guard.non_negative(p, { "cleat_height" })
 if p.end_time <= 2.0 + p.dt then error("parameter end_time must be later than the 2 s of inflation and pressing") end
 
 -- The rig (lua/drum.lua): the drum's turn, the cleat's passages under the tire and the
@@ -65,12 +64,7 @@ local rig = require("drum").rig{ diameter = p.drum_diameter, speed = p.speed_kmh
                                  spin_up_time = p.spin_up_time }
 local cleat = { cleat_angle = math.rad(p.cleat_start_deg), cleat_length = p.cleat_length, end_time = p.end_time }
 local passages = rig:passages(cleat)
--- The summary reads a passage at full speed with its ringing: refuse a protocol that has none.
-local needed = rig:first_full_speed_passage_end(cleat) + p.ring_time
-if needed > p.end_time + 1e-9 then
-  error(string.format("parameter end_time = %g s ends before the first cleat passage at full speed has rung out: "
-                      .. "give end_time >= %.3f s", p.end_time, needed), 0)
-end
+rig:require_full_speed_passage(cleat, p.ring_time)  -- the summary reads one
 local time_step = rig:time_step{ passages = passages, dt = p.dt, dt_max = p.dt_max, dt_cleat = p.dt_cleat,
                                  ring_time = p.ring_time }
 
@@ -120,71 +114,29 @@ model:release{ node = tire.spindle, dofs = { "rz" } }
 model:newton{ tolerance = p.newton_tolerance }
 -- A step cut to a thousandth of dt means the solution is falling apart: stop with a message.
 model:step_control{ min_dt = p.dt_cleat / 1024, max_cuts = 10 }
-if p.integrator == "hht" then
-  model:integrator{ type = "hht", alpha = p.alpha }
-elseif p.integrator == "newmark" then
-  model:integrator{ type = "newmark", gamma = p.newmark_gamma, beta = (p.newmark_gamma + 0.5) ^ 2 / 4 }
-else
-  error("parameter integrator must be hht or newmark, not '" .. p.integrator .. "'")
-end
-
-local record, totals = require("stepping").run(model, { to = p.end_time, time_step = time_step, channels = {
+local stepping = require("stepping")
+stepping.integrator(model, { type = p.integrator, alpha = p.alpha, gamma = p.newmark_gamma })
+local record, totals = stepping.run(model, { to = p.end_time, time_step = time_step, channels = {
   fx = function() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fx" } end,
   fz = function() return press:load() end,
   spin = function() return model:value{ node = tire.spindle, quantity = "spin_rate" } end } })
-require("stepping").report(model, totals, "dynamic")
+stepping.report(model, totals, "dynamic")
 
--- Summary of the last passage at full speed with its ringing recorded (lua/series.lua,
--- lua/cleat_ringing.lua): peak-to-peak forces, ringing frequencies, the impacts' period.
-local series, cleat_ringing = require("series"), require("cleat_ringing")
-local last = rig:last_full_speed_passage(passages, p.ring_time, p.end_time)
-local summary = {}
-if last then
-  local fx_low, fx_high = series.range(record.time, record.fx, last.on - 0.01, last.off + p.ring_time)
-  local fz_low, fz_high = series.range(record.time, record.fz, last.on - 0.01, last.off + p.ring_time)
-  summary.fx_peak_to_peak, summary.fz_peak_to_peak = fx_high - fx_low, fz_high - fz_low
-  print(string.format("cleat passage at %.3f-%.3f s (%.1f km/h), every %.3f s at full speed", last.on, last.off,
-                      p.speed_kmh, math.pi * p.drum_diameter / rig.speed))
-  print(string.format("  peak to peak: Fx %.0f N, Fz %.0f N", summary.fx_peak_to_peak, summary.fz_peak_to_peak))
-  summary.ringing = cleat_ringing.read{ time = record.time, fx = record.fx, fz = record.fz, on = last.on,
-                                        off = last.off, speed = rig.speed }
-  summary.measured = cleat_ringing.measured(p)  -- only for the test's own conditions
-  cleat_ringing.report(model, summary.ringing, summary.measured)
-  model:result{ name = "cleat_on_s", value = last.on, unit = "s" }
-  model:result{ name = "cleat_off_s", value = last.off, unit = "s" }
-  model:result{ name = "fx_peak_to_peak", value = summary.fx_peak_to_peak, unit = "N" }
-  model:result{ name = "fz_peak_to_peak", value = summary.fz_peak_to_peak, unit = "N" }
-  local passed
-  summary.impact_period, passed = rig:impact_period(passages, record.time, record.fz, p.end_time)
-  if summary.impact_period then
-    print(string.format("  Fz peaks every %.4f s over %d passages (pi D / v = %.4f s)", summary.impact_period, passed,
-                        math.pi * p.drum_diameter / rig.speed))
-    model:result{ name = "impact_period", value = summary.impact_period, unit = "s" }
-  end
-end
-
--- Steady rolling just before the last passage (lua/rolling.lua): effective rolling radius =
--- drum surface speed / spin rate over 20 ms, beside the radius of the contact nodes' ring.
-local rolling = require("rolling")
-local rolling_radius, belt_radius
-if last then
-  rolling_radius = rolling.radius{ time = record.time, spin = record.spin, speed = rig.speed, from = last.on - 0.03,
-                                   to = last.on - 0.01 }
-  -- At the end of the run, the belt rings little by then.
-  belt_radius = rolling.contact_circumference(model, tire.contact) / (2 * math.pi)
-  print(string.format("rolling radius before the cleat %.2f mm; contact ring circumference / 2 pi %.2f mm; unloaded "
-                      .. "radius %.2f mm, loaded %.2f mm", rolling_radius * 1e3, belt_radius * 1e3,
-                      tire_parameters.outer_diameter / 2 * 1e3,
-                      (tire_parameters.outer_diameter / 2 - loaded_deflection) * 1e3))
-end
+-- Summary of the last passage at full speed with its ringing recorded (lua/cleat_summary.lua):
+-- peak-to-peak forces, ringing frequencies, the impacts' period, the rolling radius before it.
+local cleat_ringing = require("cleat_ringing")
+local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
+  ring_time = p.ring_time, end_time = p.end_time, speed_kmh = p.speed_kmh, measured = cleat_ringing.measured(p),
+  contact = tire.contact, unloaded_radius = tire_parameters.outer_diameter / 2, deflection = loaded_deflection }
 if p.check then
   tirefe.check{ name = "pressed to the load [N]", value = spindle_fz_at_start, expected = p.load, tolerance = 1e-3 * p.load }
-  tirefe.check{ name = "a full-speed cleat passage was run", value = last and 1 or 0, expected = 1, tolerance = 0 }
-  tirefe.check{ name = "rolling radius = contact ring circumference / 2 pi [m]", value = rolling_radius, expected = belt_radius,
-                tolerance = 2e-3 * belt_radius }
+  tirefe.check{ name = "a full-speed cleat passage was run", value = summary.passage and 1 or 0, expected = 1,
+                tolerance = 0 }
+  tirefe.check{ name = "rolling radius = contact ring circumference / 2 pi [m]", value = summary.rolling_radius,
+                expected = summary.belt_radius, tolerance = 2e-3 * summary.belt_radius }
   if p.tire == "tires.145SR12_tread_layer" and summary.measured then
     cleat_ringing.check_calibrated(summary.ringing, summary.measured)  -- against the measured ringing
   end
 end
 
-return { summary = summary, rolling_radius = rolling_radius, passages = passages, record = record }
+return { summary = summary, passages = passages, record = record }

@@ -26,12 +26,10 @@ local function flat_road_forces(k_sw, k_sw_sign, pressure, deflections)
   tire_parameters.pressure = pressure
   tire_parameters.k_sw, tire_parameters.k_sw_sign = k_sw, k_sw_sign
   tire_parameters.pressure_load_function = "inflate"
-  local deepest = deflections[#deflections]
   model:load_function{ name = "inflate", points = { { 0, 0 }, { 1, 1 }, { 3, 1 } } }
-  model:load_function{ name = "press", points = { { 0, 0 }, { 1, 0 }, { 2, 1 } } }
   local tire = model:tire(tire_parameters)
   model:fix{ node = tire.spindle }
-  model:prescribe{ node = tire.spindle, dof = "uy", value = -deepest, load_function = "press" }
+  local path = require("press").path(model, tire.spindle, "press")
   model:output{ file = "fit_ksw_145SR12_evaluation.h5" }
   model:solve{ to = 1.0, dt = 0.25 }                  -- inflate on the held hub
 
@@ -44,12 +42,7 @@ local function flat_road_forces(k_sw, k_sw_sign, pressure, deflections)
   model:surface{ name = "road", type = "flat", point = { 0, lowest } }
   model:contact{ surface = "road", set = tire.tread_set }  -- penalties scaled from the inflated tire
 
-  local forces = {}
-  for i, deflection in ipairs(deflections) do
-    model:solve{ to = 1 + deflection / deepest, dt = p.step_mm * 1e-3 / deepest }
-    forces[i] = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
-  end
-  return forces
+  return path:load_curve(deflections, p.step_mm * 1e-3)
 end
 
 -- Vertical stiffness of a curve: the least-squares slope through the origin [N/m].

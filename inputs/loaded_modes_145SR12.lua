@@ -96,7 +96,6 @@ local function loaded_modes(title, module)
   tp.y = drum_radius + tp.outer_diameter / 2  -- touching the top of the drum at rest
   tp.pressure_load_function = "inflate"
   model:load_function{ name = "inflate", points = {{0, 0}, {1, 1}, {100, 1}} }
-  model:load_function{ name = "press", points = {{0, 0}, {1, 0}, {2, 1}, {100, 1}} }
   tp.heading = "-x"  -- the drum turns clockwise (its top and the contact patch move in +x) from drum_start on
   local tire = model:tire(tp)
   model:fix{ node = tire.spindle }
@@ -106,18 +105,12 @@ local function loaded_modes(title, module)
                  amplitude = 1.0 }
   local contact = model:contact{ surface = "drum", set = tire.contact_set, friction = p.mu,
                                  penalty_factor = 100, tangential_factor = 1000 }
-  -- Press by the spindle position; two secant corrections bring the load to p.load.
-  local deflection, t = 0.023, 2.0
-  model:prescribe{ node = tire.spindle, dof = "uy", value = -deflection, load_function = "press" }
-  model:solve{ to = t, dt = 0.1 }
-  for _ = 1, 2 do
-    local load = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
-    deflection = deflection * p.load / load
-    t = t + 0.1
-    model:prescribe{ node = tire.spindle, dof = "uy", value = -deflection, load_function = "press" }
-    model:solve{ to = t, dt = 0.1 }
-  end
-  local load = model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
+  -- Pressed by the spindle position (lua/press.lua): 23 mm in 1 s, then two chord
+  -- corrections (the depth scaled by target / load) bring the load to p.load.
+  local path = require("press").path(model, tire.spindle, "press")
+  local deflection = path:to_load{ load = p.load, schedule = { { 0.023, 10 } }, update = "chord", corrections = 2,
+                                   correction_dt = 0.1, relative = false }
+  local load = path:load()
   local patch = model:contact_value{ name = "contact_drum", quantity = "patch_length" }
   local slipping = model:contact_value{ name = "contact_drum", quantity = "nodes_slipping" }
   model:release{ node = tire.spindle, dofs = {"rz"} }

@@ -19,6 +19,7 @@ local p = tirefe.parameters{
 local g = 9.81
 local tp = require("tires.145SR12")
 local tire_on_road = require("tire_on_road")
+local press = require("press")
 
 -- A tire model: inflated on a held hub, a road touching its lowest point, contact.
 -- 'road' gets the road level and returns the surface arguments.
@@ -32,17 +33,6 @@ local function tire_model(title, road)
   return model, tire
 end
 
--- Presses the held spindle quasi-statically to 'deflection' in 1 s; returns the tire load Fz.
-local pressed = 0
-local function press(model, tire, deflection, name)
-  local t = model:time()
-  model:load_function{ name = name, points = {{t, pressed}, {t + 1, -deflection}} }
-  model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = name }
-  model:solve{ to = t + 1, dt = 0.25 }
-  pressed = -deflection
-  return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" }
-end
-
 local function corner(model, tire, preload, damping)
   return { name = "quarter", model = model, spindle = tire.spindle, mass = p.carrier, spring_rate = p.k_s,
            preload = preload, damping = damping, bumper_gap = 0.05, bumper_stiffness = 1e7,
@@ -53,8 +43,7 @@ end
 local still, still_tire = tire_model("quarter car settling", function(level)
   return { type = "flat", point = {0, level} }
 end)
-pressed = 0
-press(still, still_tire, 0.015, "press")
+press.path(still, still_tire.spindle, "press"):move_to(0.015, 4, 0.25)  -- quasi-static, in 1 s
 still:integrator{ type = "hht", alpha = -0.05 }
 local settle = tirefe.vehicle{ body = { mass = p.body },
   corners = { corner(still, still_tire, 0.8 * p.body * g, 2 * math.sqrt(p.k_s * p.body)) },
@@ -73,12 +62,14 @@ local rolling, tire = tire_model("quarter car over a pothole", function(level)
   return { type = "profile", pothole = {ahead, p.length, p.depth}, level = level, edge_radius = 0.01,
            speed = -v, ramp_time = ramp, start_time = start }
 end)
-pressed = 0
-local f1 = press(rolling, tire, 0.010, "press1")
-local f2 = press(rolling, tire, 0.020, "press2")
+-- Pressed quasi-statically to 10 and 20 mm (1 s each), then to the static deflection
+-- that the secant stiffness between them gives.
+local path = press.path(rolling, tire.spindle, "press")
+local f1 = path:move_to(0.010, 4, 0.25):load()
+local f2 = path:move_to(0.020, 4, 0.25):load()
 local k_t = (f2 - f1) / 0.010             -- quasi-static vertical tire stiffness [N/m]
 local weight = (p.body + p.carrier) * g
-press(rolling, tire, 0.010 + (weight - f1) / k_t, "press3")   -- near the static deflection
+path:move_to(0.010 + (weight - f1) / k_t, 4, 0.25)
 rolling:integrator{ type = "hht", alpha = -0.05 }
 rolling:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
 rolling:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }

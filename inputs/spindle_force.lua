@@ -21,9 +21,7 @@ local tp = require("tires.145SR12")
 local tire, level = require("tire_on_road").inflated(model, tp)
 model:surface{ name = "road", type = "flat", point = {0, level}, speed = -p.speed, ramp_time = 0.05, start_time = 2.0 }
 model:contact{ surface = "road", set = tire.contact_set, friction = p.mu, history = "patch" }
-model:load_function{ name = "press", points = {{1, 0}, {2, 1}} }
-model:prescribe{ node = tire.spindle, dof = "uy", value = -p.deflection, load_function = "press" }
-model:solve{ to = 2.0, dt = 0.25 }
+require("press").path(model, tire.spindle, "press"):move_to(p.deflection, 4, 0.25)  -- from 1 to 2 s
 
 model:integrator{ type = "hht", alpha = -0.05 }
 model:step_control{ max_augmentations = 0 }  -- the Jacobian holds the step's contact multipliers

@@ -33,9 +33,8 @@ model:load_function{ name = "inflate", points = { { 0, 0 }, { 1, 1 }, { 1e9, 1 }
 local tire = model:tire(parameters)
 
 -- 0-1 s inflation on the held hub, 1-2 s pressed down onto the road, then rolling.
-model:load_function{ name = "press", points = { { 0, 0 }, { 1, 0 }, { 2, 1 }, { 1e9, 1 } } }
 model:fix{ node = tire.spindle, dofs = { "ux", "rz" } }
-model:prescribe{ node = tire.spindle, dof = "uy", value = -p.press, load_function = "press" }
+local path = require("press").path(model, tire.spindle, "press")  -- holds the spindle's height (lua/press.lua)
 model:surface{ name = "road", type = "flat", point = { 0, -parameters.outer_diameter / 2 - p.gap },
                speed = -p.speed, ramp_time = p.ramp_time, start_time = 2.0 }
 model:contact{ surface = "road", set = tire.contact_set, friction = 0.8, penalty = 2e7, tangential_penalty = 2e6,
@@ -46,7 +45,7 @@ model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_for
 model:history{ name = "spin_rate", node = tire.spindle, quantity = "spin_rate" }
 
 model:solve{ to = 1.0, dt = 0.25 }
-model:solve{ to = 2.0, dt = 0.1 }
+path:move_to(p.press, 10, 0.1)
 
 model:release{ node = tire.spindle, dofs = { "rz" } }
 model:integrator{ type = "hht", alpha = -0.1 }

@@ -83,17 +83,10 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
   -- Pressed to the static corner load: the deflection from the tire's secant stiffness
   -- between 10 and 20 mm (the press of the design position; settling does the rest).
   local weight = load + carrier * g
-  model:load_function{ name = "press", points = {{1, 0}, {1.5, -0.010}, {1.75, -0.020}, {2, -0.020}} }
-  model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = "press" }
-  local function tire_load() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fz" } end
-  model:solve{ to = 1.5, dt = 0.25 }
-  local f1 = tire_load()
-  model:solve{ to = 1.75, dt = 0.25 }
-  local f2 = tire_load()
-  local deflection = 0.010 + (weight - f1) / ((f2 - f1) / 0.010)
-  model:load_function{ name = "hold", points = {{1.75, -0.020}, {2, -deflection}} }
-  model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = "hold" }
-  model:solve{ to = 2.0, dt = 0.25 }
+  local path = require("press").path(model, tire.spindle, "press")
+  local f1 = path:move_to(0.010, 2, 0.25):load()
+  local f2 = path:move_to(0.020, 1, 0.25):load()
+  path:move_to(0.010 + (weight - f1) / ((f2 - f1) / 0.010), 1, 0.25)
   model:integrator{ type = "hht", alpha = -0.05, predictor = p.predictor }
   -- The contact patch's nodes land on the road with accelerations that jump from step to
   -- step at speed: starting Newton from a_{n+1} = 0 rather than a_n saves a third of the

@@ -70,6 +70,21 @@ function Rig:first_full_speed_passage_end(args)
   return self:time_at_angle(lead + 2 * half_angle)
 end
 
+-- Refuses a run (cleat.end_time) that ends before its first passage at full speed has rung
+-- for ring_time: the summary reads one. The error names the end_time needed.
+function Rig:require_full_speed_passage(cleat, ring_time)
+  local needed = self:first_full_speed_passage_end(cleat) + ring_time
+  if needed > cleat.end_time + 1e-9 then
+    error(string.format("parameter end_time = %g s ends before the first cleat passage at full speed has rung out: "
+                        .. "give end_time >= %.3f s", cleat.end_time, needed), 0)
+  end
+end
+
+-- The time of one turn at full speed, pi D / v [s]: the cleat's period.
+function Rig:turn_time()
+  return 2 * math.pi * self.radius / self.speed
+end
+
 -- The time step at time t: dt_cleat through the passages at full speed and the one before
 -- them, from 10 ms before each until ring_time after it; elsewhere the step in which a point
 -- of the drum surface travels as far as in dt at full speed, up to dt_max. The earlier

@@ -4,6 +4,7 @@
 --   local record, totals = stepping.run(model, { to = 8.0, time_step = function(t) return 1e-3 end,
 --                                                channels = { fz = function() return ... end } })
 --   stepping.report(model, totals, "dynamic")
+--   stepping.integrator(model, { type = "newmark", gamma = 0.6 })
 local stepping = {}
 
 -- Steps to args.to with dt = args.time_step(t) (the last step shortened to land on it).
@@ -24,6 +25,19 @@ function stepping.run(model, args)
   end
   totals.cpu_time = os.clock() - cpu_start
   return record, totals
+end
+
+-- Sets the model's time integrator by name: "hht" with args.alpha, or "newmark" with
+-- args.gamma and beta = (gamma + 1/2)^2 / 4 (unconditionally stable, dissipative for
+-- gamma > 1/2). Any other name is an error.
+function stepping.integrator(model, args)
+  if args.type == "hht" then
+    model:integrator{ type = "hht", alpha = args.alpha }
+  elseif args.type == "newmark" then
+    model:integrator{ type = "newmark", gamma = args.gamma, beta = (args.gamma + 0.5) ^ 2 / 4 }
+  else
+    error("parameter integrator must be hht or newmark, not '" .. args.type .. "'")
+  end
 end
 
 -- Writes the totals as results NAME_steps, NAME_newton_iterations, NAME_cpu_time and prints them.

@@ -1,5 +1,5 @@
-// Tests of the deck library modules in lua/ (drum, press, series, rolling), each through a
-// small self-checking deck run in the sandbox.
+// Tests of the deck library modules in lua/ (drum, press, series, rolling, stepping, cleat_summary,
+// guard), each through a small self-checking deck run in the sandbox.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -140,6 +140,68 @@ tirefe.check{ name = "and the load with it [N]", value = path:load(), expected =
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 6);
 }
 
+TEST_CASE("lua/press.lua: moves to depths, a load-deflection curve, a depth schedule with chord corrections",
+          "[lua][modules][press]") {
+  // The 145 SR-12 (60 wedges) inflated on a held hub over a frictionless flat road.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("press_moves_deck.lua", R"(
+local press = require("press")
+-- A frictionless road: the quasi-static load depends on the depth alone, not on the way there.
+local function pressed_tire(title)
+  local tp = require("tires.145SR12")
+  tp.elements = 60
+  local model = tirefe.model{ title = title }
+  local tire, level = require("tire_on_road").inflated(model, tp)
+  model:surface{ name = "road", type = "flat", point = { 0, level } }
+  model:contact{ surface = "road", set = tire.contact_set, friction = 0 }
+  return model, press.path(model, tire.spindle, "press"), tire
+end
+
+-- A move: linear in time from the depth held, held after it.
+local model, path, tire = pressed_tire("move")
+local load = path:move_to(0.008, 4, 0.25):load()
+tirefe.check{ name = "move: the spindle at -depth [m]", value = model:value{ node = tire.spindle, dof = "uy" },
+              expected = -0.008, tolerance = 0 }
+tirefe.check{ name = "move: 4 steps of 0.25 s from 1 s [s]", value = model:time(), expected = 2.0, tolerance = 0 }
+tirefe.check{ name = "move: depth halfway [m]", value = path:depth(1.5), expected = 0.004, relative = 1e-15 }
+tirefe.check{ name = "move: held before it [m]", value = path:depth(0.5), expected = 0, tolerance = 0 }
+
+-- A load-deflection curve on one straight move: its loads are the moves' loads.
+local curve_model, curve_path = pressed_tire("curve")
+local loads = curve_path:load_curve({ 0.004, 0.008, 0.012 }, 0.001)
+tirefe.check{ name = "curve: three loads", value = #loads, expected = 3, tolerance = 0 }
+tirefe.check{ name = "curve: the load at 8 mm = the move's [N]", value = loads[2], expected = load, relative = 1e-6 }
+tirefe.check{ name = "curve: a tire's stiffness, 150-200 N/mm [N/m]", value = (loads[3] - loads[1]) / 0.008,
+              expected = 175e3, tolerance = 25e3 }
+tirefe.check{ name = "curve: ends at the last depth [m]", value = curve_path:depth(), expected = 0.012, tolerance = 0 }
+tirefe.check{ name = "curve: 1 s long [s]", value = curve_model:time(), expected = 2.0, tolerance = 1e-12 }
+
+-- To a load by a depth schedule and two chord corrections, taken whatever the load.
+local chord_model, chord_path = pressed_tire("chord")
+local depth = chord_path:to_load{ load = 2500, schedule = { { 0.006, 2 }, { 0.010, 2 } }, dt = 0.25, update = "chord",
+                                  corrections = 2, correction_steps = 2, correction_dt = 0.1, relative = false }
+local curve = chord_path.curve
+tirefe.check{ name = "chord: origin, schedule and corrections", value = #curve, expected = 5, tolerance = 0 }
+tirefe.check{ name = "chord: the schedule's last depth [m]", value = curve[3][1], expected = 0.010, tolerance = 0 }
+tirefe.check{ name = "chord: depth x target / load [m]", value = curve[5][1],
+              expected = curve[4][1] * 2500 / curve[4][2], tolerance = 0 }
+tirefe.check{ name = "chord: returns the last depth [m]", value = depth, expected = curve[5][1], tolerance = 0 }
+tirefe.check{ name = "chord: the load read after the move [N]", value = chord_path:load(), expected = curve[5][2],
+              tolerance = 0 }
+tirefe.check{ name = "chord: 1 s inflation, the schedule, two corrections [s]", value = chord_model:time(),
+              expected = 1 + 4 * 0.25 + 2 * 2 * 0.1, relative = 1e-15 }
+tirefe.check{ name = "chord: within 1 % of the load [N]", value = chord_path:load(), expected = 2500, relative = 0.01 }
+
+-- Secant steps to a load that cannot be met in one correction: an error.
+local _, short_path = pressed_tire("short")
+local ok, message = pcall(short_path.to_load, short_path, { load = 2500, corrections = 0 })
+tirefe.check{ name = "no correction left: an error", value = ok and 1 or 0, expected = 0, tolerance = 0 }
+tirefe.check{ name = "the error names the load", value = message:find("did not reach the load 2500 N") and 1 or 0,
+              expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 18);
+}
+
 TEST_CASE("lua/stepping.lua steps on a schedule, lands on the end and records channels", "[lua][modules]") {
   // A stand-in model whose step reports two Newton iterations and cuts every third step.
   tirefe::testing::TempDir folder;
@@ -165,6 +227,129 @@ tirefe.check{ name = "steps include the cut pieces", value = totals.steps, expec
 tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 0.1, tolerance = 1e-15 }
 )");
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
+}
+
+TEST_CASE("lua/stepping.lua sets the integrator by name", "[lua][modules]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("integrator_deck.lua", R"(
+-- The integrator by name: a stand-in model keeps what it was given.
+local given
+local stand_in = { integrator = function(_, args) given = args end }
+local stepping = require("stepping")
+stepping.integrator(stand_in, { type = "newmark", gamma = 0.6, alpha = -0.1 })
+tirefe.check{ name = "Newmark: beta = (gamma + 1/2)^2 / 4", value = given.beta, expected = 0.3025, relative = 1e-15 }
+tirefe.check{ name = "Newmark: gamma as given", value = given.gamma, expected = 0.6, tolerance = 0 }
+stepping.integrator(stand_in, { type = "hht", alpha = -0.1, gamma = 0.6 })
+tirefe.check{ name = "HHT: alpha as given", value = given.alpha, expected = -0.1, tolerance = 0 }
+tirefe.check{ name = "HHT: the scheme's own gamma", value = given.gamma == nil and 1 or 0, expected = 1, tolerance = 0 }
+local ok, message = pcall(stepping.integrator, stand_in, { type = "euler" })
+local refused = not ok and message:find("not 'euler'", 1, true)
+tirefe.check{ name = "another name is an error naming it", value = refused and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 5);
+}
+
+TEST_CASE("lua/cleat_summary.lua reads the last full-speed passage of made-up forces", "[lua][modules][drum]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("cleat_summary_deck.lua", R"(
+-- Made-up spindle forces of a 0.5 s spin-up rig: from each passage's first touch Fx rings at
+-- 35 Hz (damping ratio 0.1) and Fz at 85 Hz (0.05), each gone by the next passage; the tire
+-- rolls on a radius of 0.27 m.
+local rig = require("drum").rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 0.5 }
+local passages = rig:passages{ cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 3.5 }
+local lag = require("cleat_ringing").reach / rig.speed
+local function ring(t, f, zeta, amplitude)
+  local value = 0
+  for _, passage in ipairs(passages) do
+    local tau = t - (passage.on - lag)
+    if tau > 0 then
+      value = value + amplitude * math.exp(-zeta * 2 * math.pi * f * tau) * math.sin(2 * math.pi * f * tau)
+    end
+  end
+  return value
+end
+local record = { time = {}, fx = {}, fz = {}, spin = {} }
+for k = 0, 6000 do
+  local t = 2.0 + k * 2.5e-4
+  record.time[#record.time + 1], record.spin[#record.spin + 1] = t, rig:surface_speed(t) / 0.27
+  record.fx[#record.fx + 1], record.fz[#record.fz + 1] = ring(t, 35, 0.1, -2000), 3800 + ring(t, 85, 0.05, 3000)
+end
+-- A stand-in model: its results kept, its contact nodes on a regular 100-gon of radius 0.27 m.
+local results, contact = {}, {}
+for i = 1, 100 do contact[i] = i end
+local model = { result = function(_, args) results[args.name] = args.value end,
+                value = function(_, args)
+                  local angle = 2 * math.pi * args.node / 100
+                  return 0.27 * (args.dof == "ux" and math.cos(angle) or math.sin(angle))
+                end }
+local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
+  ring_time = 0.15, end_time = 3.5, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+tirefe.check{ name = "the last passage rung out by 3.5 s", value = summary.passage.on, expected = passages[3].on,
+              tolerance = 0 }
+-- A damped sinusoid's first two extrema, at tan(omega tau) = omega / sigma, give its peak to peak.
+local function peak_to_peak(f, zeta, amplitude)
+  local omega = 2 * math.pi * f
+  local sigma = zeta * omega
+  local first = math.atan(omega / sigma) / omega
+  local function at(tau) return amplitude * math.exp(-sigma * tau) * math.sin(omega * tau) end
+  return math.abs(at(first) - at(first + math.pi / omega))
+end
+tirefe.check{ name = "Fx peak to peak [N]", value = summary.fx_peak_to_peak, expected = peak_to_peak(35, 0.1, 2000),
+              relative = 2e-3 }
+tirefe.check{ name = "Fz peak to peak [N]", value = summary.fz_peak_to_peak, expected = peak_to_peak(85, 0.05, 3000),
+              relative = 2e-3 }
+tirefe.check{ name = "written to the results [N]", value = results.fz_peak_to_peak, expected = summary.fz_peak_to_peak,
+              tolerance = 0 }
+tirefe.check{ name = "Fx ringing after the cleat [Hz]", value = summary.ringing.fx_leaving.pencil_frequency,
+              expected = 35, relative = 0.01 }
+tirefe.check{ name = "Fz ringing after the cleat [Hz]", value = summary.ringing.fz_leaving.pencil_frequency,
+              expected = 85, relative = 0.01 }
+tirefe.check{ name = "no measured column given", value = summary.measured == nil and 1 or 0, expected = 1,
+              tolerance = 0 }
+tirefe.check{ name = "impacts a turn apart [s]", value = summary.impact_period, expected = rig:turn_time(),
+              tolerance = 2.5e-4 }
+tirefe.check{ name = "a turn = pi D / v [s]", value = rig:turn_time(), expected = math.pi * 1.7 / (51.3 / 3.6),
+              relative = 1e-15 }
+tirefe.check{ name = "rolling radius = speed / spin [m]", value = summary.rolling_radius, expected = 0.27,
+              relative = 1e-12 }
+tirefe.check{ name = "belt radius: the 100-gon's perimeter / 2 pi [m]", value = summary.belt_radius,
+              expected = 0.27 * 100 * math.sin(math.pi / 100) / math.pi, relative = 1e-12 }
+local no_passage = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
+  ring_time = 0.15, end_time = 2.9, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+tirefe.check{ name = "none rung out by 2.9 s: an empty summary", value = next(no_passage) == nil and 1 or 0,
+              expected = 1, tolerance = 0 }
+local cleat = { cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 2.9 }
+local ok, message = pcall(rig.require_full_speed_passage, rig, cleat, 0.15)
+local refused = not ok and message:find("give end_time >= 2.985 s", 1, true)
+tirefe.check{ name = "a run too short is refused, naming the end_time needed", value = refused and 1 or 0,
+              expected = 1, tolerance = 0 }
+cleat.end_time = 3.0
+tirefe.check{ name = "a run long enough is taken",
+              value = pcall(rig.require_full_speed_passage, rig, cleat, 0.15) and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 14);
+}
+
+TEST_CASE("lua/guard.lua refuses a parameter out of its range, by name", "[lua][modules]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("guard_deck.lua", R"(
+local guard = require("guard")
+local p = { load = 3800, dt = 0, height = 0, depth = -0.01, nan = 0 / 0 }
+local function refusal(check, names)
+  local ok, message = pcall(check, p, names)
+  return ok and "" or message
+end
+tirefe.check{ name = "positive: 3800 passes", value = #refusal(guard.positive, { "load" }), expected = 0, tolerance = 0 }
+tirefe.check{ name = "positive: 0 is refused by name", value = refusal(guard.positive, { "load", "dt" })
+              == "parameter dt = 0 must be positive" and 1 or 0, expected = 1, tolerance = 0 }
+tirefe.check{ name = "positive: NaN is refused", value = #refusal(guard.positive, { "nan" }) > 0 and 1 or 0,
+              expected = 1, tolerance = 0 }
+tirefe.check{ name = "non-negative: 0 passes", value = #refusal(guard.non_negative, { "height" }), expected = 0,
+              tolerance = 0 }
+tirefe.check{ name = "non-negative: -0.01 is refused by name", value = refusal(guard.non_negative, { "depth" })
+              == "parameter depth = -0.01 must not be negative" and 1 or 0, expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 5);
 }
 
 TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes",
