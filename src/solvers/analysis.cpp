@@ -161,9 +161,10 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
 
 double Analysis::apply_increment(const Eigen::VectorXd& increment) {
   const DofMap& dofs = model_.dof_map();
+  const RateCorrection rates = integrator_.rate_correction(carried_.steps.current);
   double largest_increment = 0.0;
   for (int equation = 0; equation < dofs.equation_count(); ++equation) {
-    integrator_.correct(carried_.steps.current, dofs.dof(equation), increment[equation], trial_);
+    rates.apply(dofs.dof(equation), increment[equation], trial_);
     largest_increment = std::max(largest_increment, std::abs(increment[equation]));
   }
   return largest_increment / (1.0 + trial_.displacement.lpNorm<Eigen::Infinity>());
@@ -379,17 +380,13 @@ std::string Analysis::failure_message(int cuts, double step) const {
 }
 
 CarriedState Analysis::snapshot() {
-  carried_.integrator_kind = static_cast<int>(integrator_.kind());
-  carried_.beta = integrator_.beta();
-  carried_.gamma = integrator_.gamma();
-  carried_.alpha = integrator_.alpha();
+  carried_.integrator = integrator_.record();
   solvers_.forget_analysis();  // the next factorization starts afresh, as after a restore
   return carried_;
 }
 
 void Analysis::restore(const CarriedState& s) {
-  if (s.integrator_kind != static_cast<int>(integrator_.kind()) || s.beta != integrator_.beta() ||
-      s.gamma != integrator_.gamma() || s.alpha != integrator_.alpha())
+  if (s.integrator != integrator_.record())
     throw ModelError("the checkpoint was taken with another integrator than the deck's " + integrator_.name());
   const int dofs = model_.mesh().dof_count();
   CarriedState::for_each_field(s, [&s, dofs](const char*, const auto& field) {
