@@ -8,6 +8,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "elements/beam_mesh.hpp"
@@ -319,6 +320,89 @@ TEST_CASE("Newmark and HHT accept exactly their unconditionally stable parameter
   for (double alpha : {-1.0 / 3.0, -0.1, 0.0}) CHECK_NOTHROW(Integrator::hht(alpha));
   for (double alpha : {-0.34, 0.01, std::nan("")})
     CHECK_THROWS_WITH(Integrator::hht(alpha), Contains("alpha in [-1/3, 0]"));
+}
+
+TEST_CASE("the registry makes each scheme; its factors, predictor and rate changes are the closed forms",
+          "[dynamics][integrator]") {
+  CHECK(integrator_names() == std::vector<std::string>{"static", "newmark", "hht"});
+  IntegratorParameters parameters;
+  parameters.beta = 0.3;
+  parameters.gamma = 0.6;
+  parameters.alpha = -0.1;
+  parameters.predictor = Integrator::Predictor::ZeroAcceleration;
+  const Integrator quasi_static = make_integrator("static", parameters);
+  const Integrator newmark = make_integrator("newmark", parameters);
+  const Integrator hht = make_integrator("hht", parameters);
+  CHECK(newmark.predictor() == Integrator::Predictor::ZeroAcceleration);
+  CHECK(hht.predictor() == Integrator::Predictor::ZeroAcceleration);
+
+  // What a checkpoint records: each scheme's own number and its parameters.
+  CHECK(quasi_static.record() == SchemeRecord{0, 0.25, 0.5, 0.0});
+  CHECK(newmark.record() == SchemeRecord{1, 0.3, 0.6, 0.0});
+  CHECK(hht.record() == SchemeRecord{2, 0.25 * 1.1 * 1.1, 0.6, -0.1});
+  CHECK(newmark.same_scheme(Integrator::newmark(0.3, 0.6)));
+  CHECK_FALSE(Integrator::newmark().same_scheme(Integrator::hht(0.0)));  // the same formulas, another scheme
+  CHECK(Integrator::hht_or_average_acceleration(0.0).same_scheme(Integrator::newmark()));
+  CHECK(Integrator::hht_or_average_acceleration(-0.1).same_scheme(Integrator::hht(-0.1)));
+  CHECK_FALSE(quasi_static.hht_alpha());
+  CHECK_FALSE(newmark.hht_alpha());
+  CHECK(Integrator::newmark().hht_alpha() == 0.0);
+  CHECK(hht.hht_alpha() == -0.1);
+
+  const double h = 0.01;
+  const IntegratorFactors statics = quasi_static.factors(h);
+  CHECK_FALSE(quasi_static.is_dynamic());
+  CHECK((statics.force_stiffness == 1.0 && statics.tangent_stiffness == 1.0));
+  CHECK((statics.force_damping == 0.0 && statics.force_mass == 0.0));
+  CHECK((statics.tangent_damping == 0.0 && statics.tangent_mass == 0.0));
+  for (const Integrator& scheme : {newmark, hht}) {
+    const double beta = scheme.beta(), gamma = scheme.gamma(), weight = 1.0 + scheme.alpha();
+    INFO(scheme.name());
+    CHECK(scheme.is_dynamic());
+    CHECK(scheme.new_force_weight() == Approx(weight).epsilon(1e-15));
+    CHECK(scheme.new_force_weight() + scheme.old_force_weight() == Approx(1.0).epsilon(1e-15));
+    const IntegratorFactors factors = scheme.factors(h);
+    CHECK((factors.force_stiffness == weight && factors.force_damping == weight && factors.force_mass == 1.0));
+    CHECK(factors.tangent_stiffness == weight);
+    CHECK(factors.tangent_damping == Approx(weight * gamma / (beta * h)).epsilon(1e-15));
+    CHECK(factors.tangent_mass == Approx(1.0 / (beta * h * h)).epsilon(1e-15));
+
+    // Zero acceleration: u_{n+1} = u_n + h v_n + h^2 (1/2 - beta) a_n, v_{n+1} = v_n + h (1 - gamma) a_n.
+    State committed;
+    committed.resize(1);
+    committed.displacement[0] = 0.3;
+    committed.velocity[0] = -1.2;
+    committed.acceleration[0] = 4.0;
+    State trial = committed;
+    scheme.predict(committed, h, trial);
+    CHECK(trial.time == h);
+    CHECK(trial.acceleration[0] == 0.0);
+    CHECK(trial.velocity[0] == Approx(-1.2 + h * (1.0 - gamma) * 4.0).epsilon(1e-15));
+    CHECK(trial.displacement[0] == Approx(0.3 - 1.2 * h + h * h * (0.5 - beta) * 4.0).epsilon(1e-15));
+    // A Newton increment du moves v by gamma/(beta h) du and a by du/(beta h^2).
+    scheme.correct(h, 0, 1e-3, trial);
+    CHECK(trial.displacement[0] == Approx(0.3 - 1.2 * h + h * h * (0.5 - beta) * 4.0 + 1e-3).epsilon(1e-15));
+    CHECK(trial.velocity[0] == Approx(-1.2 + h * (1.0 - gamma) * 4.0 + gamma / (beta * h) * 1e-3).epsilon(1e-14));
+    CHECK(trial.acceleration[0] == Approx(1e-3 / (beta * h * h)).epsilon(1e-14));
+    // A host's end-of-step velocity: the displacement whose Newmark velocity it is.
+    const TimeScheme& formulas = scheme.scheme();
+    trial.displacement[0] = formulas.displacement_for_velocity(0.3, -1.2, 4.0, 2.5, h);
+    scheme.update_rates(committed, h, 0, trial);
+    CHECK(trial.velocity[0] == Approx(2.5).epsilon(1e-12));
+    CHECK(formulas.displacement_per_velocity(h) == Approx(beta * h / gamma).epsilon(1e-15));
+    CHECK((formulas.displacement_for_velocity(0.3, -1.2, 4.0, 3.5, h) -
+           formulas.displacement_for_velocity(0.3, -1.2, 4.0, 2.5, h)) == Approx(beta * h / gamma).epsilon(1e-12));
+  }
+  State committed;
+  committed.resize(1);
+  committed.displacement[0] = 0.3;
+  committed.velocity[0] = -1.2;
+  State trial = committed;
+  quasi_static.predict(committed, 0.5, trial);  // a load step: u stays, no rates
+  CHECK((trial.displacement[0] == 0.3 && trial.velocity[0] == 0.0 && trial.acceleration[0] == 0.0));
+  quasi_static.correct(0.5, 0, 1e-3, trial);
+  CHECK((trial.displacement[0] == 0.3 + 1e-3 && trial.velocity[0] == 0.0));
+  CHECK_THROWS_AS(quasi_static.scheme().displacement_for_velocity(0.3, -1.2, 0.0, 2.5, h), ModelError);
 }
 
 TEST_CASE("HHT: spectral radius (1+alpha)/(1-alpha) at omega h = 1e4", "[dynamics]") {

@@ -143,7 +143,7 @@ std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<Par
   const TireParameters parameters = macros::load_tire_parameters(source, overrides);
   auto handle = std::make_unique<tirefe_tire>();
   handle->tire = std::make_unique<TireOnRoad>(parameters, flat_road(), RoadContact{options.friction});
-  const Integrator integrator = options.hht_alpha == 0.0 ? Integrator::newmark() : Integrator::hht(options.hht_alpha);
+  const Integrator integrator = Integrator::hht_or_average_acceleration(options.hht_alpha);
   handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
   handle->analysis = &handle->tire->analysis();
   handle->spindle_node = handle->tire->tire().spindle;
@@ -353,19 +353,17 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
     if (!finite(velocity, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle velocity must be finite");
     if (!(time_step > 0.0 && std::isfinite(time_step)))
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
-    // Newmark: the end-of-step velocity fixes the acceleration, which fixes the position.
-    const Integrator& integrator = t.analysis->integrator();
-    const double h = time_step, beta = integrator.beta(), gamma = integrator.gamma();
+    const TimeScheme& scheme = t.analysis->integrator().scheme();
+    const double h = time_step;
     const Eigen::Vector2d& reference = t.analysis->model().mesh().position(t.spindle_node);
     const Eigen::Vector3d plane_velocity = plane_motion(Eigen::Vector3d(velocity), t.heading);
     double position[3];
     for (int c = 0; c < 3; ++c) {
       const DofState now = committed_dof(t, c);
-      const double a = (plane_velocity[c] - now.v - h * (1.0 - gamma) * now.a) / (gamma * h);
-      position[c] = now.u + h * now.v + h * h * ((0.5 - beta) * now.a + beta * a);
+      position[c] = scheme.displacement_for_velocity(now.u, now.v, now.a, plane_velocity[c], h);
     }
     const SpindleInput input{h, reference.x() + position[0], reference.y() + position[1], position[2]};
-    return solve(t, input, beta * h / gamma, *out);
+    return solve(t, input, scheme.displacement_per_velocity(h), *out);
   });
 }
 

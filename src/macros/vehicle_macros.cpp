@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <optional>
 #include <memory>
 #include <stdexcept>
 
@@ -201,17 +202,16 @@ VehicleSettings settings_of(const MacroArguments& arguments, const std::vector<D
     if (threads && deck->calls_lua())
       throw ModelError("a tire model calls a Lua load function ('fn'): solve it with threads = false");
   const Integrator& scheme = decks[0]->analysis().integrator();
-  for (DeckModel* deck : decks) {
-    const Integrator& other = deck->analysis().integrator();
-    if (other.alpha() != scheme.alpha() || other.beta() != scheme.beta() || other.gamma() != scheme.gamma() ||
-        other.kind() != scheme.kind())
+  for (DeckModel* deck : decks)
+    if (!deck->analysis().integrator().same_scheme(scheme))
       throw ModelError("every corner's tire needs the same integrator (model:integrator{...})");
-  }
-  if (scheme.kind() == Integrator::Kind::Newmark && (scheme.beta() != 0.25 || scheme.gamma() != 0.5))
+  // A quasi-static tire is refused where it is driven (it has no rates).
+  const std::optional<double> alpha = scheme.is_dynamic() ? scheme.hht_alpha() : 0.0;
+  if (!alpha)
     throw ModelError("the vehicle integrates with HHT or Newmark average acceleration: give the tires one of them");
   VehicleSettings settings;
   settings.gravity = arguments.number("gravity");
-  settings.alpha = scheme.alpha();
+  settings.alpha = *alpha;
   settings.residual_tolerance = arguments.number("tolerance");
   settings.jacobian = arguments.string("jacobian") == "direct" ? SpindleJacobianSource::Direct
                                                                : SpindleJacobianSource::FiniteDifference;

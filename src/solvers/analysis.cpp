@@ -65,7 +65,7 @@ void Analysis::prepare() {
     solvers_.analyze(assembler_.tangent(), assembler_.pattern_version());
   }
   size_state();
-  if (driven_dofs_.empty()) {
+  if (driven_.empty()) {
     solvers_.stop_driving();
   } else if (!solvers_.driving()) {
     if (!integrator_.is_dynamic())
@@ -73,7 +73,7 @@ void Analysis::prepare() {
           "driven DOFs need a dynamic integrator (Newmark or HHT): the quasi-static tangent of a "
           "structure held only at its driven DOFs is singular");
     std::vector<int> equations;
-    for (int dof : driven_dofs_) {
+    for (int dof : driven_.dofs()) {
       if (model_.dof_map().is_prescribed(dof))
         throw ModelError("DOF " + std::to_string(dof) + " is prescribed and cannot also be driven (release it first)");
       equations.push_back(model_.dof_map().equation(dof));
@@ -83,33 +83,20 @@ void Analysis::prepare() {
 }
 
 void Analysis::drive_dofs(std::vector<int> dofs) {
-  if (dofs.size() > static_cast<size_t>(DrivenDofSolver::kMaxDriven))
-    throw ModelError("at most " + std::to_string(DrivenDofSolver::kMaxDriven) + " DOFs (one node) can be driven");
-  for (int dof : dofs)
-    if (dof < 0 || dof >= model_.mesh().dof_count())
-      throw ModelError("driven DOF " + std::to_string(dof) + " does not exist");
+  DrivenDofs driven(std::move(dofs), model_.mesh().dof_count());
   discard_trial_step();
-  driven_dofs_ = std::move(dofs);
-  driven_displacements_.resize(static_cast<Eigen::Index>(driven_dofs_.size()));
   size_state();
-  for (size_t i = 0; i < driven_dofs_.size(); ++i)
-    driven_displacements_[static_cast<Eigen::Index>(i)] = carried_.state.displacement[driven_dofs_[i]];
+  driven.start_at(carried_.state);
+  driven_ = std::move(driven);
   solvers_.stop_driving();
   carried_.reactions_valid = false;
 }
 
 void Analysis::set_driven_displacements(const Eigen::Ref<const Eigen::VectorXd>& values) {
-  if (values.size() != driven_displacements_.size())
-    throw ModelError("got " + std::to_string(values.size()) + " driven displacements for " +
-                     std::to_string(driven_displacements_.size()) + " driven DOFs");
-  if (!values.allFinite()) throw ModelError("driven displacements must be finite");
-  driven_displacements_ = values;
+  driven_.set_displacements(values);
 }
 
-void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const {
-  for (size_t i = 0; i < driven_dofs_.size(); ++i)
-    forces[static_cast<Eigen::Index>(i)] = residual_all_[driven_dofs_[i]];
-}
+void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const { driven_.gather(residual_all_, forces); }
 
 const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
   DrivenDofSolver* driven = solvers_.driven();
@@ -152,7 +139,7 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
   double reaction_squared = 0.0;
   for (const auto& constraint : model_.prescribed_dofs())
     reaction_squared += residual_all_[constraint.dof] * residual_all_[constraint.dof];
-  for (int dof : driven_dofs_) {  // held where the host puts them: their residuals are reactions
+  for (int dof : driven_.dofs()) {  // held where the host puts them: their residuals are reactions
     reaction_squared += residual_all_[dof] * residual_all_[dof];
     free_residual[dofs.equation(dof)] = 0.0;
   }
@@ -161,9 +148,10 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
 
 double Analysis::apply_increment(const Eigen::VectorXd& increment) {
   const DofMap& dofs = model_.dof_map();
+  const RateCorrection rates = integrator_.rate_correction(carried_.steps.current);
   double largest_increment = 0.0;
   for (int equation = 0; equation < dofs.equation_count(); ++equation) {
-    integrator_.correct(carried_.steps.current, dofs.dof(equation), increment[equation], trial_);
+    rates.apply(dofs.dof(equation), increment[equation], trial_);
     largest_increment = std::max(largest_increment, std::abs(increment[equation]));
   }
   return largest_increment / (1.0 + trial_.displacement.lpNorm<Eigen::Infinity>());
@@ -177,10 +165,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
   model_.apply_prescribed_displacements(trial_.time, trial_);
   for (const auto& constraint : model_.prescribed_dofs())
     integrator_.update_rates(carried_.state, step, constraint.dof, trial_);
-  for (size_t i = 0; i < driven_dofs_.size(); ++i) {
-    trial_.displacement[driven_dofs_[i]] = driven_displacements_[static_cast<Eigen::Index>(i)];
-    integrator_.update_rates(carried_.state, step, driven_dofs_[i], trial_);
-  }
+  driven_.impose(integrator_, carried_.state, step, trial_);
   model_.external_forces(trial_.time, external_new_);
   if (integrator_.weights_old_forces() && !carried_.old_forces_valid) {
     // g_n = f_int(u_n) + C v_n at the committed state, for HHT's weighting.
@@ -231,11 +216,11 @@ void Analysis::finish_step(double step) {
       residual_all_);
   const double work =
       energy_.step_work(carried_.state, trial_, carried_.external_old, external_new_, carried_.reactions, residual_all_,
-                        driven_dofs_);  // before the reactions and the state move on
+                        driven_.dofs());  // before the reactions and the state move on
   carried_.reactions.setZero(model_.mesh().dof_count());
   for (const auto& constraint : model_.prescribed_dofs())
     carried_.reactions[constraint.dof] = residual_all_[constraint.dof];
-  for (int dof : driven_dofs_) carried_.reactions[dof] = residual_all_[dof];
+  for (int dof : driven_.dofs()) carried_.reactions[dof] = residual_all_[dof];
   carried_.reactions_valid = true;
   model_.commit_history();
   std::swap(carried_.state, trial_);
@@ -254,7 +239,7 @@ void Analysis::update_committed_reactions() {
   // Physical residual M a + C v + f_int - F at the committed state (no inertia quasi-statically).
   carried_.reactions.setZero(model_.mesh().dof_count());
   carried_.reactions_valid = true;
-  if (model_.prescribed_dofs().empty() && driven_dofs_.empty()) return;
+  if (model_.prescribed_dofs().empty() && driven_.empty()) return;
   EvaluationContext context;
   context.time = carried_.state.time;
   context.time_step = carried_.steps.current;
@@ -264,7 +249,7 @@ void Analysis::update_committed_reactions() {
   model_.external_forces(carried_.state.time, carried_.external_old);
   for (const auto& constraint : model_.prescribed_dofs())
     carried_.reactions[constraint.dof] = residual_all_[constraint.dof] - carried_.external_old[constraint.dof];
-  for (int dof : driven_dofs_) carried_.reactions[dof] = residual_all_[dof] - carried_.external_old[dof];
+  for (int dof : driven_.dofs()) carried_.reactions[dof] = residual_all_[dof] - carried_.external_old[dof];
 }
 
 Eigen::VectorXd& Analysis::initial_field(Eigen::VectorXd State::*field, const char* what) {
@@ -379,17 +364,13 @@ std::string Analysis::failure_message(int cuts, double step) const {
 }
 
 CarriedState Analysis::snapshot() {
-  carried_.integrator_kind = static_cast<int>(integrator_.kind());
-  carried_.beta = integrator_.beta();
-  carried_.gamma = integrator_.gamma();
-  carried_.alpha = integrator_.alpha();
+  carried_.integrator = integrator_.record();
   solvers_.forget_analysis();  // the next factorization starts afresh, as after a restore
   return carried_;
 }
 
 void Analysis::restore(const CarriedState& s) {
-  if (s.integrator_kind != static_cast<int>(integrator_.kind()) || s.beta != integrator_.beta() ||
-      s.gamma != integrator_.gamma() || s.alpha != integrator_.alpha())
+  if (s.integrator != integrator_.record())
     throw ModelError("the checkpoint was taken with another integrator than the deck's " + integrator_.name());
   const int dofs = model_.mesh().dof_count();
   CarriedState::for_each_field(s, [&s, dofs](const char*, const auto& field) {

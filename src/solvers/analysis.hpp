@@ -16,6 +16,7 @@
 #include "core/assembler.hpp"
 #include "core/model.hpp"
 #include "solvers/carried_state.hpp"
+#include "solvers/driven_dofs.hpp"
 #include "solvers/driven_solver.hpp"
 #include "solvers/energy_balance.hpp"
 #include "solvers/integrator.hpp"
@@ -169,8 +170,7 @@ class Analysis : private StepEquations, private SteppedSystem {
   EnergyBalance energy_{model_, carried_.energy, carried_.energy_started};
   State trial_;
   Eigen::VectorXd residual_all_, external_new_;
-  std::vector<int> driven_dofs_;
-  Eigen::VectorXd driven_displacements_;
+  DrivenDofs driven_;
   bool trial_pending_ = false;
   bool trial_recorded_ = false;  // record_trial_step() done, observers not yet told
   double trial_step_size_ = 0.0;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "core/state.hpp"
+#include "solvers/integrators/time_scheme.hpp"
 
 namespace tirefe {
 
@@ -37,10 +38,8 @@ struct CarriedState {
   bool energy_started = false;
   EnergyRecord energy;
   int accepted_steps = 0;
-  // The integrator (Integrator::Kind and its parameters) the state was carried with: a
-  // restore checks it against the deck's.
-  int integrator_kind = 0;
-  double beta = 0.0, gamma = 0.0, alpha = 0.0;
+  // The scheme the state was carried with: a restore checks it against the deck's.
+  SchemeRecord integrator;
 
   /// Calls visit(path, field) for every field, with the field's place in a checkpoint
   /// file: a dataset for a vector, an attribute "<object>/<name>" for a number or flag.
@@ -56,9 +55,9 @@ struct CarriedState {
     visit("/analysis/reactions", self.reactions);
     visit("/analysis/nominal_step", self.steps.nominal);
     visit("/analysis/current_step", self.steps.current);
-    visit("/analysis/beta", self.beta);
-    visit("/analysis/gamma", self.gamma);
-    visit("/analysis/alpha", self.alpha);
+    visit("/analysis/beta", self.integrator.beta);
+    visit("/analysis/gamma", self.integrator.gamma);
+    visit("/analysis/alpha", self.integrator.alpha);
     visit("/analysis/energy_kinetic", self.energy.kinetic);
     visit("/analysis/energy_strain", self.energy.strain);
     visit("/analysis/external_work", self.energy.external_work);
@@ -68,7 +67,7 @@ struct CarriedState {
     visit("/analysis/acceleration_pending", self.acceleration_pending);
     visit("/analysis/reactions_valid", self.reactions_valid);
     visit("/analysis/energy_started", self.energy_started);
-    visit("/analysis/integrator_kind", self.integrator_kind);
+    visit("/analysis/integrator_kind", self.integrator.kind);
   }
 };
 

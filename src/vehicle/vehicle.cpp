@@ -24,7 +24,7 @@ Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, Ve
       corners_(std::move(corners)),
       tires_(tires),
       settings_(settings),
-      integrator_(settings.alpha == 0.0 ? Integrator::newmark() : Integrator::hht(settings.alpha)) {
+      integrator_(Integrator::hht_or_average_acceleration(settings.alpha)) {
   if (corners_.empty()) throw ModelError("a vehicle needs at least one corner");
   if (tires_.size() != static_cast<int>(corners_.size()))
     throw ModelError("a vehicle with " + std::to_string(corners_.size()) + " corners needs as many tires (got " +
