@@ -374,7 +374,7 @@ TEST_CASE("a write that fails in any HDF5 call fails the file: one message namin
     for (int node = 0; node < kNodes; ++node) CHECK(rotation[node] == field_value(frame, node, 2));
     CHECK(published.read_double_attribute("/fields/frames/" + std::to_string(frame), "time") == 0.01 * frame);
   }
-  // The failures come in other calls too, not only in flushes.
+  // The failures come in creates, writes and attributes, not only in flushes.
   INFO(Catch::Detail::stringify(failed_calls));
-  CHECK(failed_calls.size() >= 2);
+  CHECK(failed_calls.size() >= 3);
 }

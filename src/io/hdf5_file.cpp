@@ -94,6 +94,8 @@ void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 // library is left to the exit. Set before the library starts (static initialization).
 [[maybe_unused]] const bool kNoCloseAtExit = H5dont_atexit() >= 0;
 
+constexpr size_t kMetadataCacheBytes = 128 * 1024;
+
 Hdf5Handle make_fapl(const std::string& path) {
   auto message = [&] { return "cannot set up file access for '" + path + "'"; };
   Hdf5Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), message), H5Pclose);
@@ -101,6 +103,19 @@ Hdf5Handle make_fapl(const std::string& path) {
   // "file open for write" flag, so h5dump can read a flushed file while we still write it.
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V110), message);
   check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), message);
+  // A small metadata cache of fixed size. HDF5's own grows with the objects a file holds
+  // (a long run's thousands of frame views: some 100 MB) and costs time as it grows. A cache
+  // this small writes metadata whenever it evicts, in any call: a full disk can fail any
+  // call (FailureLatch).
+  H5AC_cache_config_t cache{};
+  cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  check(H5Pget_mdc_config(fapl.get(), &cache), message);
+  cache.set_initial_size = true;
+  cache.initial_size = cache.min_size = cache.max_size = kMetadataCacheBytes;
+  cache.incr_mode = H5C_incr__off;
+  cache.flash_incr_mode = H5C_flash_incr__off;
+  cache.decr_mode = H5C_decr__off;
+  check(H5Pset_mdc_config(fapl.get(), &cache), message);
 #if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7) || H5_VERSION_GE(1, 12, 1)
   // No flock(): live monitoring (h5dump/h5py on a running job) must not be locked out.
   check(H5Pset_file_locking(fapl.get(), false, true), message);
