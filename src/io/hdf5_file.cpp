@@ -104,7 +104,7 @@ Hdf5Handle make_fapl(const std::string& path) {
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V110), message);
   check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), message);
   // A small metadata cache of fixed size. HDF5's own grows with the objects a file holds
-  // (a long run's thousands of frame views: some 100 MB) and costs time as it grows. A cache
+  // (a long run's thousands of frame views: some 90 MB) and costs time as it grows. A cache
   // this small writes metadata whenever it evicts, in any call: a full disk can fail any
   // call (FailureLatch).
   H5AC_cache_config_t cache{};
