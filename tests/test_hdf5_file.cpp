@@ -1,5 +1,6 @@
 // Tests for the HDF5 output layer (src/io/hdf5_file.*): round trips, extendible datasets,
-// readability of flushed files by h5dump and by a reader after the writer was killed, errors.
+// readability of flushed files by h5dump and by a reader after the writer was killed, errors,
+// and a write that fails anywhere (a full disk) failing the whole file.
 #include <catch2/catch.hpp>
 
 #include <csignal>
@@ -7,7 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 #include <string>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -255,4 +258,123 @@ TEST_CASE("a published file holds its last flush, whole, until the close renames
   CHECK(Hdf5File::open_read_only(temp.str()).read_doubles("/history/time").size() == 25);
   CHECK_FALSE(fs::exists(working));
   CHECK_FALSE(fs::exists(working + ".copy"));
+}
+
+namespace {
+
+// While it lives, no file this process writes grows past 'bytes': a write beyond fails
+// (EFBIG, "File too large") as one on a full disk does, wherever HDF5 makes it.
+class FileSizeLimit {
+ public:
+  explicit FileSizeLimit(rlim_t bytes) : ignored_(std::signal(SIGXFSZ, SIG_IGN)) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    const rlimit limit{bytes, saved_.rlim_max};
+    setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FileSizeLimit() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, ignored_);
+  }
+  FileSizeLimit(const FileSizeLimit&) = delete;
+  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
+
+ private:
+  rlimit saved_{};
+  void (*ignored_)(int);
+};
+
+constexpr int kFrames = 300, kNodes = 50;
+
+double field_value(int frame, int node, int column) { return 1000.0 * frame + 10.0 * node + column; }
+
+// A result file in small: attributes, fixed datasets, a history, field rows and their views,
+// flushed every fifth frame. Counts the frames each flush completed.
+void write_frames(Hdf5File& file, int& flushed_frames) {
+  file.write_attribute("/", "title", std::string("a run that fills its disk"));
+  file.write_string_dataset("/deck", std::string(2000, 'x'));
+  auto& time = file.create_extendible("/history/time", {}, "s");
+  auto& field = file.create_compressed_extendible("/fields/displacement", {kNodes, 3}, "m, m, rad");
+  std::vector<double> row(kNodes * 3);
+  for (int frame = 0; frame < kFrames; ++frame) {
+    for (int node = 0; node < kNodes; ++node)
+      for (int column = 0; column < 3; ++column) row[3 * node + column] = field_value(frame, node, column);
+    time.append(0.01 * frame);
+    field.append(row.data());
+    const std::string prefix = "/fields/frames/" + std::to_string(frame) + "/";
+    file.write_row_view(prefix + "displacement", field, frame, 0, 2, 3);
+    file.write_row_view(prefix + "rotation", field, frame, 2, 1, 0);
+    file.write_row_view(prefix + "x", field, frame, 0, 1, 0);
+    file.write_row_view(prefix + "y", field, frame, 1, 1, 0);
+    file.write_attribute(prefix, "time", 0.01 * frame);
+    if (frame % 10 == 0) file.write_vector("/modes/" + std::to_string(frame) + "/frequency", {1.0 * frame});
+    if (frame % 100 == 99) {
+      file.flush();
+      flushed_frames = frame + 1;
+    }
+  }
+  file.close();
+}
+
+// The action of an IoError "cannot <action> '<object>' ...".
+std::string failed_call(const std::string& message) { return message.substr(0, message.find(" '")); }
+
+}  // namespace
+
+TEST_CASE("a write that fails in any HDF5 call fails the file: one message naming it, nothing written after",
+          "[io][hdf5][reliability]") {
+  TempPath temp;
+  const std::string working = temp.str() + ".partial";
+  int flushed_frames = 0;
+  {
+    Hdf5File file = Hdf5File::create_published(temp.str());
+    write_frames(file, flushed_frames);
+  }
+  const auto whole = static_cast<rlim_t>(fs::file_size(temp.str()));
+  std::set<std::string> failed_calls;
+  constexpr int kLimits = 30;
+  for (int step = 1; step < kLimits; ++step) {
+    const rlim_t limit = whole * step / kLimits;
+    INFO("files limited to " << limit << " of " << whole << " bytes");
+    Hdf5File file = Hdf5File::create_published(temp.str());
+    flushed_frames = 0;
+    std::string error;
+    {
+      const FileSizeLimit limited(limit);
+      try {
+        write_frames(file, flushed_frames);
+      } catch (const IoError& failure) {
+        error = failure.what();
+      }
+      INFO(error);
+      REQUIRE_FALSE(error.empty());
+      failed_calls.insert(failed_call(error));
+      CHECK_THAT(error, Catch::Contains(temp.str()) && Catch::EndsWith("File too large"));
+      CHECK(error.find('\n') == std::string::npos);
+      CHECK(file.failed());
+      // Nothing more is written: each further write is refused, naming the file.
+      const std::uintmax_t size = fs::exists(working) ? fs::file_size(working) : 0;
+      const std::string refused = "an earlier write to '" + temp.str() + "' failed";
+      CHECK_THROWS_WITH(file.write_attribute("/", "after", 1.0), Catch::EndsWith(refused));
+      CHECK_THROWS_WITH(file.write_vector("/after", {1.0}), Catch::EndsWith(refused));
+      CHECK_THROWS_WITH(file.create_extendible("/after_rows", {}), Catch::EndsWith(refused));
+      CHECK_THROWS_WITH(file.flush(), Catch::EndsWith(refused));
+      if (fs::exists(working)) CHECK(fs::file_size(working) == size);
+      CHECK_NOTHROW(file.close());  // reported already: the file is dropped quietly
+    }
+    CHECK_FALSE(fs::exists(working));
+    CHECK_FALSE(fs::exists(working + ".copy"));
+    // The published file is the last flush, whole.
+    if (flushed_frames == 0) continue;
+    const Hdf5File published = Hdf5File::open_read_only(temp.str());
+    CHECK(published.read_doubles("/history/time").size() == static_cast<size_t>(flushed_frames));
+    const int frame = flushed_frames - 1;
+    const std::vector<double> rotation =
+        published.read_doubles("/fields/frames/" + std::to_string(frame) + "/rotation");
+    REQUIRE(rotation.size() == kNodes);
+    for (int node = 0; node < kNodes; ++node) CHECK(rotation[node] == field_value(frame, node, 2));
+    CHECK(published.read_double_attribute("/fields/frames/" + std::to_string(frame), "time") == 0.01 * frame);
+  }
+  // The failures come in creates, writes and attributes, not only in flushes.
+  INFO(Catch::Detail::stringify(failed_calls));
+  CHECK(failed_calls.size() >= 3);
 }

@@ -197,6 +197,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
     }
     // Written last: a file without it is incomplete.
     file.write_attribute("/", "format", std::string(kFormat));
+    file.close();  // a close that fails (a full disk) leaves the checkpoint unfinished
   }
   std::error_code error;
   std::filesystem::rename(partial, path, error);

@@ -94,6 +94,8 @@ void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 // library is left to the exit. Set before the library starts (static initialization).
 [[maybe_unused]] const bool kNoCloseAtExit = H5dont_atexit() >= 0;
 
+constexpr size_t kMetadataCacheBytes = 128 * 1024;
+
 Hdf5Handle make_fapl(const std::string& path) {
   auto message = [&] { return "cannot set up file access for '" + path + "'"; };
   Hdf5Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), message), H5Pclose);
@@ -101,6 +103,19 @@ Hdf5Handle make_fapl(const std::string& path) {
   // "file open for write" flag, so h5dump can read a flushed file while we still write it.
   check(H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V18, H5F_LIBVER_V110), message);
   check(H5Pset_fclose_degree(fapl.get(), H5F_CLOSE_STRONG), message);
+  // A small metadata cache of fixed size. HDF5's own grows with the objects a file holds
+  // (a long run's thousands of frame views: some 90 MB) and costs time as it grows. A cache
+  // this small writes metadata whenever it evicts, in any call: a full disk can fail any
+  // call (FailureLatch).
+  H5AC_cache_config_t cache{};
+  cache.version = H5AC__CURR_CACHE_CONFIG_VERSION;
+  check(H5Pget_mdc_config(fapl.get(), &cache), message);
+  cache.set_initial_size = true;
+  cache.initial_size = cache.min_size = cache.max_size = kMetadataCacheBytes;
+  cache.incr_mode = H5C_incr__off;
+  cache.flash_incr_mode = H5C_flash_incr__off;
+  cache.decr_mode = H5C_decr__off;
+  check(H5Pset_mdc_config(fapl.get(), &cache), message);
 #if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7) || H5_VERSION_GE(1, 12, 1)
   // No flock(): live monitoring (h5dump/h5py on a running job) must not be locked out.
   check(H5Pset_file_locking(fapl.get(), false, true), message);
@@ -128,8 +143,8 @@ hsize_t element_count(const std::vector<hsize_t>& dims) {
 }
 
 // Reads `count` strings of attribute or dataset `object` with file type `file_type`; `read`
-// performs H5Aread/H5Dread into a buffer for the given memory type. Handles both
-// variable-length and fixed-length strings (files written by other tools).
+// performs H5Aread/H5Dread into a buffer for the given memory type and checks it. Handles
+// both variable-length and fixed-length strings (files written by other tools).
 template <class Read, class Message>
 std::vector<std::string> read_string_elements(hid_t file_type, hsize_t count, Read&& read, Message&& message) {
   if (check(H5Tget_class(file_type), message) != H5T_STRING) throw IoError(message() + ": not a string");
@@ -138,7 +153,7 @@ std::vector<std::string> read_string_elements(hid_t file_type, hsize_t count, Re
   if (check(H5Tis_variable_str(file_type), message) > 0) {
     Hdf5Handle mem_type = make_string_type();
     std::vector<char*> buffer(count, nullptr);
-    check(read(mem_type.get(), buffer.data()), message);
+    read(mem_type.get(), buffer.data());
     for (char* s : buffer) {
       result.emplace_back(s != nullptr ? s : "");
       H5free_memory(s);
@@ -148,7 +163,7 @@ std::vector<std::string> read_string_elements(hid_t file_type, hsize_t count, Re
   const size_t size = H5Tget_size(file_type);
   Hdf5Handle mem_type(check(H5Tcopy(file_type), message), H5Tclose);
   std::vector<char> buffer(count * size);
-  check(read(mem_type.get(), buffer.data()), message);
+  read(mem_type.get(), buffer.data());
   const bool space_padded = H5Tget_strpad(file_type) == H5T_STR_SPACEPAD;
   for (hsize_t i = 0; i < count; ++i) {
     const char* s = buffer.data() + i * size;
@@ -161,11 +176,13 @@ std::vector<std::string> read_string_elements(hid_t file_type, hsize_t count, Re
 
 template <class Message>
 Hdf5Handle open_single_value_attribute(hid_t file, const std::string& object_path, const std::string& name,
-                                       Message&& message) {
+                                       FailureLatch& latch, Message&& message) {
   Hdf5Handle attribute(
-      check(H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), message), H5Aclose);
-  Hdf5Handle space(check(H5Aget_space(attribute.get()), message), H5Sclose);
-  if (check(H5Sget_simple_extent_npoints(space.get()), message) != 1) throw IoError(message() + ": not a single value");
+      latch.check(H5Aopen_by_name(file, object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT), message),
+      H5Aclose);
+  Hdf5Handle space(latch.check(H5Aget_space(attribute.get()), message), H5Sclose);
+  if (latch.check(H5Sget_simple_extent_npoints(space.get()), message) != 1)
+    throw IoError(message() + ": not a single value");
   return attribute;
 }
 
@@ -187,26 +204,49 @@ Hdf5Handle& Hdf5Handle::operator=(Hdf5Handle&& other) noexcept {
 
 hid_t Hdf5Handle::release() noexcept { return std::exchange(id_, H5I_INVALID_HID); }
 
+herr_t Hdf5Handle::close() {
+  const hid_t id = release();
+  return id >= 0 && closer_ != nullptr ? closer_(id) : 0;
+}
+
 void Hdf5Handle::reset() noexcept {
   if (id_ >= 0 && closer_ != nullptr) closer_(id_);  // failure is ignored: destructors must not throw
   id_ = H5I_INVALID_HID;
 }
 
+// --- FailureLatch ------------------------------------------------------------------------
+
+void FailureLatch::fail(const std::string& message) {
+  failed_ = true;
+  throw IoError(message + ": " + hdf5_error_detail());
+}
+
+void FailureLatch::refuse(const std::string& message) const {
+  throw IoError(message + ": an earlier write to '" + file_path_ + "' failed");
+}
+
 // --- ExtendibleDataset --------------------------------------------------------------------
 
-ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path,
+ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, FailureLatch& latch,
                                      std::string path)
     : dataset_(std::move(dataset)),
       dims_(std::move(dims)),
       start_(dims_.size(), 0),
       count_(dims_),
-      file_path_(std::move(file_path)),
+      latch_(&latch),
       path_(std::move(path)) {
   count_[0] = 1;
   row_size_ = static_cast<size_t>(element_count(count_));
   file_space_ = Hdf5Handle(
-      check(H5Dget_space(dataset_.get()), [&] { return describe("open dataset", path_, file_path_); }), H5Sclose);
+      latch.check(H5Dget_space(dataset_.get()), [&] { return describe("open dataset", path_, latch.file_path()); }),
+      H5Sclose);
   mem_space_ = dataspace_of({static_cast<hsize_t>(row_size_)});
+}
+
+void ExtendibleDataset::close() {
+  file_space_.reset();
+  mem_space_.reset();
+  latch_->check(dataset_.close(), [&] { return describe("close dataset", path_, latch_->file_path()); });
 }
 
 void ExtendibleDataset::append(const double* row_values) {
@@ -223,7 +263,7 @@ void ExtendibleDataset::write_pending() {
 
 void ExtendibleDataset::append(double scalar) {
   if (row_size_ != 1 || dims_.size() != 1) {
-    throw IoError(describe("append a scalar to dataset", path_, file_path_) + ": rows are not scalars");
+    throw IoError(describe("append a scalar to dataset", path_, latch_->file_path()) + ": rows are not scalars");
   }
   append(&scalar);
 }
@@ -231,23 +271,27 @@ void ExtendibleDataset::append(double scalar) {
 void ExtendibleDataset::append_rows(const double* values, hsize_t rows) {
   if (rows == 0) return;
   if (!pending_.empty() && values != pending_.data()) write_pending();  // in order
-  auto message = [&] { return describe("append rows to dataset", path_, file_path_); };
+  auto message = [&] { return describe("append rows to dataset", path_, latch_->file_path()); };
+  latch_->refuse_if_failed(message);
   std::vector<hsize_t> dims = dims_, start(dims_.size(), 0), count = count_;
   start[0] = dims_[0];
   dims[0] += rows;
   count[0] = rows;
   Hdf5Handle memory = dataspace_of({rows * row_size_});
   const int rank = static_cast<int>(dims.size());
-  check(H5Dset_extent(dataset_.get(), dims.data()), message);
+  latch_->check(H5Dset_extent(dataset_.get(), dims.data()), message);
   dims_ = dims;
-  check(H5Sset_extent_simple(file_space_.get(), rank, dims_.data(), nullptr), message);
-  check(H5Sselect_hyperslab(file_space_.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), message);
-  check(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space_.get(), H5P_DEFAULT, values), message);
+  latch_->check(H5Sset_extent_simple(file_space_.get(), rank, dims_.data(), nullptr), message);
+  latch_->check(H5Sselect_hyperslab(file_space_.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+                message);
+  latch_->check(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space_.get(), H5P_DEFAULT, values),
+                message);
 }
 
 // --- Hdf5File ------------------------------------------------------------------------------
 
-Hdf5File::Hdf5File(std::string path, Hdf5Handle file) : path_(std::move(path)), file_(std::move(file)) {
+Hdf5File::Hdf5File(std::string path, Hdf5Handle file)
+    : path_(std::move(path)), file_(std::move(file)), latch_(std::make_unique<FailureLatch>(path_)) {
   auto message = [&] { return "cannot set up link creation for '" + path_ + "'"; };
   lcpl_ = Hdf5Handle(check(H5Pcreate(H5P_LINK_CREATE), message), H5Pclose);
   check(H5Pset_create_intermediate_group(lcpl_.get(), 1), message);
@@ -295,7 +339,7 @@ Hdf5File::Hdf5File(Hdf5File&& other) noexcept
     : path_(std::move(other.path_)),
       working_path_(std::move(other.working_path_)),
       file_(std::move(other.file_)),
-      failed_(other.failed_),
+      latch_(std::move(other.latch_)),
       lcpl_(std::move(other.lcpl_)),
       datasets_(std::move(other.datasets_)) {}
 
@@ -304,7 +348,7 @@ Hdf5File& Hdf5File::operator=(Hdf5File&& other) noexcept {
   std::swap(path_, other.path_);
   std::swap(working_path_, other.working_path_);
   std::swap(file_, other.file_);
-  std::swap(failed_, other.failed_);
+  std::swap(latch_, other.latch_);
   std::swap(lcpl_, other.lcpl_);
   std::swap(datasets_, other.datasets_);
   return *this;
@@ -319,18 +363,23 @@ Hdf5File::~Hdf5File() {
 
 void Hdf5File::close() {
   if (file_.get() < 0) return;
+  const bool reported = failed();  // by the call that failed
   std::string failure;
   try {
-    if (!failed_)
+    if (!reported) {
       for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
+      for (ExtendibleDataset& dataset : datasets_) dataset.close();
+    }
   } catch (const IoError& error) {
     failure = error.what();
   }
   datasets_.clear();
   lcpl_.reset();
-  if (H5Fclose(file_.release()) < 0 && failure.empty())
+  if (H5Fclose(file_.release()) < 0 && failure.empty()) {
+    latch_->mark();
     failure = "cannot close '" + path_ + "': " + hdf5_error_detail();
-  if (failed_) {  // reported when the flush failed
+  }
+  if (reported) {
     H5Eclear2(H5E_DEFAULT);
     if (!working_path_.empty()) std::remove(working_path_.c_str());
     return;
@@ -351,16 +400,21 @@ void Hdf5File::close() {
 void Hdf5File::write_scalar_attribute(const std::string& object_path, const std::string& name, hid_t file_type,
                                       hid_t mem_type, const void* data) {
   auto message = [&] { return describe("write attribute '" + name + "' of", object_path, path_); };
+  latch_->refuse_if_failed(message);
   const hid_t file = file_.get();
   const hid_t id = exists(object_path) ? H5Oopen(file, object_path.c_str(), H5P_DEFAULT)
                                        : H5Gcreate2(file, object_path.c_str(), lcpl_.get(), H5P_DEFAULT, H5P_DEFAULT);
-  Hdf5Handle object(check(id, message), H5Oclose);
-  if (check(H5Aexists(object.get(), name.c_str()), message) > 0) check(H5Adelete(object.get(), name.c_str()), message);
+  FailureLatch& latch = *latch_;
+  Hdf5Handle object(latch.check(id, message), H5Oclose);
+  if (latch.check(H5Aexists(object.get(), name.c_str()), message) > 0)
+    latch.check(H5Adelete(object.get(), name.c_str()), message);
   Hdf5Handle space = dataspace_of({});
   Hdf5Handle attribute(
-      check(H5Acreate2(object.get(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), message),
+      latch.check(H5Acreate2(object.get(), name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT), message),
       H5Aclose);
-  check(H5Awrite(attribute.get(), mem_type, data), message);
+  latch.check(H5Awrite(attribute.get(), mem_type, data), message);
+  latch.check(attribute.close(), message);
+  latch.check(object.close(), message);
 }
 
 void Hdf5File::write_attribute(const std::string& object_path, const std::string& name, const std::string& value) {
@@ -379,29 +433,32 @@ void Hdf5File::write_attribute(const std::string& object_path, const std::string
 
 std::string Hdf5File::read_string_attribute(const std::string& object_path, const std::string& name) const {
   auto message = [&] { return describe("read attribute '" + name + "' of", object_path, path_); };
-  Hdf5Handle attribute = open_single_value_attribute(file_.get(), object_path, name, message);
-  Hdf5Handle type(check(H5Aget_type(attribute.get()), message), H5Tclose);
-  auto read = [&](hid_t mem_type, void* buffer) { return H5Aread(attribute.get(), mem_type, buffer); };
+  Hdf5Handle attribute = open_single_value_attribute(file_.get(), object_path, name, *latch_, message);
+  Hdf5Handle type(latch_->check(H5Aget_type(attribute.get()), message), H5Tclose);
+  auto read = [&](hid_t mem_type, void* buffer) { latch_->check(H5Aread(attribute.get(), mem_type, buffer), message); };
   return read_string_elements(type.get(), 1, read, message).front();
 }
 
 double Hdf5File::read_double_attribute(const std::string& object_path, const std::string& name) const {
   auto message = [&] { return describe("read attribute '" + name + "' of", object_path, path_); };
-  Hdf5Handle attribute = open_single_value_attribute(file_.get(), object_path, name, message);
+  Hdf5Handle attribute = open_single_value_attribute(file_.get(), object_path, name, *latch_, message);
   double value = 0.0;
-  check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), message);  // converts integer attributes too
+  latch_->check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, &value), message);  // converts integer attributes too
   return value;
 }
 
 void Hdf5File::write_dataset(const std::string& dataset_path, const std::vector<hsize_t>& dims, hid_t file_type,
                              hid_t mem_type, const void* data) {
   auto message = [&] { return describe("write dataset", dataset_path, path_); };
+  latch_->refuse_if_failed(message);
   Hdf5Handle space = dataspace_of(dims);
-  Hdf5Handle dataset(check(H5Dcreate2(file_.get(), dataset_path.c_str(), file_type, space.get(), lcpl_.get(),
-                                      H5P_DEFAULT, H5P_DEFAULT),
-                           message),
+  Hdf5Handle dataset(latch_->check(H5Dcreate2(file_.get(), dataset_path.c_str(), file_type, space.get(), lcpl_.get(),
+                                              H5P_DEFAULT, H5P_DEFAULT),
+                                   message),
                      H5Dclose);
-  if (element_count(dims) > 0) check(H5Dwrite(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), message);
+  if (element_count(dims) > 0)
+    latch_->check(H5Dwrite(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), message);
+  latch_->check(dataset.close(), message);
 }
 
 void Hdf5File::write_matrix(const std::string& dataset_path, const Eigen::MatrixXd& values) {
@@ -450,6 +507,7 @@ ExtendibleDataset& Hdf5File::create_compressed_extendible(const std::string& dat
 ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
                                             const std::string& unit, bool compressed) {
   auto message = [&] { return describe("create extendible dataset", dataset_path, path_); };
+  latch_->refuse_if_failed(message);
   const hsize_t row_size = element_count(row_shape);
   if (row_size == 0) throw IoError(message() + ": row shape has a zero extent");
   std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk;
@@ -462,19 +520,19 @@ ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, con
       compressed ? std::max<hsize_t>(1, 512 / row_size) : std::max<hsize_t>(1, std::min<hsize_t>(256, 8192 / row_size));
 
   const int rank = static_cast<int>(dims.size());
-  Hdf5Handle space(check(H5Screate_simple(rank, dims.data(), max_dims.data()), message), H5Sclose);
-  Hdf5Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
-  check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), message);
+  Hdf5Handle space(latch_->check(H5Screate_simple(rank, dims.data(), max_dims.data()), message), H5Sclose);
+  Hdf5Handle dcpl(latch_->check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
+  latch_->check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), message);
   if (compressed) {
     // Shuffling groups the bytes of equal significance, which deflate then finds alike.
-    check(H5Pset_shuffle(dcpl.get()), message);
-    check(H5Pset_deflate(dcpl.get(), 6), message);
+    latch_->check(H5Pset_shuffle(dcpl.get()), message);
+    latch_->check(H5Pset_deflate(dcpl.get(), 6), message);
   }
-  Hdf5Handle dataset(check(H5Dcreate2(file_.get(), dataset_path.c_str(), H5T_IEEE_F64LE, space.get(), lcpl_.get(),
-                                      dcpl.get(), H5P_DEFAULT),
-                           message),
+  Hdf5Handle dataset(latch_->check(H5Dcreate2(file_.get(), dataset_path.c_str(), H5T_IEEE_F64LE, space.get(),
+                                              lcpl_.get(), dcpl.get(), H5P_DEFAULT),
+                                   message),
                      H5Dclose);
-  ExtendibleDataset created(std::move(dataset), std::move(dims), path_, dataset_path);
+  ExtendibleDataset created(std::move(dataset), std::move(dims), *latch_, dataset_path);
   if (!unit.empty()) write_attribute(dataset_path, "unit", unit);
   return datasets_.emplace_back(std::move(created));
 }
@@ -482,6 +540,7 @@ ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, con
 void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row, hsize_t first,
                               hsize_t count, hsize_t width) {
   auto message = [&] { return describe("write view", view_path, path_); };
+  latch_->refuse_if_failed(message);
   const std::vector<hsize_t>& dims = source.dims_;
   if (dims.size() != 3 || first + count > dims[2] || count == 0 || (width == 0 ? count != 1 : count > width))
     throw IoError(message() + ": no such columns of '" + source.path() + "'");
@@ -490,43 +549,46 @@ void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleData
   const std::vector<hsize_t> source_dims{std::max(source.rows(), row + 1), entries, dims[2]};
   const std::vector<hsize_t> source_start{row, 0, first}, source_count{1, entries, count};
   Hdf5Handle source_space = dataspace_of(source_dims);
-  check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, source_start.data(), nullptr, source_count.data(),
-                            nullptr),
-        message);
+  latch_->check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, source_start.data(), nullptr,
+                                    source_count.data(), nullptr),
+                message);
   const std::vector<hsize_t> view_dims =
       width == 0 ? std::vector<hsize_t>{entries} : std::vector<hsize_t>{entries, width};
   Hdf5Handle view_space = dataspace_of(view_dims);
   if (width > 0) {
     const std::vector<hsize_t> start{0, 0}, columns{entries, count};
-    check(H5Sselect_hyperslab(view_space.get(), H5S_SELECT_SET, start.data(), nullptr, columns.data(), nullptr),
-          message);
+    latch_->check(H5Sselect_hyperslab(view_space.get(), H5S_SELECT_SET, start.data(), nullptr, columns.data(), nullptr),
+                  message);
   }
-  Hdf5Handle dcpl(check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
+  Hdf5Handle dcpl(latch_->check(H5Pcreate(H5P_DATASET_CREATE), message), H5Pclose);
   const double zero = 0.0;
-  check(H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &zero), message);
+  latch_->check(H5Pset_fill_value(dcpl.get(), H5T_NATIVE_DOUBLE, &zero), message);
 #if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 5) || H5_VERSION_GE(1, 12, 0)
   // Views carry no attributes: a minimal object header (a few hundred bytes per view less).
-  check(H5Pset_dset_no_attrs_hint(dcpl.get(), true), message);
+  latch_->check(H5Pset_dset_no_attrs_hint(dcpl.get(), true), message);
 #endif
   // "." is this file.
-  check(H5Pset_virtual(dcpl.get(), view_space.get(), ".", source.path().c_str(), source_space.get()), message);
-  check(H5Sselect_all(view_space.get()), message);
-  Hdf5Handle view(check(H5Dcreate2(file_.get(), view_path.c_str(), H5T_IEEE_F64LE, view_space.get(), lcpl_.get(),
-                                   dcpl.get(), H5P_DEFAULT),
-                        message),
+  latch_->check(H5Pset_virtual(dcpl.get(), view_space.get(), ".", source.path().c_str(), source_space.get()), message);
+  latch_->check(H5Sselect_all(view_space.get()), message);
+  Hdf5Handle view(latch_->check(H5Dcreate2(file_.get(), view_path.c_str(), H5T_IEEE_F64LE, view_space.get(),
+                                           lcpl_.get(), dcpl.get(), H5P_DEFAULT),
+                                message),
                   H5Dclose);
+  latch_->check(view.close(), message);
 }
 
 template <class T>
 std::vector<T> Hdf5File::read_numeric(const std::string& dataset_path, hid_t mem_type,
                                       std::vector<hsize_t>* shape) const {
   auto message = [&] { return describe("read dataset", dataset_path, path_); };
-  Hdf5Handle dataset(check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
-  Hdf5Handle space(check(H5Dget_space(dataset.get()), message), H5Sclose);
-  std::vector<hsize_t> dims(static_cast<size_t>(check(H5Sget_simple_extent_ndims(space.get()), message)));
-  check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), message);
+  FailureLatch& latch = *latch_;
+  Hdf5Handle dataset(latch.check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
+  Hdf5Handle space(latch.check(H5Dget_space(dataset.get()), message), H5Sclose);
+  std::vector<hsize_t> dims(static_cast<size_t>(latch.check(H5Sget_simple_extent_ndims(space.get()), message)));
+  latch.check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), message);
   std::vector<T> values(static_cast<size_t>(element_count(dims)));
-  if (!values.empty()) check(H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), message);
+  if (!values.empty())
+    latch.check(H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), message);
   if (shape != nullptr) *shape = std::move(dims);
   return values;
 }
@@ -541,12 +603,13 @@ std::vector<long long> Hdf5File::read_ints(const std::string& dataset_path, std:
 
 std::vector<std::string> Hdf5File::read_strings(const std::string& dataset_path) const {
   auto message = [&] { return describe("read dataset", dataset_path, path_); };
-  Hdf5Handle dataset(check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
-  Hdf5Handle space(check(H5Dget_space(dataset.get()), message), H5Sclose);
-  const auto count = static_cast<hsize_t>(check(H5Sget_simple_extent_npoints(space.get()), message));
-  Hdf5Handle type(check(H5Dget_type(dataset.get()), message), H5Tclose);
+  FailureLatch& latch = *latch_;
+  Hdf5Handle dataset(latch.check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
+  Hdf5Handle space(latch.check(H5Dget_space(dataset.get()), message), H5Sclose);
+  const auto count = static_cast<hsize_t>(latch.check(H5Sget_simple_extent_npoints(space.get()), message));
+  Hdf5Handle type(latch.check(H5Dget_type(dataset.get()), message), H5Tclose);
   auto read = [&](hid_t mem_type, void* buffer) {
-    return H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer);
+    latch.check(H5Dread(dataset.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer), message);
   };
   return read_string_elements(type.get(), count, read, message);
 }
@@ -582,13 +645,15 @@ bool Hdf5File::exists(const std::string& object_path) const {
 }
 
 void Hdf5File::flush() {
-  if (failed_) throw IoError("cannot flush '" + path_ + "': an earlier flush failed");
+  auto message = [&] { return "cannot flush '" + path_ + "'"; };
+  latch_->refuse_if_failed(message);
+  for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
+  latch_->check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), message);
+  if (working_path_.empty()) return;
   try {
-    for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
-    check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), [&] { return "cannot flush '" + path_ + "'"; });
-    if (!working_path_.empty()) publish_copy();
-  } catch (const IoError&) {
-    failed_ = true;
+    publish_copy();
+  } catch (const IoError&) {  // the system's reason is in the message
+    latch_->mark();
     throw;
   }
 }

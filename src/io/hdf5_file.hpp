@@ -8,9 +8,11 @@
 #include <Eigen/Dense>
 #include <cstddef>
 #include <deque>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace tirefe::io {
@@ -35,10 +37,42 @@ class Hdf5Handle {
   hid_t get() const { return id_; }
   void reset() noexcept;
   hid_t release() noexcept;  // the id, no longer owned
+  herr_t close();            // reset(), with the closer's result (closing can write)
 
  private:
   hid_t id_ = H5I_INVALID_HID;
   Closer closer_ = nullptr;
+};
+
+// Whether an HDF5 call on one file failed; shared by the file and its datasets. A full disk
+// surfaces in whichever call HDF5 writes in (its metadata cache writes at any call that
+// evicts: a create, an extend, an attribute, a close, not only a flush) and leaves the
+// file's state unknown: the first failure marks the file failed, and nothing more is
+// written to it.
+class FailureLatch {
+ public:
+  explicit FailureLatch(std::string file_path) : file_path_(std::move(file_path)) {}
+  // 'rc', or (negative: a failed HDF5 call) the file marked failed and an IoError.
+  template <class T, class Message>
+  T check(T rc, Message&& message) {
+    if (rc < 0) fail(message());
+    return rc;
+  }
+  // Marks the file failed; throws 'message' with HDF5's reason.
+  [[noreturn]] void fail(const std::string& message);
+  // Before a write: an IoError once the file failed.
+  template <class Message>
+  void refuse_if_failed(Message&& message) const {
+    if (failed_) refuse(message());
+  }
+  void mark() { failed_ = true; }
+  bool failed() const { return failed_; }
+  const std::string& file_path() const { return file_path_; }
+
+ private:
+  [[noreturn]] void refuse(const std::string& message) const;
+  std::string file_path_;
+  bool failed_ = false;
 };
 
 // An extendible, chunked dataset that grows by one "row" per append along its first
@@ -60,19 +94,22 @@ class ExtendibleDataset {
 
  private:
   friend class Hdf5File;
-  ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, std::string file_path, std::string path);
+  ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, FailureLatch& latch, std::string path);
 
   hsize_t pending_rows() const { return static_cast<hsize_t>(pending_.size() / row_size_); }
   /// Writes the rows waiting in memory.
   void write_pending();
+  /// Closes the dataset (HDF5 may write its header then).
+  void close();
 
   Hdf5Handle dataset_;
   Hdf5Handle file_space_;  // reused across appends: resized in place, never re-created
   Hdf5Handle mem_space_;   // one row, flat
   std::vector<hsize_t> dims_, start_, count_;
   size_t row_size_ = 1;
-  std::vector<double> pending_;   // appended rows not yet written, row-major
-  std::string file_path_, path_;  // for error messages only
+  std::vector<double> pending_;  // appended rows not yet written, row-major
+  FailureLatch* latch_;          // the file's
+  std::string path_;
 };
 
 class Hdf5File {
@@ -150,9 +187,15 @@ class Hdf5File {
   void flush();
   // Writes the appended rows and closes the file (a published file: renames it to its path).
   // Throws IoError; afterwards the object holds no file. The destructor closes quietly.
-  // After a failed flush the file is dropped instead (a published one keeps its last copy).
+  // After a failed HDF5 call the file is dropped instead (a published one keeps its last copy).
   void close();
-  bool failed() const { return failed_; }
+  // An HDF5 call on the file failed (FailureLatch): it was reported, and nothing more is written.
+  bool failed() const { return latch_ && latch_->failed(); }
+  // Fails the file for a failure beside it (its index on the same full disk): reported by
+  // the caller, and the close keeps the last flush, as after a failure of its own.
+  void abandon() {
+    if (latch_) latch_->mark();
+  }
 
  private:
   Hdf5File(std::string path, Hdf5Handle file);
@@ -169,8 +212,8 @@ class Hdf5File {
   std::string path_;
   std::string working_path_;  // where a published file is written; empty: written at path_
   Hdf5Handle file_;
-  bool failed_ = false;  // a flush failed (a full disk): HDF5 can no longer close the file cleanly
-  Hdf5Handle lcpl_;      // link creation: intermediate groups on
+  std::unique_ptr<FailureLatch> latch_;  // its address stays with the datasets across moves
+  Hdf5Handle lcpl_;                      // link creation: intermediate groups on
   // Declared after file_ so the datasets are closed before the file.
   std::deque<ExtendibleDataset> datasets_;
 };

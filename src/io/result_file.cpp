@@ -75,7 +75,12 @@ void ResultFile::write_index() {
   if (index_.empty()) return;
   std::filesystem::path index(path());
   index.replace_extension(".xmf");
-  index_.write(index.string());
+  try {
+    index_.write(index.string());
+  } catch (const IoError&) {
+    file_.abandon();
+    throw;
+  }
   frames_indexed_ = index_.frames();
   last_index_write_ = std::chrono::steady_clock::now();
 }

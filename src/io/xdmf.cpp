@@ -1,7 +1,9 @@
 #include "io/xdmf.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -111,12 +113,15 @@ std::string XdmfIndex::text() const {
 void XdmfIndex::write(const std::string& path) const {
   const std::string partial = path + ".partial";
   {
+    errno = 0;
     std::ofstream out(partial, std::ios::trunc);
     write_to(out);
     out.close();
     if (!out) {
+      // The system's reason (a full disk) is the one that says what to do.
+      const std::string reason = errno != 0 ? std::string(": ") + std::strerror(errno) : "";
       std::remove(partial.c_str());
-      throw IoError("cannot write the XDMF index '" + partial + "'");
+      throw IoError("cannot write the XDMF index '" + partial + "'" + reason);
     }
   }
   if (std::rename(partial.c_str(), path.c_str()) != 0) {
