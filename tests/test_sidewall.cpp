@@ -225,6 +225,68 @@ TEST_CASE("sidewall tangent equals central finite differences, deformed, rotated
   CHECK(stretched > 0);  // both branches of the law were exercised
 }
 
+TEST_CASE("sidewall batch path: every wedge of a perturbed ring as evaluate() gives it, to 1e-14", "[sidewall]") {
+  // 100 wedges round a spindle, a few undamped, deformed by centimetres (some cords past
+  // the straight-cord switch), each group of ten with its own spindle angle.
+  std::mt19937 random(11);
+  constexpr int kWedges = 100;
+  const Eigen::Vector2d spindle(0.01, -0.02);
+  std::vector<SidewallWedge> wedges;
+  for (int e = 0; e < kWedges; ++e) {
+    SidewallProperties properties = test_properties();
+    if (e % 7 == 3) properties.radial_damping = properties.circumferential_damping = 0.0;
+    properties.bending_sign = e % 2 == 0 ? 1.0 : -1.0;
+    const double angle = 2.0 * kPi * e / kWedges;
+    wedges.emplace_back(spindle, spindle + on_circle(kTreadRadius, angle),
+                        spindle + on_circle(kTreadRadius, angle + 2.0 * kPi / kWedges), properties,
+                        constant_pressure(e < 50 ? kPressure : 0.5 * kPressure));
+  }
+  std::vector<LocalState<9>> locals;
+  std::vector<double> displacement(9 * kWedges), velocity(9 * kWedges);
+  int stretched = 0;
+  for (int e = 0; e < kWedges; ++e) {
+    LocalState<9> local = testing::random_local_state<9>(random, 0.015, 0.06);
+    if (e % 10 == 5) local.displacement.segment<2>(3) *= 3.0;
+    local.displacement[2] = 0.3 * (e / 10) - 1.0;
+    local.velocity[2] *= 50.0;
+    for (int k = 0; k < 9; ++k) {
+      displacement[k * kWedges + e] = local.displacement[k];
+      velocity[k * kWedges + e] = local.velocity[k];
+    }
+    stretched += wedges[e].cord_state(local.displacement, 0).chord > wedges[e].law().switch_chord();
+    locals.push_back(local);
+  }
+  CHECK(stretched > 0);
+  const BlockValues values{kWedges, displacement.data(), velocity.data(), nullptr};
+  SidewallWedge::Batch batch(wedges);
+  EvaluationContext statics;
+  statics.time = 0.5;
+  for (const EvaluationContext& context : {statics, testing::dynamic_context(1e-4)}) {
+    for (bool with_tangent : {true, false}) {
+      batch.evaluate(values, context, with_tangent);
+      double worst = 0.0;
+      for (int e = 0; e < kWedges; ++e) {
+        SidewallWedge::Vector residual;
+        SidewallWedge::Matrix tangent;
+        NoHistory history;
+        wedges[e].evaluate(locals[e], context, history, history, residual, with_tangent ? &tangent : nullptr);
+        SidewallWedge::Vector batch_residual;
+        for (int k = 0; k < 9; ++k) batch_residual[k] = batch.residual()[k * kWedges + e];
+        worst = std::max(worst, (batch_residual - residual).norm() / residual.norm());
+        if (!with_tangent) continue;
+        SidewallWedge::Matrix batch_tangent;
+        for (int k = 0; k < 81; ++k)
+          batch_tangent.data()[k] = (k / 9 == 5 || k / 9 == 8 || k % 9 == 5 || k % 9 == 8)
+                                        ? 0.0  // the idle tread rotations: never read
+                                        : batch.tangent()[k * kWedges + e];
+        worst = std::max(worst, (batch_tangent - tangent).norm() / tangent.norm());
+      }
+      INFO("tangent " << with_tangent << ", damping factor " << context.factors.force_damping);
+      CHECK(worst <= 1e-14);
+    }
+  }
+}
+
 TEST_CASE("sidewall: FD tangent from a bulged to a stretched cord, continuous at the straight-cord switch",
           "[sidewall]") {
   const WedgeGeometry geometry;

@@ -94,6 +94,15 @@ struct AssemblyTarget {
   double* tangent_values = nullptr;     // sparse values of the free-equation tangent, or null
 };
 
+/// The nodal values of a whole block, gathered as structure of arrays for a kernel's batch
+/// path: local DOF k of element e at [k * count + e] (acceleration null unless the kernel reads it).
+struct BlockValues {
+  int count = 0;
+  const double* displacement = nullptr;
+  const double* velocity = nullptr;
+  const double* acceleration = nullptr;
+};
+
 template <int Dofs>
 struct LocalState {
   Eigen::Matrix<double, Dofs, 1> displacement, velocity, acceleration;
@@ -152,6 +161,24 @@ struct HasAugment<Kernel,
 //   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
 //   static constexpr std::array<int, N> kIdleDofs = {...};  // local DOFs whose residual
 //       row and tangent row and column are always zero (neither read nor loaded)
+// Optional batch path: a history-free kernel may evaluate its whole block in one call,
+//   class Kernel::Batch {
+//     explicit Batch(const std::vector<Kernel>& kernels);
+//     void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
+//     const double* residual() const;  // local DOF k of element e at [k * count + e]
+//     const double* tangent() const;   // row-major entry k of element e at [k * count + e]
+//   };
+// over structure-of-arrays data, so that the compiler vectorises across elements. It gives
+// the numbers of evaluate() (to round-off); the entries of idle DOFs are never read.
+template <class Kernel, class = void>
+struct BatchOf : std::false_type {
+  struct type {};
+};
+template <class Kernel>
+struct BatchOf<Kernel, std::void_t<typename Kernel::Batch>> : std::true_type {
+  using type = typename Kernel::Batch;
+};
+
 template <class Kernel, class = void>
 struct ReadsAcceleration : std::true_type {};
 template <class Kernel>
@@ -190,6 +217,7 @@ class ElementBlockOf final : public ElementBlock {
     committed_.emplace_back();
     base_.emplace_back();
     trial_.emplace_back();
+    batch_.reset();
     return size() - 1;
   }
 
@@ -200,7 +228,10 @@ class ElementBlockOf final : public ElementBlock {
     return {nodes_[element].begin(), nodes_[element].end()};
   }
   const Kernel& kernel(int element) const { return kernels_[element]; }
-  Kernel& kernel(int element) { return kernels_[element]; }
+  Kernel& kernel(int element) {
+    batch_.reset();  // the batch copies the kernels' constants
+    return kernels_[element];
+  }
   const History& trial_history(int element) const { return trial_[element]; }
   const History& committed_history(int element) const { return committed_[element]; }
   /// Sets an element's history (initial contact state, restart) as committed.
@@ -220,9 +251,14 @@ class ElementBlockOf final : public ElementBlock {
         if (slot[k] >= 0 && !idle[k / kDofs] && !idle[k % kDofs]) tangent_entries_.push_back({k, slot[k]});
       element_entries_.push_back(static_cast<int>(tangent_entries_.size()));
     }
+    if constexpr (kBatched) prepare_batch();
   }
 
   void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) override {
+    if constexpr (kBatched) {
+      assemble_batch(context, state, target);
+      return;
+    }
     LocalState<kDofs> local;
     local.acceleration.setZero();  // stays zero for kernels that never read it
     Vector residual;
@@ -291,6 +327,60 @@ class ElementBlockOf final : public ElementBlock {
   }
 
  private:
+  static constexpr bool kBatched = detail::BatchOf<Kernel>::value;
+  using Batch = typename detail::BatchOf<Kernel>::type;
+
+  /// (Re)builds the batch and its gather buffers: once per structure, outside the Newton loop.
+  void prepare_batch() {
+    static_assert(std::is_empty_v<History>, "a batch kernel keeps no history");
+    batch_ = std::make_unique<Batch>(kernels_);
+    gathered_.assign(static_cast<size_t>(3) * kDofs * size(), 0.0);
+  }
+
+  /// The batch path: gather every element's nodal values as structure of arrays, evaluate
+  /// the block in one call, scatter from the batch's arrays.
+  void assemble_batch(const EvaluationContext& context, const State& state, AssemblyTarget& target) {
+    if (!batch_) prepare_batch();
+    const int count = size();
+    double* displacement = gathered_.data();
+    double* velocity = displacement + kDofs * count;
+    double* acceleration = velocity + kDofs * count;
+    constexpr bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value;
+    for (int e = 0; e < count; ++e)
+      for (int n = 0; n < kNodes; ++n)
+        for (int c = 0; c < kDofsPerNode; ++c) {
+          const int k = (kDofsPerNode * n + c) * count + e, dof = dof_index(nodes_[e][n], c);
+          displacement[k] = state.displacement[dof];
+          velocity[k] = state.velocity[dof];
+          if constexpr (reads_acceleration) acceleration[k] = state.acceleration[dof];
+        }
+    const BlockValues values{count, displacement, velocity, reads_acceleration ? acceleration : nullptr};
+    const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
+    batch_->evaluate(values, context, with_tangent);
+
+    const double* residual = batch_->residual();
+    Eigen::VectorXd& global = *target.residual;
+    for (int e = 0; e < count; ++e) {
+      bool finite = true;
+      for (int k = 0; k < kDofs; ++k) finite = finite && std::isfinite(residual[k * count + e]);
+      if (!finite) {
+        Vector element;
+        for (int k = 0; k < kDofs; ++k) element[k] = residual[k * count + e];
+        throw_non_finite(e, "residual", element);
+      }
+      for (int n = 0; n < kNodes; ++n)
+        for (int c = 0; c < kDofsPerNode; ++c)
+          global[dof_index(nodes_[e][n], c)] += residual[(kDofsPerNode * n + c) * count + e];
+    }
+    if (!with_tangent) return;
+    const double* tangent = batch_->tangent();
+    for (int e = 0; e < count; ++e) {
+      const TangentEntry* end = tangent_entries_.data() + element_entries_[e + 1];
+      for (const TangentEntry* t = tangent_entries_.data() + element_entries_[e]; t != end; ++t)
+        target.tangent_values[t->slot] += tangent[t->entry * count + e];
+    }
+  }
+
   void gather(int e, const State& state, LocalState<kDofs>& local) const {
     for (int n = 0; n < kNodes; ++n) {
       const int first = dof_index(nodes_[e][n], 0);
@@ -338,6 +428,8 @@ class ElementBlockOf final : public ElementBlock {
   };
   std::vector<TangentEntry> tangent_entries_;
   std::vector<int> element_entries_;  // element e's entries: [element_entries_[e], element_entries_[e + 1])
+  std::unique_ptr<Batch> batch_;      // kernels with a batch path only
+  std::vector<double> gathered_;      // the batch's displacement, velocity and acceleration
 };
 
 }  // namespace tirefe

@@ -11,7 +11,9 @@
 // = -rho) and of the deformed chord length l (dl = t.(du_b - du_a)).
 #include "elements/sidewall.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -307,6 +309,203 @@ void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationCon
   K.row(5).setZero();
   K.middleRows<2>(6) = -rows_b;
   K.row(8).setZero();
+}
+
+// The batch path. Its arithmetic is evaluate()'s, term for term, written per wedge on
+// arrays indexed by the wedge, so that the loop over wedges vectorises.
+namespace {
+constexpr int kActiveDofs[] = {0, 1, 2, 3, 4, 6, 7};  // all but the tread rotations
+}
+
+SidewallWedge::Batch::Batch(const std::vector<SidewallWedge>& wedges) : wedges_(wedges) {
+  const size_t n = wedges_.size();
+  for (auto* field : {&tread_a_x_, &tread_a_y_, &tread_b_x_, &tread_b_y_, &shear_stiffness_, &radial_damping_,
+                      &circumferential_damping_})
+    field->assign(n, 0.0);
+  for (auto* field :
+       {&rim_x_, &rim_y_, &cord_x_, &cord_y_, &e_y_x_, &e_y_y_, &chord_, &force_, &stiffness_, &shear_angle_})
+    field->assign(kQuadraturePoints * n, 0.0);
+  residual_.assign(kDofs * n, 0.0);
+  tangent_.assign(kDofs * kDofs * n, 0.0);
+  for (size_t e = 0; e < n; ++e) {
+    const SidewallWedge& wedge = wedges_[e];
+    tread_a_x_[e] = wedge.tread_a_.x();
+    tread_a_y_[e] = wedge.tread_a_.y();
+    tread_b_x_[e] = wedge.tread_b_.x();
+    tread_b_y_[e] = wedge.tread_b_.y();
+    const SidewallProperties& properties = wedge.law_.properties();
+    shear_stiffness_[e] = properties.shear_stiffness;
+    radial_damping_[e] = properties.radial_damping;
+    circumferential_damping_[e] = properties.circumferential_damping;
+    damped_ = damped_ || properties.radial_damping != 0.0 || properties.circumferential_damping != 0.0;
+  }
+}
+
+void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
+  const int n = size();
+  // Every wedge of a tire turns with one spindle: its sine and cosine are computed once.
+  double spin = std::numeric_limits<double>::quiet_NaN(), cos_spin = 0.0, sin_spin = 0.0;
+  const PressureSchedule* schedule = nullptr;
+  double pressure = 0.0;
+  Vector u;
+  for (int e = 0; e < n; ++e) {
+    const SidewallWedge& wedge = wedges_[e];
+    for (int k = 0; k < kDofs; ++k) u[k] = values.displacement[k * n + e];
+    if (!(u[2] == spin)) {
+      spin = u[2];
+      cos_spin = std::cos(spin);
+      sin_spin = std::sin(spin);
+    }
+    if (wedge.pressure_.get() != schedule) {
+      schedule = wedge.pressure_.get();
+      pressure = schedule->at(time);
+    }
+    for (int q = 0; q < kQuadraturePoints; ++q) {
+      const Kinematics k = wedge.kinematics(u, q, cos_spin, sin_spin);
+      const SidewallLaw::CordForce cord = wedge.law_.cord_force(k.chord, wedge.reference_half_angle_[q], pressure);
+      const int i = q * n + e;
+      rim_x_[i] = k.rim_offset.x();
+      rim_y_[i] = k.rim_offset.y();
+      cord_x_[i] = k.cord.x();
+      cord_y_[i] = k.cord.y();
+      e_y_x_[i] = k.e_y.x();
+      e_y_y_[i] = k.e_y.y();
+      chord_[i] = k.chord;
+      force_[i] = cord.force;
+      stiffness_[i] = cord.stiffness;
+      shear_angle_[i] = k.shear_angle;
+    }
+  }
+}
+
+template <bool Tangent, bool Damped>
+void SidewallWedge::Batch::add_points(const BlockValues& values, const IntegratorFactors& f) {
+  const int n = size();
+  const double* u = values.displacement;
+  const double* v = values.velocity;
+  double* residual = residual_.data();
+  double* tangent = tangent_.data();
+#pragma omp simd
+  for (int e = 0; e < n; ++e) {
+    // The deformed tread chord l and its direction t.
+    const double chord_x = tread_b_x_[e] + u[6 * n + e] - tread_a_x_[e] - u[3 * n + e];
+    const double chord_y = tread_b_y_[e] + u[7 * n + e] - tread_a_y_[e] - u[4 * n + e];
+    const double chord_length = std::sqrt(chord_x * chord_x + chord_y * chord_y);
+    const double t[2] = {chord_x / chord_length, chord_y / chord_length};
+    const double length_weight = kGaussWeight * chord_length;
+    const double shear_stiffness = shear_stiffness_[e];
+    const double c_r = Damped ? radial_damping_[e] : 0.0, c_t = Damped ? circumferential_damping_[e] : 0.0;
+    const double spin_rate = v[2 * n + e];
+    // Rows of B^T times the weighted traction (residual) and its derivative J (tangent,
+    // active columns 0, 1, 2, 3, 4, 6, 7): the spindle, spin and tread rows of evaluate().
+    double spindle[2] = {0.0, 0.0}, spin = 0.0, tread_a[2] = {0.0, 0.0}, tread_b[2] = {0.0, 0.0};
+    double spindle_rows[2][7] = {}, spin_row[7] = {}, rows_a[2][7] = {}, rows_b[2][7] = {}, spin_geometric = 0.0;
+    // Fully unrolled (as are the loops over columns) so that the wedge loop vectorises.
+#pragma GCC unroll 2
+    for (int q = 0; q < kQuadraturePoints; ++q) {
+      const int i = q * n + e;
+      const double shape_a = 1.0 - kGaussPoints[q], shape_b = kGaussPoints[q];
+      const double e_y[2] = {e_y_x_[i], e_y_y_[i]}, e_x[2] = {-e_y_y_[i], e_y_x_[i]};
+      const double rho[2] = {rim_x_[i], rim_y_[i]}, perp[2] = {-rim_y_[i], rim_x_[i]};
+      const double chord = chord_[i], force = force_[i];
+      const double shear_force = shear_stiffness * shear_angle_[i];
+      double elastic[2], damping[2] = {0.0, 0.0}, weighted[2], traction[2];
+      for (int c = 0; c < 2; ++c) elastic[c] = force * e_y[c] + shear_force * e_x[c];
+      double v_y = 0.0, v_x = 0.0;
+      if (Damped) {
+        // Tread point velocity relative to the rim's rigid motion (x_t - x_S = rho - P).
+        const double arm[2] = {rho[0] - cord_x_[i], rho[1] - cord_y_[i]};
+        const double relative[2] = {shape_a * v[3 * n + e] + shape_b * v[6 * n + e] - v[e] - spin_rate * -arm[1],
+                                    shape_a * v[4 * n + e] + shape_b * v[7 * n + e] - v[n + e] - spin_rate * arm[0]};
+        v_y = relative[0] * e_y[0] + relative[1] * e_y[1];
+        v_x = relative[0] * e_x[0] + relative[1] * e_x[1];
+        for (int c = 0; c < 2; ++c) damping[c] = -(c_r * v_y) * e_y[c] - (c_t * v_x) * e_x[c];
+      }
+      for (int c = 0; c < 2; ++c) {
+        weighted[c] = length_weight * (f.force_stiffness * elastic[c] + f.force_damping * damping[c]);
+        spindle[c] += weighted[c];
+        tread_a[c] += shape_a * weighted[c];
+        tread_b[c] += shape_b * weighted[c];
+      }
+      spin += perp[0] * weighted[0] + perp[1] * weighted[1];
+      if (!Tangent) continue;
+
+      // G = cK (F' e_y e_y^T + ((F + k_gamma) e_x - S e_y) e_x^T / L) (+ damping).
+      const double stiffness = stiffness_[i];
+      double G[2][2], spin_column[2];
+      for (int r = 0; r < 2; ++r) {
+        traction[r] = f.tangent_stiffness * elastic[r] + f.force_damping * damping[r];
+        const double w = (force + shear_stiffness) * e_x[r] - shear_force * e_y[r];
+        for (int c = 0; c < 2; ++c) G[r][c] = f.tangent_stiffness * (stiffness * e_y[r] * e_y[c] + w * e_x[c] / chord);
+        spin_column[r] = -f.tangent_stiffness * shear_stiffness * e_x[r];
+      }
+      if (Damped) {
+        double C_d[2][2];
+        for (int r = 0; r < 2; ++r)
+          for (int c = 0; c < 2; ++c) C_d[r][c] = c_r * e_y[r] * e_y[c] + c_t * e_x[r] * e_x[c];
+        for (int r = 0; r < 2; ++r) {
+          const double rate = -(c_r - c_t) * (v_x * e_y[r] + v_y * e_x[r]);
+          const double turned[2] = {C_d[r][1], -C_d[r][0]};  // C_d k x
+          for (int c = 0; c < 2; ++c) G[r][c] += f.force_damping * (rate * e_x[c] / chord - spin_rate * turned[c]);
+          spin_column[r] -= f.force_damping * spin_rate * (C_d[r][0] * rho[0] + C_d[r][1] * rho[1]);
+          for (int c = 0; c < 2; ++c) G[r][c] += f.tangent_damping * C_d[r][c];
+          spin_column[r] -= (f.tangent_damping * c_t * chord) * e_x[r];
+        }
+      }
+      // J = l w_q (G B + spin_column e_theta^T) + w_q traction dl/du on the active columns.
+      double J[2][7];
+      for (int r = 0; r < 2; ++r) {
+        const double W0 = length_weight * G[r][0], W1 = length_weight * G[r][1];
+        const double chord_force = kGaussWeight * traction[r];
+        J[r][0] = W0;
+        J[r][1] = W1;
+        J[r][2] = W0 * perp[0] + W1 * perp[1] + length_weight * spin_column[r];
+        J[r][3] = -shape_a * W0 - chord_force * t[0];
+        J[r][4] = -shape_a * W1 - chord_force * t[1];
+        J[r][5] = -shape_b * W0 + chord_force * t[0];
+        J[r][6] = -shape_b * W1 + chord_force * t[1];
+      }
+#pragma GCC unroll 7
+      for (int c = 0; c < 7; ++c) {
+        for (int r = 0; r < 2; ++r) {
+          spindle_rows[r][c] += J[r][c];
+          rows_a[r][c] += shape_a * J[r][c];
+          rows_b[r][c] += shape_b * J[r][c];
+        }
+        spin_row[c] += perp[0] * J[0][c] + perp[1] * J[1][c];
+      }
+      spin_geometric -= length_weight * (rho[0] * traction[0] + rho[1] * traction[1]);  // d rho_perp/d theta_S = -rho
+    }
+    // residual = (spindle, spin, -tread_a, 0, -tread_b, 0); the matrix likewise by rows.
+    for (int c = 0; c < 2; ++c) {
+      residual[c * n + e] = spindle[c];
+      residual[(3 + c) * n + e] = -tread_a[c];
+      residual[(6 + c) * n + e] = -tread_b[c];
+    }
+    residual[2 * n + e] = spin;
+    if (!Tangent) continue;
+    spin_row[2] += spin_geometric;
+#pragma GCC unroll 7
+    for (int c = 0; c < 7; ++c) {
+      const int column = kActiveDofs[c];
+      for (int r = 0; r < 2; ++r) {
+        tangent[(r * kDofs + column) * n + e] = spindle_rows[r][c];
+        tangent[((3 + r) * kDofs + column) * n + e] = -rows_a[r][c];
+        tangent[((6 + r) * kDofs + column) * n + e] = -rows_b[r][c];
+      }
+      tangent[(2 * kDofs + column) * n + e] = spin_row[c];
+    }
+  }
+}
+
+void SidewallWedge::Batch::evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent) {
+  const IntegratorFactors& f = context.factors;
+  const bool damped = damped_ && (f.force_damping != 0.0 || (with_tangent && f.tangent_damping != 0.0));
+  solve_cords(values, context.time);
+  if (with_tangent)
+    damped ? add_points<true, true>(values, f) : add_points<true, false>(values, f);
+  else
+    damped ? add_points<false, true>(values, f) : add_points<false, false>(values, f);
 }
 
 ElementEnergy SidewallWedge::energy(const LocalState<kDofs>&, const History&) const { return {}; }

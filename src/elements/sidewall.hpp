@@ -46,6 +46,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <memory>
+#include <vector>
 
 #include "core/element.hpp"
 #include "elements/pressure_schedule.hpp"
@@ -127,6 +128,8 @@ class SidewallWedge : public KernelShape<3> {
     double chord, shear_angle;
   };
   CordState cord_state(const Vector& displacement, int q) const;
+  /// The block's batch path (element.hpp): every wedge at once, the same numbers.
+  class Batch;
   const SidewallLaw& law() const { return law_; }
   double reference_half_angle(int q) const { return reference_half_angle_[q]; }
 
@@ -140,6 +143,35 @@ class SidewallWedge : public KernelShape<3> {
   // Per quadrature point: reference tread point, reference rim offset r_rim e_r, alpha0.
   std::array<Eigen::Vector2d, kQuadraturePoints> reference_tread_, reference_rim_offset_;
   std::array<double, kQuadraturePoints> reference_half_angle_;
+};
+
+/// Wedges over structure-of-arrays data: per quadrature point, a scalar pass solves the
+/// cord (arch, shear angle: the transcendental part, one sine and cosine per spindle
+/// angle rather than per wedge), then a pass vectorised across wedges forms the weighted
+/// tractions, their derivatives and the element vectors and matrices of evaluate().
+class SidewallWedge::Batch {
+ public:
+  explicit Batch(const std::vector<SidewallWedge>& wedges);
+  int size() const { return static_cast<int>(wedges_.size()); }
+  void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
+  const double* residual() const { return residual_.data(); }
+  const double* tangent() const { return tangent_.data(); }
+
+ private:
+  /// The cord at both points of every wedge: directions, chord, force law, shear angle.
+  void solve_cords(const BlockValues& values, double time);
+  /// The element vectors (and matrices) from the weighted tractions (and their derivatives).
+  template <bool Tangent, bool Damped>
+  void add_points(const BlockValues& values, const IntegratorFactors& f);
+
+  std::vector<SidewallWedge> wedges_;
+  // Per wedge: reference tread nodes, k_gamma, c_r, c_t.
+  std::vector<double> tread_a_x_, tread_a_y_, tread_b_x_, tread_b_y_, shear_stiffness_, radial_damping_,
+      circumferential_damping_;
+  bool damped_ = false;  // some wedge has dashpots
+  // Per wedge and point [q * size + e]: rho, P, e_y, L, F, dF/dL, gamma.
+  std::vector<double> rim_x_, rim_y_, cord_x_, cord_y_, e_y_x_, e_y_y_, chord_, force_, stiffness_, shear_angle_;
+  std::vector<double> residual_, tangent_;  // [k * size + e]
 };
 
 }  // namespace tirefe
