@@ -157,7 +157,7 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
     reaction_squared += residual_all_[dof] * residual_all_[dof];
     free_residual[dofs.equation(dof)] = 0.0;
   }
-  force_level = std::max(external_new_.norm(), std::sqrt(reaction_squared));
+  force_level = std::max({external_new_.norm(), std::sqrt(reaction_squared), resolve_reference_});
 }
 
 double Analysis::apply_increment(const Eigen::VectorXd& increment) {
@@ -200,6 +200,7 @@ bool Analysis::iterate(double step, StepRecord& record) {
   try {
     LinearSolver& linear_solver = solvers_.newton_solver();
     const NewtonReport* report = &newton_.solve(*this, linear_solver);
+    if (resolve_reference_ == 0.0) trial_reference_ = report->reference_force;
     record.newton_iterations = report->iterations;
     record.augmentations = 0;
     // Augmented Lagrangian: update the multipliers and solve again until the
@@ -375,7 +376,11 @@ const StepRecord& Analysis::resolve_trial_step(double step) {
     integrator_.update_rates(carried_.state, step, driven_dofs_[i], trial_);
   }
   trial_record_ = StepRecord{};
-  return keep_trial(step, iterate(step, trial_record_));
+  // Judged as the trial from the predictor was: against the force level of its first residual.
+  resolve_reference_ = trial_reference_;
+  const bool solved = iterate(step, trial_record_);
+  resolve_reference_ = 0.0;
+  return keep_trial(step, solved);
 }
 
 void Analysis::accept_trial_step() {

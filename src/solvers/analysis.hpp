@@ -114,7 +114,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   /// state moved by its linear response to them (A_uu du_u = -A_us du_s with the factors
   /// of driven_tangent(), taken at that state) instead of from the predictor: a host's
   /// corrector moves the driven DOFs little between its trials, so Newton has little
-  /// left to do. From the predictor when there is no such trial (none pending, no
+  /// left to do. Newton's reference force is at least that of the trial from the predictor,
+  /// so that the same absolute tolerance judges both. From the predictor when there is no such trial (none pending, no
   /// driven_tangent() since, another step size).
   const StepRecord& resolve_trial_step(double step);
   /// Commits the trial step as advance() commits a step (observers hear of it).
@@ -188,6 +189,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   StepRecord trial_record_;
   int response_pattern_ = -1;  // pattern of the trial's factors from driven_tangent(); -1: none
   Eigen::VectorXd driven_move_, response_;
+  double trial_reference_ = 0.0;    // Newton's reference force of the step's trial from the predictor
+  double resolve_reference_ = 0.0;  // that force, a floor of the force level while resolving
 };
 
 }  // namespace tirefe
