@@ -47,6 +47,40 @@ Corner quarter_corner(double preload, double damping) {
 
 }  // namespace
 
+TEST_CASE("a corrector's trial from the tire's last trial moved by its linear response: the cold answer, less Newton",
+          "[vehicle][spindle]") {
+  PressedTire tire;
+  tire.press(0.015);
+  tire.drive(-0.05);
+  const Eigen::Vector3d design = tire.spindle->committed_position();
+  constexpr double h = 1e-3;
+  auto solve = [&](double dx, double dy, SpindleStart start) {
+    return tire.spindle->solve_step({h, design.x() + dx, design.y() + dy, 0.0, start});
+  };
+  const SpindleReply first = solve(0.0, -1e-4, SpindleStart::Predictor);  // a predicted trial
+  const Eigen::Vector2d move(2e-6, -3e-6);                                // a corrector's increment
+  const SpindleReply warm = solve(move.x(), -1e-4 + move.y(), SpindleStart::LastTrial);
+  const SpindleReply cold = solve(move.x(), -1e-4 + move.y(), SpindleStart::Predictor);
+  const Eigen::Vector2d linear = force_of(first).head<2>() + jacobian_of(first).topLeftCorner<2, 2>() * move;
+  const Eigen::Vector2d change = linear - force_of(first).head<2>();
+  INFO("force " << force_of(cold).transpose() << " N, warm - cold " << (force_of(warm) - force_of(cold)).transpose()
+                << ", warm - linear " << (force_of(warm).head<2>() - linear).transpose() << ", Newton "
+                << warm.newton_iterations << " vs " << cold.newton_iterations);
+  // Both converge to the tire's Newton tolerance (1e-9 of the force level).
+  CHECK((force_of(warm) - force_of(cold)).norm() <= 1e-7 * force_of(cold).norm());
+  CHECK((jacobian_of(warm) - jacobian_of(cold)).norm() <= 1e-6 * jacobian_of(cold).norm());
+  CHECK(change.norm() > 1.0);                                                // the move matters: ~1e5-1e6 N/m
+  CHECK((force_of(warm).head<2>() - linear).norm() < 1e-3 * change.norm());  // second order in the move
+  CHECK(warm.newton_iterations <= 1);
+  CHECK(warm.newton_iterations < cold.newton_iterations);
+  // With no trial of this step to start from (after a commit), the predictor: the cold answer, bit for bit.
+  tire.spindle->commit();
+  const SpindleReply from_commit = solve(0.0, -2e-4, SpindleStart::LastTrial);
+  const Eigen::Vector3d fallback = force_of(from_commit);
+  tire.spindle->revert();
+  CHECK((fallback - force_of(solve(0.0, -2e-4, SpindleStart::Predictor))).norm() == 0.0);
+}
+
 TEST_CASE("quarter car: static ride height is weight over stiffness, the tire carries the whole weight",
           "[vehicle][quarter]") {
   PressedTire tire;

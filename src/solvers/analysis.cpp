@@ -102,6 +102,7 @@ const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
   DrivenDofSolver* driven = solvers_.driven();
   if (!trial_pending_ || !driven) throw ModelError("the driven tangent needs a solved trial step");
   driven->factorize(assembler_.tangent());
+  response_pattern_ = assembler_.pattern_version();
   return driven->schur_complement();
 }
 
@@ -143,7 +144,7 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
     reaction_squared += residual_all_[dof] * residual_all_[dof];
     free_residual[dofs.equation(dof)] = 0.0;
   }
-  force_level = std::max(external_new_.norm(), std::sqrt(reaction_squared));
+  force_level = std::max({external_new_.norm(), std::sqrt(reaction_squared), resolve_reference_});
 }
 
 double Analysis::apply_increment(const Eigen::VectorXd& increment) {
@@ -177,9 +178,14 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
     model_.external_forces(carried_.state.time, carried_.external_old);
     carried_.old_forces_valid = true;
   }
+  return iterate(step, record);
+}
+
+bool Analysis::iterate(double step, StepRecord& record) {
   try {
     LinearSolver& linear_solver = solvers_.newton_solver();
     const NewtonReport* report = &newton_.solve(*this, linear_solver);
+    if (resolve_reference_ == 0.0) trial_reference_ = report->reference_force;
     record.newton_iterations = report->iterations;
     record.augmentations = 0;
     // Augmented Lagrangian: update the multipliers and solve again until the
@@ -316,13 +322,50 @@ const StepRecord& Analysis::solve_trial_step(double step) {
   if (!(step > 0.0) || !std::isfinite(step))
     throw ModelError("the time step must be positive and finite (got " + std::to_string(step) + ")");
   start_steps();
+  response_pattern_ = -1;
   trial_record_ = StepRecord{};
-  if (!try_step(step, carried_.state.time + step, trial_record_))
+  return keep_trial(step, try_step(step, carried_.state.time + step, trial_record_));
+}
+
+const StepRecord& Analysis::keep_trial(double step, bool solved) {
+  if (!solved)
     throw StepFailure("the step from t = " + std::to_string(carried_.state.time) + " (dt = " + std::to_string(step) +
                       ") failed: " + last_failure_);
   trial_pending_ = true;
   trial_step_size_ = step;
   return trial_record_;
+}
+
+const StepRecord& Analysis::resolve_trial_step(double step) {
+  DrivenDofSolver* driven = solvers_.driven();
+  const int factored = response_pattern_;
+  response_pattern_ = -1;
+  if (!trial_pending_ || !driven || step != trial_step_size_ || assembler_.update_pattern() ||
+      factored != assembler_.pattern_version())
+    return solve_trial_step(step);
+  // The tangent and its factors are still the converged trial's.
+  const DofMap& dofs = model_.dof_map();
+  driven_move_.setZero(dofs.equation_count());
+  for (size_t i = 0; i < driven_dofs_.size(); ++i)
+    driven_move_[dofs.equation(driven_dofs_[i])] =
+        driven_displacements_[static_cast<Eigen::Index>(i)] - trial_.displacement[driven_dofs_[i]];
+  response_.setZero(dofs.equation_count());
+  response_.noalias() -= assembler_.tangent() * driven_move_;
+  driven->solve(response_);  // du_u, with du_s = 0
+  response_ += driven_move_;
+  model_.revert_history();  // the trial history follows from the committed one again
+  trial_pending_ = false;
+  apply_increment(response_);
+  for (size_t i = 0; i < driven_dofs_.size(); ++i) {  // exactly where the host puts them
+    trial_.displacement[driven_dofs_[i]] = driven_displacements_[static_cast<Eigen::Index>(i)];
+    integrator_.update_rates(carried_.state, step, driven_dofs_[i], trial_);
+  }
+  trial_record_ = StepRecord{};
+  // Judged as the trial from the predictor was: against the force level of its first residual.
+  resolve_reference_ = trial_reference_;
+  const bool solved = iterate(step, trial_record_);
+  resolve_reference_ = 0.0;
+  return keep_trial(step, solved);
 }
 
 void Analysis::accept_trial_step() {

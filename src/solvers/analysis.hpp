@@ -111,6 +111,14 @@ class Analysis : private StepEquations, private SteppedSystem {
   /// state and element history stay as they are until accept_trial_step(); another
   /// solve_trial_step() starts again from them (no step cuts; throws StepFailure).
   const StepRecord& solve_trial_step(double step);
+  /// solve_trial_step() again after new driven displacements, starting from the trial
+  /// state moved by its linear response to them (A_uu du_u = -A_us du_s with the factors
+  /// of driven_tangent(), taken at that state) instead of from the predictor: a host's
+  /// corrector moves the driven DOFs little between its trials, so Newton has little
+  /// left to do. Newton's reference force is at least that of the trial from the predictor,
+  /// so that the same absolute tolerance judges both. From the predictor when there is no such trial (none pending, no
+  /// driven_tangent() since, another step size).
+  const StepRecord& resolve_trial_step(double step);
   /// Commits the trial step as advance() commits a step (observers hear of it).
   void accept_trial_step();
   /// The computing part of accept_trial_step(), which then only tells the observers: the
@@ -145,6 +153,10 @@ class Analysis : private StepEquations, private SteppedSystem {
   // SteppedSystem
   double time() const override { return carried_.state.time; }
   bool try_step(double step, double end_time, StepRecord& record) override;
+  /// Newton and the augmentations from the trial state as it is; false (history reverted) on failure.
+  bool iterate(double step, StepRecord& record);
+  /// The solved trial kept for accept or discard; throws StepFailure if it was not solved.
+  const StepRecord& keep_trial(double step, bool solved);
   void commit_step(double step, StepRecord& record) override;
   std::string failure_message(int cuts, double step) const override;
   /// ModelError when there is nothing to solve (no elements, or every DOF fixed).
@@ -175,6 +187,10 @@ class Analysis : private StepEquations, private SteppedSystem {
   bool trial_recorded_ = false;  // record_trial_step() done, observers not yet told
   double trial_step_size_ = 0.0;
   StepRecord trial_record_;
+  int response_pattern_ = -1;  // pattern of the trial's factors from driven_tangent(); -1: none
+  Eigen::VectorXd driven_move_, response_;
+  double trial_reference_ = 0.0;    // Newton's reference force of the step's trial from the predictor
+  double resolve_reference_ = 0.0;  // that force, a floor of the force level while resolving
 };
 
 }  // namespace tirefe

@@ -14,12 +14,19 @@ namespace tirefe {
 /// free (the wheel rolls freely on its bearing: rz is solved by the tire, Mz = 0).
 enum class SpinMode { Driven, Free };
 
+/// Where the tire's Newton starts: at its own predictor, or at its last trial of this
+/// step moved by its linear response to the spindle's move (Analysis::resolve_trial_step):
+/// a host corrector's next trial, a little away from the last. The same answer to the
+/// tire's Newton tolerance; the predictor where the tire has no such trial.
+enum class SpindleStart { Predictor, LastTrial };
+
 /// The spindle at the end of the step being solved.
 struct SpindleInput {
   double time_step = 0.0;  // h [s], from the committed time
   double x = 0.0;          // spindle centre [m], absolute, in the wheel plane
   double y = 0.0;          // (y up)
   double spin = 0.0;       // rotation from the reference [rad], counter-clockwise; ignored when free
+  SpindleStart start = SpindleStart::Predictor;
 };
 
 enum class SpindleCommand { Solve, Commit, Revert };

@@ -34,7 +34,8 @@ const SpindleReply& TireSpindle::solve_step(const SpindleInput& input) {
   const Eigen::Vector2d& reference = analysis_.model().mesh().position(spindle_);
   const Eigen::Vector3d target(input.x - reference.x(), input.y - reference.y(), input.spin);
   analysis_.set_driven_displacements(target.head(driven_count_));
-  const StepRecord& record = analysis_.solve_trial_step(input.time_step);
+  const StepRecord& record = input.start == SpindleStart::LastTrial ? analysis_.resolve_trial_step(input.time_step)
+                                                                    : analysis_.solve_trial_step(input.time_step);
   reply_ = SpindleReply{};
   reply_.time = analysis_.trial_state().time;
   reply_.newton_iterations = record.newton_iterations;

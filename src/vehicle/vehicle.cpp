@@ -100,11 +100,12 @@ void Vehicle::suspension_tangent(const State& state, double stiffness_factor, do
   }
 }
 
-void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement) {
+void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement, SpindleStart start) {
   for (size_t i = 0; i < corners_.size(); ++i) {
     SpindleRequest& request = requests_[i];
     request.command = SpindleCommand::Solve;
     request.input.time_step = h;
+    request.input.start = start;
     request.input.x = design_spindle_[i].x() + displacement[wheel_fore_aft_dof(static_cast<int>(i))];
     request.input.y = design_spindle_[i].y() + displacement[wheel_vertical_dof(static_cast<int>(i))];
   }
@@ -112,7 +113,7 @@ void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement) {
 
 std::string Vehicle::tire_of(size_t corner) const { return "the tire of corner '" + corners_[corner].name + "'"; }
 
-void Vehicle::solve_tires(double h) {
+void Vehicle::solve_tires(double h, bool correcting) {
   auto serve = [this]() {
     tires_.serve(requests_, replies_);
     for (size_t i = 0; i < replies_.size(); ++i) {
@@ -141,7 +142,8 @@ void Vehicle::solve_tires(double h) {
     }
     return;
   }
-  request_positions(h, trial_.displacement);
+  // A corrector's trial starts every tire from its last, moved by its linear response.
+  request_positions(h, trial_.displacement, correcting ? SpindleStart::LastTrial : SpindleStart::Predictor);
   serve();
   for (size_t i = 0; i < count; ++i) spindle_jacobians_[i] = jacobian_of(replies_[i]).topLeftCorner<2, 2>();
 }
@@ -170,7 +172,7 @@ bool Vehicle::solve_step(double h) {
     for (int backtrack = 0;; ++backtrack) {
       for (int dof = 0; dof < dof_count(); ++dof) integrator_.update_rates(committed_, h, dof, trial_);
       try {
-        solve_tires(h);
+        solve_tires(h, iteration > 0);
         break;
       } catch (const TireFailure& failure) {
         if (iteration == 0 || backtrack == kMaxBacktracks) {

@@ -124,13 +124,14 @@ class Vehicle : private SteppedSystem {
   std::string failure_message(int cuts, double h) const override;
   /// The corrector of one step: true when it converged, with the tires at the trial state.
   bool solve_step(double h);
-  void solve_tires(double h);
+  /// The tires at the trial state; 'correcting': a corrector's trial, after the first of the step.
+  void solve_tires(double h, bool correcting);
   void suspension_forces(const State& state, Eigen::VectorXd& forces) const;
   void suspension_tangent(const State& state, double stiffness_factor, double damping_factor,
                           Eigen::MatrixXd& tangent) const;
   const Eigen::VectorXd& attachment(int corner) const { return attachments_[corner]; }  // b_i: d = b_i . q
   void initialize_acceleration();
-  void request_positions(double h, const Eigen::VectorXd& displacement);
+  void request_positions(double h, const Eigen::VectorXd& displacement, SpindleStart start = SpindleStart::Predictor);
 
   Body body_;
   /// "the tire of corner 'LF'", for messages.
