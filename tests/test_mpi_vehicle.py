@@ -13,6 +13,7 @@ waits in another vehicle, the job still ends (MPI_Abort) instead of hanging.
     /usr/bin/python3 tests/test_mpi_vehicle.py identical|failures TIREFE TIREFE_MPI MPIRUN
 """
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -77,7 +78,10 @@ def failures(tirefe, tirefe_mpi, mpirun, work):
     deck = os.path.join(ROOT, "inputs", "vehicle_pothole.lua")
     failing = [*SHORT, "dt=0.02", "speed_kmh=300", "--quiet"]
     threads, _ = run([tirefe, deck, *failing, "--output-dir", os.path.join(work, "failing_threads")])
-    assert threads.returncode == 1 and "failed after 4 cuts: the tire of corner 'L" in threads.stderr, threads.stderr
+    # At 300 km/h in 20 ms steps every tire is far from converging; which one is named first
+    # is round-off's choice. What matters: one tire is named, and the ranks name the same one.
+    assert threads.returncode == 1 and re.search(r"failed after 4 cuts: the tire of corner '(LF|RF|LR|RR)' failed",
+                                                 threads.stderr), threads.stderr
     done, _ = run([mpirun, *MPI_OPTIONS, "-np", "2", tirefe_mpi, deck, *failing, "--output-dir",
                    os.path.join(work, "failing_ranks")])
     assert done.returncode == 1 and done.stderr.count(threads.stderr) == 1, done.stderr

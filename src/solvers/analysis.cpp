@@ -346,9 +346,10 @@ const StepRecord& Analysis::resolve_trial_step(double step) {
   // The tangent and its factors are still the converged trial's.
   const DofMap& dofs = model_.dof_map();
   driven_move_.setZero(dofs.equation_count());
-  for (size_t i = 0; i < driven_dofs_.size(); ++i)
-    driven_move_[dofs.equation(driven_dofs_[i])] =
-        driven_displacements_[static_cast<Eigen::Index>(i)] - trial_.displacement[driven_dofs_[i]];
+  const std::vector<int>& driven_dofs = driven_.dofs();
+  for (size_t i = 0; i < driven_dofs.size(); ++i)
+    driven_move_[dofs.equation(driven_dofs[i])] =
+        driven_.displacements()[static_cast<Eigen::Index>(i)] - trial_.displacement[driven_dofs[i]];
   response_.setZero(dofs.equation_count());
   response_.noalias() -= assembler_.tangent() * driven_move_;
   driven->solve(response_);  // du_u, with du_s = 0
@@ -356,10 +357,7 @@ const StepRecord& Analysis::resolve_trial_step(double step) {
   model_.revert_history();  // the trial history follows from the committed one again
   trial_pending_ = false;
   apply_increment(response_);
-  for (size_t i = 0; i < driven_dofs_.size(); ++i) {  // exactly where the host puts them
-    trial_.displacement[driven_dofs_[i]] = driven_displacements_[static_cast<Eigen::Index>(i)];
-    integrator_.update_rates(carried_.state, step, driven_dofs_[i], trial_);
-  }
+  driven_.impose(integrator_, carried_.state, step, trial_);  // exactly where the host puts them
   trial_record_ = StepRecord{};
   // Judged as the trial from the predictor was: against the force level of its first residual.
   resolve_reference_ = trial_reference_;

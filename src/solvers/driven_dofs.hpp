@@ -20,6 +20,8 @@ class DrivenDofs {
   DrivenDofs(std::vector<int> dofs, int dof_count);
 
   const std::vector<int>& dofs() const { return dofs_; }
+  /// Where the host wants them at the end of the next step, in dofs() order.
+  const Eigen::VectorXd& displacements() const { return displacements_; }
   bool empty() const { return dofs_.empty(); }
   /// Holds the driven DOFs where 'state' has them until the host says otherwise.
   void start_at(const State& state);
