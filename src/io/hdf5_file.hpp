@@ -90,6 +90,8 @@ class ExtendibleDataset {
   void append_rows(const double* values, hsize_t rows);  // rows * row_size() doubles (restarts)
   hsize_t rows() const { return dims_[0] + pending_rows(); }
   size_t row_size() const { return row_size_; }
+  /// Bytes of the rows waiting in memory.
+  size_t pending_bytes() const { return pending_.size() * sizeof(double); }
   const std::string& path() const { return path_; }
 
  private:

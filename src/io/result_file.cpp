@@ -439,18 +439,30 @@ void ResultFile::schedule_next_frame(double frame_time) {
   next_field_time_ = (std::floor((frame_time + margin) / field_time_interval_) + 1.0) * field_time_interval_ - margin;
 }
 
+size_t ResultFile::pending_bytes() const {
+  size_t bytes = 0;
+  for (const ExtendibleDataset& dataset : file_.extendible_datasets()) bytes += dataset.pending_bytes();
+  return bytes;
+}
+
 void ResultFile::flush_if_due() {
   // A flush writes the rows waiting in memory and copies the whole file (a millisecond per
   // few MB): every quarter second of wall time, field frames or not, and never before
   // twenty times the last flush's own time has passed: flushing takes at most some 5% of
-  // the run.
+  // the run. A fast run also flushes when its waiting rows reach half of what the file
+  // holds: the file grows geometrically between copies, so that the copies cost at most
+  // about three times the file, and a disk filling up still finds the last copy holding
+  // most of the rows (the copy needs room beside the file being written).
   const auto since = std::chrono::steady_clock::now() - last_flush_;
-  if (since < kFlushInterval || since < 20 * last_flush_cost_) return;
+  const size_t waiting = pending_bytes();
+  const bool grown = waiting >= std::max(kFlushBytes, flushed_bytes_ / 2);
+  if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) return;
   flush();
 }
 
 void ResultFile::flush() {
   const auto start = std::chrono::steady_clock::now();
+  flushed_bytes_ += pending_bytes();
   file_.flush();
   last_flush_ = std::chrono::steady_clock::now();
   last_flush_cost_ = last_flush_ - start;

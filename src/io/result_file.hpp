@@ -23,7 +23,8 @@
 // Field rows are compressed. <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
 // The file is published (Hdf5File::create_published): whole at every instant. Rows wait
 // in memory and are flushed every quarter second of wall time (less often for a file so
-// big that its flush, which copies it whole, takes over 12 ms) and when the file closes, so
+// big that its flush, which copies it whole, takes over 12 ms; sooner when the waiting rows
+// reach half of what the file holds) and when the file closes, so
 // a run that fails leaves a file readable up to its last step and a killed run one readable
 // up to its last flush, at most a quarter second before the kill. The index is rewritten (whole, by
 // a rename) after a flush that brought frames: at every such flush while it is small, at
@@ -114,12 +115,17 @@ class ResultFile {
   void set_steps_recorded(int steps) { steps_recorded_ = steps; }
   void flush();
   /// Flushes if a quarter second of wall time has passed since the last flush (and twenty times
-  /// that flush's own time): what a kill can lose is bounded, what flushing costs too.
+  /// that flush's own time), or if the rows waiting in memory reach half the file's rows
+  /// (and at least kFlushBytes): what a kill can lose is bounded, what flushing costs too.
   void flush_if_due();
   /// The wall time between flushes while rows arrive.
   static constexpr std::chrono::milliseconds kFlushInterval{250};
+  /// The least bytes of waiting rows that call for a flush before its time.
+  static constexpr size_t kFlushBytes = 256 * 1024;
 
  private:
+  /// Bytes of the rows waiting in memory for the next flush.
+  size_t pending_bytes() const;
   struct HistoryChannel {
     ExtendibleDataset* dataset;
     Channel value;
@@ -168,6 +174,7 @@ class ResultFile {
   int steps_recorded_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration last_flush_cost_{};
+  size_t flushed_bytes_ = 0;  // bytes of rows written by the flushes so far
   ExtendibleDataset* field_time_ = nullptr;
   ExtendibleDataset* field_step_ = nullptr;
   ExtendibleDataset* field_displacement_ = nullptr;
