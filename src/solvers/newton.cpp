@@ -19,7 +19,7 @@ std::string format_norms(int iteration, double norm, double relative, double inc
 // evaluation skips the tangent when it is below this multiple of the tolerance. Full
 // Newton's reduction grows from increment to increment, so the guess errs on the safe
 // side; on the drum-cleat deck 3 skips the tangent in nine steps out of ten and
-// re-evaluates in one step out of fifty.
+// re-evaluates in one step out of forty.
 constexpr double kConvergingMargin = 3.0;
 }  // namespace
 
