@@ -168,6 +168,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   void evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) override;
   const SparseMatrix& tangent() const override { return assembler_.tangent(); }
   double apply_increment(const Eigen::VectorXd& increment) override;
+  /// A host's driven_tangent() and resolve_trial_step() read the converged step's tangent.
+  bool wants_converged_tangent() const override { return !driven_.empty(); }
 
   Model& model_;
   Assembler assembler_;

@@ -11,6 +11,13 @@
 // halved (up to max_backtracks times) before the next solve. Contact nodes that open and
 // close in turn otherwise trap full Newton in a two-cycle. A residual that grows while
 // Newton converges (large rotations, a node landing) is left alone.
+//
+// The last evaluation: the tangent is only needed when another increment follows. When
+// the last increment cut the residual so far that the same cut again would meet the
+// tolerance (with a margin), the next evaluation is of the residual alone; if that one
+// does not converge after all, it is evaluated again at the same state with its tangent.
+// The iterates and the converged state are those of plain Newton; only the converged
+// step's tangent assembly is saved (StepEquations::wants_converged_tangent() keeps it).
 #pragma once
 
 #include <Eigen/Dense>
@@ -35,12 +42,15 @@ struct NewtonSettings {
   double divergence_ratio = 1e8;
   int line_search_from = 2;  // increments taken whole before backtracking starts
   int max_backtracks = 4;
-  std::ostream* log = nullptr;  // per-iteration lines when set
+  bool residual_only_when_converging = true;  // the last evaluation without the tangent (above)
+  std::ostream* log = nullptr;                // per-iteration lines when set
 };
 
 struct NewtonReport {
-  int iterations = 0;  // linear solves performed
-  int backtracks = 0;  // halvings of an increment
+  int iterations = 0;     // linear solves performed
+  int backtracks = 0;     // halvings of an increment
+  int residual_only = 0;  // evaluations of the residual alone (expected to converge)
+  int retaken = 0;        // of those, the ones that did not converge: evaluated again with the tangent
   double reference_force = 0.0;
   std::vector<double> residual_norms;  // |R| at each evaluation, the last one converged
 };
@@ -56,6 +66,8 @@ class StepEquations {
   /// Adds the increment of the free equations to the trial state; returns the
   /// relative increment size |du|_inf / (1 + |u|_inf).
   virtual double apply_increment(const Eigen::VectorXd& increment) = 0;
+  /// True when the caller reads tangent() after convergence: it is then that of the converged state.
+  virtual bool wants_converged_tangent() const { return false; }
 };
 
 class NewtonSolver {
