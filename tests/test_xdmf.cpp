@@ -241,3 +241,57 @@ TEST_CASE("result file: the index after every flush, a surface drawn in every fr
           std::vector<double>(outline.begin() + 8 * frame, outline.begin() + 8 * frame + 8));
   }
 }
+
+TEST_CASE("result file: the views of frames written between flushes are made at the flush and at the close",
+          "[io][xdmf]") {
+  tirefe::testing::TempDir folder;
+  Ring ring;
+  Analysis analysis(ring.model);
+  const int dofs = kDofsPerNode * ring.model.mesh().node_count();
+  const std::vector<Eigen::Vector2d> square{{1, 1}, {-1, 1}, {-1, -1}, {1, -1}};
+  auto moved = [&](double time, const Eigen::Vector2d&, double) {
+    std::vector<Eigen::Vector2d> points;
+    for (const Eigen::Vector2d& corner : square) points.push_back(corner + Eigen::Vector2d(time, 0.0));
+    return points;
+  };
+  constexpr int kFrames = 6;
+  {
+    io::ResultFile file(folder.path("ring.h5"), io::RunMetadata{"ring", "", "", {}});
+    for (int frame = 0; frame < kFrames; ++frame) {
+      analysis.mutable_state().time = 0.5 * frame;
+      analysis.mutable_state().displacement = Eigen::VectorXd::LinSpaced(dofs, frame, frame + 1.0);
+      analysis.mutable_state().velocity = -analysis.state().displacement;
+      file.write_fields(analysis, frame);
+      if (frame == 1) file.flush();
+      // Added with frames 0 and 1 flushed and frame 2 waiting for the flush.
+      if (frame == 2) file.add_surface("square", true, moved);
+    }
+    // Frames 3 to 5 wait for the close.
+  }
+  const Hdf5File file = Hdf5File::open_read_only(folder.path("ring.h5"));
+  const std::vector<double> displacement = file.read_doubles("/fields/displacement");
+  const std::vector<double> velocity = file.read_doubles("/fields/velocity");
+  const std::vector<double> outline = file.read_doubles("/surfaces/square/outline");
+  REQUIRE(displacement.size() == static_cast<size_t>(kFrames * dofs));
+  REQUIRE(outline.size() == static_cast<size_t>(kFrames * 8));
+  for (int frame = 0; frame < kFrames; ++frame) {
+    const std::string group = "/fields/frames/" + std::to_string(frame) + "/";
+    std::vector<double> expected_displacement, expected_velocity, expected_rotation;
+    for (int node = 0; node < dofs / kDofsPerNode; ++node) {
+      const int row = frame * dofs + node * kDofsPerNode;
+      expected_displacement.insert(expected_displacement.end(), {displacement[row], displacement[row + 1], 0.0});
+      expected_velocity.insert(expected_velocity.end(), {velocity[row], velocity[row + 1], 0.0});
+      expected_rotation.push_back(displacement[row + 2]);
+    }
+    CHECK(file.read_doubles(group + "displacement") == expected_displacement);
+    CHECK(file.read_doubles(group + "velocity") == expected_velocity);
+    CHECK(file.read_doubles(group + "rotation") == expected_rotation);
+    CHECK(file.read_doubles("/surfaces/square/frames/" + std::to_string(frame)) ==
+          std::vector<double>(outline.begin() + 8 * frame, outline.begin() + 8 * frame + 8));
+    CHECK(outline[8 * frame] == 1.0 + 0.5 * frame);
+  }
+  const std::string text = read_text(folder.path("ring.xmf"));
+  CHECK(count(text, "<Grid Name=\"square\" GridType=\"Uniform\">") == kFrames);
+  CHECK(count(text, "<Grid Name=\"mesh\" GridType=\"Uniform\">") == kFrames);
+  CHECK(count(text, "ring.h5:/fields/frames/5/displacement<") > 0);
+}

@@ -63,6 +63,7 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
 ResultFile::~ResultFile() {
   if (file_.failed()) return;  // reported; the file on disk keeps its last flush
   try {
+    write_unflushed_views();
     file_.close();
     index_flushed_frames();
     if (frames_indexed_ != index_.frames()) write_index();
@@ -267,11 +268,13 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   XdmfGrid grid{name, "Polyline", segment_count, 2, {group + "/segments", {segment_count, 2}, true},
                 {group + "/frames/{frame}", {count, 2}}, {}};
   // clang-format on
-  // The frames written before the surface existed show it where its motion put it then.
+  // The frames written before the surface existed show it where its motion put it then
+  // (the unflushed ones get their views with the others at the flush).
   const size_t earlier = frames_written();
   for (size_t frame = 0; frame < earlier; ++frame) {
     append_outline(surface, frame_time(frame));
-    file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
+    if (frame < index_.frames())
+      file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
   }
   index_.add_grid(grid);
   if (earlier > 0) {
@@ -326,13 +329,14 @@ void ResultFile::write_views(size_t frame) {
                          2);
 }
 
+void ResultFile::write_unflushed_views() {
+  for (size_t frame = index_.frames(); frame < frames_written(); ++frame) write_views(frame);
+}
+
 void ResultFile::index_restored_frames() {
   if (discarded_ || !mesh_written_) return;
   const std::vector<double> times = file_.read_doubles("/fields/time");
-  for (size_t frame = frames_written(); frame < times.size(); ++frame) {
-    write_views(frame);
-    unflushed_frames_.push_back(times[frame]);
-  }
+  for (size_t frame = frames_written(); frame < times.size(); ++frame) unflushed_frames_.push_back(times[frame]);
   // The frames go on where the interrupted run's would have, not at the first step.
   if (!times.empty()) schedule_next_frame(times.back());
   flush();
@@ -397,14 +401,12 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
     view_centre_ = 0.5 * (low + high);
     view_reach_ = std::max((high - low).norm(), 1.0);
   }
-  const size_t frame = frames_written();
   field_time_->append(state.time);
   field_step_->append(static_cast<double>(step));
   field_displacement_->append(state.displacement.data());
   field_velocity_->append(state.velocity.data());
   if (field_deformation_) append_deformation(model, state);
   for (Surface& surface : surfaces_) append_outline(surface, state.time);
-  write_views(frame);
   unflushed_frames_.push_back(state.time);
   flush_if_due();
 }
@@ -461,6 +463,9 @@ void ResultFile::flush_if_due() {
 }
 
 void ResultFile::flush() {
+  // The views are the frames' own cost, made here together: not the flush's time, which
+  // spaces the flushes.
+  write_unflushed_views();
   const auto start = std::chrono::steady_clock::now();
   flushed_bytes_ += pending_bytes();
   file_.flush();

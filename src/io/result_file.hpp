@@ -146,6 +146,9 @@ class ResultFile {
   void append_deformation(const Model& model, const State& state);
   void append_outline(Surface& surface, double time);
   void write_views(size_t frame);
+  /// The views of the frames written since the last flush: made at the flush, together (some
+  /// hundred at a time, HDF5's code and its metadata stay in the processor's caches).
+  void write_unflushed_views();
   void write_index();
   void write_index_if_due();
   /// Adds the frames the last flush put in the file to the index.

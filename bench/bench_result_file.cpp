@@ -1,0 +1,112 @@
+// The result file's own cost in a run like inputs/drum_cleat.lua, without the model: 10 956
+// steps of 20 history channels, 6 contact rows of 100 nodes every 20 steps, and a field frame
+// every 9 steps (1 218 frames: displacement, velocity, deformation of 201 nodes, a drum
+// outline of 139 points), flushed every 500 steps as a run of some 5 s flushes every quarter
+// second, with the XDMF views of the frames since the last flush. Prints the CPU milliseconds
+// of the rows, of the flushes (views included) and of the close, and the file's size.
+// Timed alone, HDF5's code and data stay in the processor's caches: in a run, between the
+// model's steps, the same calls cost up to twice as much. Usage: bench_result_file [FOLDER]
+#include <time.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/hdf5_file.hpp"
+
+using namespace tirefe::io;
+
+namespace {
+
+// Process CPU time: what the file costs the run, whatever else the machine runs.
+struct Clock {
+  using duration = std::chrono::nanoseconds;
+  using time_point = std::chrono::time_point<Clock, duration>;
+  static time_point now() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return time_point(duration(now.tv_sec * 1000000000LL + now.tv_nsec));
+  }
+};
+
+double milliseconds(Clock::duration duration) { return std::chrono::duration<double, std::milli>(duration).count(); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string folder = argc > 1 ? argv[1] : std::filesystem::temp_directory_path().string();
+  const std::string path = folder + "/bench_result_file.h5";
+  constexpr int kSteps = 10956, kChannels = 20, kNodes = 201, kOutline = 139, kContactNodes = 100;
+  constexpr int kFieldEvery = 9, kContactEvery = 20, kFlushEvery = 500;
+  Clock::duration rows{}, flushes{}, closing{};
+  {
+    auto start = Clock::now();
+    Hdf5File file = Hdf5File::create_published(path);
+    std::vector<ExtendibleDataset*> channels, contact;
+    for (int c = 0; c < kChannels; ++c)
+      channels.push_back(&file.create_extendible("/history/channel_" + std::to_string(c), {}, "N"));
+    for (const char* name : {"gap", "normal_force", "tangential_force", "state", "coordinate", "sliding_velocity"})
+      contact.push_back(&file.create_compressed_extendible(std::string("/contact/drum/") + name, {kContactNodes}));
+    ExtendibleDataset& contact_time = file.create_extendible("/contact/drum/time", {}, "s");
+    ExtendibleDataset& time = file.create_extendible("/fields/time", {}, "s");
+    ExtendibleDataset& step = file.create_extendible("/fields/step", {});
+    ExtendibleDataset& displacement = file.create_compressed_extendible("/fields/displacement", {kNodes, 3});
+    ExtendibleDataset& velocity = file.create_compressed_extendible("/fields/velocity", {kNodes, 3});
+    ExtendibleDataset& deformation = file.create_compressed_extendible("/fields/deformation", {kNodes, 3});
+    ExtendibleDataset& outline = file.create_compressed_extendible("/surfaces/drum/outline", {kOutline, 2}, "m");
+    std::vector<double> field(kNodes * 3), points(kOutline * 2), nodes(kContactNodes);
+    size_t frames = 0, viewed = 0;
+    rows += Clock::now() - start;
+    for (int s = 1; s <= kSteps; ++s) {
+      start = Clock::now();
+      const double t = 1e-3 * s;
+      for (int c = 0; c < kChannels; ++c) channels[c]->append(std::sin(t * (c + 1)));
+      if (s % kContactEvery == 0) {
+        for (int n = 0; n < kContactNodes; ++n) nodes[n] = std::cos(t + 0.01 * n);
+        for (ExtendibleDataset* rows_of : contact) rows_of->append(nodes.data());
+        contact_time.append(t);
+      }
+      if (s % kFieldEvery == 0) {
+        // Smooth fields of a rolling tire: values that vary from node to node and frame to frame.
+        for (int i = 0; i < kNodes * 3; ++i) field[i] = 0.1 * std::sin(0.031 * i + 7.0 * t) + 1e-4 * std::cos(i * t);
+        time.append(t);
+        step.append(static_cast<double>(s));
+        displacement.append(field.data());
+        velocity.append(field.data());
+        deformation.append(field.data());
+        for (int i = 0; i < kOutline; ++i) {
+          points[2 * i] = 0.86 * std::cos(0.045 * i + t);
+          points[2 * i + 1] = 0.86 * std::sin(0.045 * i + t);
+        }
+        outline.append(points.data());
+        ++frames;
+      }
+      rows += Clock::now() - start;
+      if (s % kFlushEvery == 0 || s == kSteps) {
+        start = Clock::now();
+        // The views of the frames since the last flush, made there (io::ResultFile::flush).
+        for (; viewed < frames; ++viewed) {
+          const std::string prefix = "/fields/frames/" + std::to_string(viewed) + "/";
+          file.write_row_view(prefix + "displacement", displacement, viewed, 0, 2, 3);
+          file.write_row_view(prefix + "velocity", velocity, viewed, 0, 2, 3);
+          file.write_row_view(prefix + "rotation", displacement, viewed, 2, 1, 0);
+          file.write_row_view(prefix + "deformation", deformation, viewed, 0, 2, 3);
+          file.write_row_view("/surfaces/drum/frames/" + std::to_string(viewed), outline, viewed, 0, 2, 2);
+        }
+        file.flush();
+        flushes += Clock::now() - start;
+      }
+    }
+    start = Clock::now();
+    file.close();
+    closing += Clock::now() - start;
+  }
+  const double total = milliseconds(rows + flushes + closing);
+  std::printf("rows %.1f ms, flushes and views %.1f ms, close %.1f ms: %.1f ms in all; %.1f MB\n", milliseconds(rows),
+              milliseconds(flushes), milliseconds(closing), total, std::filesystem::file_size(path) / 1e6);
+  std::filesystem::remove(path);
+  return 0;
+}
