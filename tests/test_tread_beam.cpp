@@ -147,16 +147,3 @@ TEST_CASE("beam batch path: every beam of a perturbed, rolled ring as evaluate()
       CHECK(testing::batch_deviation(beams, locals, context, with_tangent) <= 1e-14);
     }
 }
-
-TEST_CASE("small_arcsine: within one unit in the last place of std::asin on [-0.5, 0.5]", "[beam]") {
-  std::mt19937 random(9);
-  std::uniform_real_distribution<double> uniform(-0.5, 0.5);
-  double worst = 0.0;
-  for (int i = 0; i < 200000; ++i) {
-    const double x = i < 100 ? 0.5 * (i - 50) / 50.0 : uniform(random);
-    const double exact = std::asin(x);
-    worst = std::max(worst, std::abs(small_arcsine(x) - exact) / std::max(std::abs(exact), 1e-300));
-  }
-  CHECK(worst <= 2.3e-16);
-  CHECK(small_arcsine(1e-300) == 1e-300);
-}

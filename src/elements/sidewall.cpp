@@ -195,15 +195,10 @@ SidewallWedge::Kinematics SidewallWedge::kinematics(const Vector& u, int q, doub
   k.e_x = perpendicular(k.e_y);
   // gamma: from the rotated reference cord -rho (length r_rim) to e_y. Within 45 degrees
   // its sine is well conditioned (d gamma = d sin / cos gamma) and asin costs a fraction
-  // of atan2, which takes over beyond; within 30 degrees (every working wedge) the
-  // arcsine is inline.
+  // of atan2, which takes over beyond.
   const Eigen::Vector2d reference = -k.rim_offset;
   const double cross = reference.x() * k.e_y.y() - reference.y() * k.e_y.x(), dot = reference.dot(k.e_y);
-  const double sine = cross / law_.properties().rim_radius;
-  if (!(std::abs(cross) <= dot))
-    k.shear_angle = std::atan2(cross, dot);
-  else
-    k.shear_angle = std::abs(sine) <= 0.5 ? small_arcsine(sine) : std::asin(sine);
+  k.shear_angle = std::abs(cross) <= dot ? std::asin(cross / law_.properties().rim_radius) : std::atan2(cross, dot);
   return k;
 }
 

@@ -1,4 +1,4 @@
-// Sine and cosine of one angle (and the arcsine of a small sine), inline and branch-free, so that a loop over elements
+// Sine and cosine of one angle, inline and branch-free, so that a loop over elements
 // marked "omp simd" vectorises through them (a call to libm's sin/cos stops it).
 //
 // The angle is reduced by the nearest multiple n of pi/2 with pi/2 split in two (the
@@ -39,21 +39,6 @@ inline SineCosine sine_cosine(double angle) {
   const bool odd = q == 1.0 || q == -1.0;
   const double sine = odd ? c : s, cosine = odd ? s : c;
   return {(q < 0.0 || q > 1.5) ? -sine : sine, (q > 0.5 || q < -1.5) ? -cosine : cosine};
-}
-
-/// asin(x) for |x| <= 0.5 (the caller checks the range): fdlibm's rational approximation
-/// x + x R(x^2), within one unit in the last place of std::asin (tests/test_tread_beam.cpp).
-inline double small_arcsine(double x) {
-  const double t = x * x;
-  const double p = t * (1.66666666666666657415e-01 +
-                        t * (-3.25565818622400915405e-01 +
-                             t * (2.01212532134862925881e-01 +
-                                  t * (-4.00555345006794114027e-02 +
-                                       t * (7.91534994289814532176e-04 + t * 3.47933107596021167570e-05)))));
-  const double q =
-      1.0 + t * (-2.40339491173441421878e+00 +
-                 t * (2.02094576023350569471e+00 + t * (-6.88283971605453293030e-01 + t * 7.70381505559019352791e-02)));
-  return x + x * (p / q);
 }
 
 }  // namespace tirefe
