@@ -482,6 +482,27 @@ TEST_CASE("tread pressure tangent equals central finite differences and is unsym
   }
 }
 
+TEST_CASE("tread pressure batch path: every load of a perturbed ring as evaluate() gives it, to 1e-14", "[pressure]") {
+  // 100 loads round a circle on two schedules (one ramped), deformed by centimetres.
+  std::mt19937 random(17);
+  constexpr int kLoads = 100;
+  const auto ramped = std::make_shared<const PressureSchedule>(kPressure, LoadFunction::linear());
+  const auto held = constant_pressure(0.5 * kPressure);
+  std::vector<TreadPressure> loads;
+  std::vector<LocalState<6>> locals;
+  for (int e = 0; e < kLoads; ++e) {
+    const double angle = 2.0 * kPi * e / kLoads;
+    loads.emplace_back(on_circle(kTreadRadius, angle), on_circle(kTreadRadius, angle + 2.0 * kPi / kLoads),
+                       kTreadWidth * (1.0 + 0.01 * e), e < 60 ? ramped : held);
+    locals.push_back(testing::random_local_state<6>(random, 0.015, 1.0));
+  }
+  for (const EvaluationContext& context : testing::batch_contexts())
+    for (bool with_tangent : {true, false}) {
+      INFO("tangent " << with_tangent << ", time " << context.time);
+      CHECK(testing::batch_deviation(loads, locals, context, with_tangent) <= 1e-14);
+    }
+}
+
 TEST_CASE("tread pressure: p w l on each chord, outward, and zero net force on a closed ring", "[pressure]") {
   std::mt19937 random(11);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);

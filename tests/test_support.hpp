@@ -15,6 +15,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/element.hpp"
 
@@ -119,6 +120,58 @@ double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kD
     largest = std::max(largest, (residual - without_acceleration).cwiseAbs().maxCoeff());
   }
   return largest;
+}
+
+/// The largest relative difference between a batch kernel's numbers (element.hpp) and
+/// evaluate()'s over a block of elements at the given states: per element
+/// |r_batch - r| / |r| and, with the tangent, |K_batch - K| / |K| (the tangent entries of
+/// idle DOFs, never read, set to evaluate()'s zeros; the residual's are compared as they are).
+template <class Kernel>
+double batch_deviation(const std::vector<Kernel>& kernels, const std::vector<LocalState<Kernel::kDofs>>& locals,
+                       const EvaluationContext& context, bool with_tangent) {
+  constexpr int kDofs = Kernel::kDofs;
+  const int count = static_cast<int>(kernels.size());
+  std::vector<double> displacement(kDofs * count), velocity(kDofs * count), acceleration(kDofs * count);
+  for (int e = 0; e < count; ++e)
+    for (int k = 0; k < kDofs; ++k) {
+      displacement[k * count + e] = locals[e].displacement[k];
+      velocity[k * count + e] = locals[e].velocity[k];
+      acceleration[k * count + e] = locals[e].acceleration[k];
+    }
+  const BlockValues values{count, displacement.data(), velocity.data(),
+                           detail::ReadsAcceleration<Kernel>::value ? acceleration.data() : nullptr};
+  typename Kernel::Batch batch(kernels);
+  batch.evaluate(values, context, with_tangent);
+  constexpr auto idle = detail::IdleDofs<Kernel>::mask();
+  double worst = 0.0;
+  for (int e = 0; e < count; ++e) {
+    typename Kernel::Vector residual, batch_residual;
+    typename Kernel::Matrix tangent, batch_tangent;
+    typename Kernel::History history{};
+    kernels[e].evaluate(locals[e], context, history, history, residual, with_tangent ? &tangent : nullptr);
+    for (int k = 0; k < kDofs; ++k) batch_residual[k] = batch.residual()[k * count + e];
+    worst = std::max(worst, (batch_residual - residual).norm() / residual.norm());
+    if (!with_tangent) continue;
+    for (int k = 0; k < kDofs * kDofs; ++k)
+      batch_tangent.data()[k] = idle[k / kDofs] || idle[k % kDofs] ? tangent.data()[k] : batch.tangent()[k * count + e];
+    worst = std::max(worst, (batch_tangent - tangent).norm() / tangent.norm());
+  }
+  return worst;
+}
+
+/// The integrator factor combinations a batch kernel is checked under: static, Newmark
+/// (damping and mass terms, h = 1e-4 s) and HHT-alpha (alpha = -0.1, forces weighted 0.9).
+inline std::vector<EvaluationContext> batch_contexts() {
+  EvaluationContext statics;
+  statics.time = 0.5;
+  EvaluationContext hht = dynamic_context(1e-4, 0.3025, 0.6);
+  for (double* weight : {&hht.factors.force_stiffness, &hht.factors.force_damping, &hht.factors.tangent_stiffness})
+    *weight *= 0.9;
+  hht.factors.tangent_damping *= 0.9;
+  hht.time = 0.75;
+  EvaluationContext newmark = dynamic_context(1e-4);
+  newmark.time = 0.25;
+  return {statics, newmark, hht};
 }
 
 /// 'text' with the first 'from' replaced by 'to' ('from' must be there).

@@ -17,6 +17,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "elements/sine_cosine.hpp"
+
 namespace tirefe {
 
 namespace {
@@ -42,8 +44,8 @@ struct ArchSolution {
 /// service ratio 0.85, 3e-7 at 0.7, 2e-5 at 0.5. Halley's steps (f'' = -sin alpha comes
 /// free with f) converge cubically: the error after a step d is about K d^3 with
 /// K <= 2 / alpha^2, so a step |d| <= 1e-5 alpha leaves 2e-15 alpha, and every chord of a
-/// working tire needs a single sine and cosine. Sine and cosine follow by Taylor to
-/// second order (error d^3/6, below round-off).
+/// working tire needs a single sine and cosine (sine_cosine.hpp, inline). Sine and cosine
+/// follow by Taylor to second order (error d^3/6, below round-off).
 ArchSolution solve_half_angle(double ratio) {
   const double y = 1.0 - ratio;
   // clang-format off
@@ -55,7 +57,8 @@ ArchSolution solve_half_angle(double ratio) {
   double alpha = std::min(std::sqrt(y * series), kPi);
   double low = 0.0, high = kPi;
   for (int iteration = 0; iteration < 60; ++iteration) {
-    const double sin_alpha = std::sin(alpha), cos_alpha = std::cos(alpha);
+    const SineCosine turn = sine_cosine(alpha);  // inline: no call into the math library
+    const double sin_alpha = turn.sin, cos_alpha = turn.cos;
     const double residual = sin_alpha - ratio * alpha;
     if (residual == 0.0) break;
     (residual > 0.0 ? low : high) = alpha;
@@ -72,7 +75,8 @@ ArchSolution solve_half_angle(double ratio) {
     alpha = next;
     if (high - low <= 1e-15 * high) break;  // the end of a bisection run
   }
-  return {alpha, std::cos(alpha), std::sin(alpha)};
+  const SineCosine turn = sine_cosine(alpha);
+  return {alpha, turn.cos, turn.sin};
 }
 
 void require(bool condition, const std::string& message) {

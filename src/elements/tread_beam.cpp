@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include "elements/sine_cosine.hpp"
+
 namespace tirefe {
 
 namespace {
@@ -125,6 +127,100 @@ ElementEnergy TreadBeam::energy(const LocalState<kDofs>& local, const History&) 
                    section_.bending_stiffness * e.curvature * e.curvature);
   energy.kinetic = 0.5 * local.velocity.dot(mass_times(local.velocity));
   return energy;
+}
+
+// The batch path. Its arithmetic is evaluate()'s, term for term, written per beam on
+// arrays indexed by the beam, so that the loop over beams vectorises.
+TreadBeam::Batch::Batch(const std::vector<TreadBeam>& beams) : count_(static_cast<int>(beams.size())) {
+  for (auto* field : {&length_, &reference_angle_, &direction_x_, &direction_y_, &axial_, &shear_, &bending_, &mass_,
+                      &rotary_inertia_, &curvature_damping_})
+    field->assign(count_, 0.0);
+  residual_.assign(static_cast<size_t>(kDofs) * count_, 0.0);
+  tangent_.assign(static_cast<size_t>(kDofs) * kDofs * count_, 0.0);
+  for (int e = 0; e < count_; ++e) {
+    const TreadBeam& beam = beams[e];
+    length_[e] = beam.length_;
+    reference_angle_[e] = beam.reference_angle_;
+    direction_x_[e] = beam.reference_direction_.x();
+    direction_y_[e] = beam.reference_direction_.y();
+    axial_[e] = beam.section_.axial_stiffness;
+    shear_[e] = beam.section_.shear_stiffness;
+    bending_[e] = beam.section_.bending_stiffness;
+    mass_[e] = beam.section_.mass_per_length;
+    rotary_inertia_[e] = beam.section_.rotary_inertia_per_length;
+    curvature_damping_[e] = beam.section_.curvature_damping;
+  }
+}
+
+template <bool Tangent>
+void TreadBeam::Batch::evaluate_beams(const BlockValues& values, const IntegratorFactors& f) {
+  const int n = count_;
+  const double* u = values.displacement;
+  const double* v = values.velocity;
+  const double* a = values.acceleration;
+  double* residual = residual_.data();
+  double* tangent = tangent_.data();
+#pragma omp simd
+  for (int e = 0; e < n; ++e) {
+    const double length = length_[e], h = 1.0 / length;
+    const double stretch_x = direction_x_[e] + (u[3 * n + e] - u[e]) / length;  // x'
+    const double stretch_y = direction_y_[e] + (u[4 * n + e] - u[n + e]) / length;
+    const SineCosine turn = sine_cosine(reference_angle_[e] + 0.5 * (u[2 * n + e] + u[5 * n + e]));  // beta
+    const double t[2] = {turn.cos, turn.sin}, normal[2] = {-turn.sin, turn.cos};
+    const double axial = stretch_x * t[0] + stretch_y * t[1] - 1.0;
+    const double shear = stretch_x * normal[0] + stretch_y * normal[1];
+    const double curvature = (u[5 * n + e] - u[2 * n + e]) / length;
+    const double N = axial_[e] * axial, V = shear_[e] * shear, M = bending_[e] * curvature;
+    const double d_axial[6] = {-h * t[0], -h * t[1], 0.5 * shear, h * t[0], h * t[1], 0.5 * shear};
+    const double d_shear[6] = {-h * normal[0], -h * normal[1], -0.5 * (1.0 + axial),
+                               h * normal[0],  h * normal[1],  -0.5 * (1.0 + axial)};
+    const double d_curvature[6] = {0.0, 0.0, -h, 0.0, 0.0, h};
+    const double damping_moment = curvature_damping_[e] * (v[5 * n + e] - v[2 * n + e]) / length;
+    // Consistent mass L0/6 [2 1; 1 2] per component (rho A, rho A, rho I).
+    const double per_length[3] = {mass_[e], mass_[e], rotary_inertia_[e]};
+    for (int k = 0; k < kDofs; ++k) {
+      const int c = k % 3, other = k < 3 ? k + 3 : k - 3;
+      const double inertia = per_length[c] * length / 6.0 * (2.0 * a[k * n + e] + a[other * n + e]);
+      residual[k * n + e] = (f.force_stiffness * length) * (N * d_axial[k] + V * d_shear[k] + M * d_curvature[k]) +
+                            (f.force_damping * length * damping_moment) * d_curvature[k] + f.force_mass * inertia;
+    }
+    if (!Tangent) continue;
+
+    const double scale = f.tangent_stiffness * length;
+    double K[kDofs][kDofs];
+    for (int r = 0; r < kDofs; ++r)
+      for (int c = 0; c < kDofs; ++c)
+        K[r][c] = (scale * axial_[e] * d_axial[r]) * d_axial[c] + (scale * shear_[e] * d_shear[r]) * d_shear[c];
+    const double bending = scale * bending_[e] * h * h + f.tangent_damping * curvature_damping_[e] * length * h * h;
+    // The geometric terms N d2(eps) + V d2(gam) couple translations and rotations.
+    const double coupling[2] = {(0.5 * h * scale) * (N * normal[0] - V * t[0]),
+                                (0.5 * h * scale) * (N * normal[1] - V * t[1])};
+    const double rotation_rotation = 0.25 * scale * (-N * (1.0 + axial) - V * shear);
+    for (int c = 0; c < 2; ++c)
+      for (int rot = 2; rot < kDofs; rot += 3) {
+        K[c][rot] -= coupling[c];
+        K[rot][c] -= coupling[c];
+        K[3 + c][rot] += coupling[c];
+        K[rot][3 + c] += coupling[c];
+      }
+    K[2][2] += rotation_rotation + bending;
+    K[5][5] += rotation_rotation + bending;
+    K[2][5] += rotation_rotation - bending;
+    K[5][2] += rotation_rotation - bending;
+    for (int c = 0; c < 3; ++c) {
+      const double mass = f.tangent_mass * per_length[c] * length / 6.0;
+      K[c][c] += 2.0 * mass;
+      K[c + 3][c + 3] += 2.0 * mass;
+      K[c][c + 3] += mass;
+      K[c + 3][c] += mass;
+    }
+    for (int r = 0; r < kDofs; ++r)
+      for (int c = 0; c < kDofs; ++c) tangent[(r * kDofs + c) * n + e] = K[r][c];
+  }
+}
+
+void TreadBeam::Batch::evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent) {
+  with_tangent ? evaluate_beams<true>(values, context.factors) : evaluate_beams<false>(values, context.factors);
 }
 
 }  // namespace tirefe

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "core/element.hpp"
 
@@ -44,6 +45,8 @@ class TreadBeam : public KernelShape<2> {
   };
   Strains strains(const Vector& displacement) const;
   const BeamSection& section() const { return section_; }
+  /// The block's batch path (element.hpp): every beam at once, the same numbers.
+  class Batch;
 
  private:
   /// M x for the consistent mass matrix.
@@ -54,6 +57,28 @@ class TreadBeam : public KernelShape<2> {
   double length_;
   double reference_angle_;
   Eigen::Vector2d reference_direction_;  // (cos phi0, sin phi0)
+};
+
+/// Beams over structure-of-arrays data: one loop vectorised across beams forms the
+/// strains (the sine and cosine of beta inline, sine_cosine.hpp), the section forces and
+/// the element vectors and matrices of evaluate().
+class TreadBeam::Batch {
+ public:
+  explicit Batch(const std::vector<TreadBeam>& beams);
+  int size() const { return count_; }
+  void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
+  const double* residual() const { return residual_.data(); }
+  const double* tangent() const { return tangent_.data(); }
+
+ private:
+  template <bool Tangent>
+  void evaluate_beams(const BlockValues& values, const IntegratorFactors& f);
+
+  int count_ = 0;
+  // Per beam: L0, phi0, (cos phi0, sin phi0), EA, GA_s, EI, rho A, rho I, c_kappa.
+  std::vector<double> length_, reference_angle_, direction_x_, direction_y_, axial_, shear_, bending_, mass_,
+      rotary_inertia_, curvature_damping_;
+  std::vector<double> residual_, tangent_;  // [k * size + e]
 };
 
 }  // namespace tirefe

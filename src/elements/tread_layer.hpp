@@ -24,6 +24,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "core/element.hpp"
 
@@ -47,6 +48,8 @@ class TreadLayer : public KernelShape<2> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+  /// The block's batch path (element.hpp): every layer at once, the same numbers.
+  class Batch;
 
  private:
   /// Radial/circumferential values a_r, a_t in the frame turned to the radial direction e:
@@ -63,6 +66,29 @@ class TreadLayer : public KernelShape<2> {
   Eigen::Vector2d radial_;  // E_r, unit
   TreadLayerProperties properties_;
   bool damped_ = false;
+};
+
+/// Layers over structure-of-arrays data: one loop vectorised across layers turns the
+/// frame (the sine and cosine of theta_b inline, sine_cosine.hpp) and forms the spring and
+/// dashpot forces and the element vectors and matrices of evaluate().
+class TreadLayer::Batch {
+ public:
+  explicit Batch(const std::vector<TreadLayer>& layers);
+  int size() const { return count_; }
+  void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
+  const double* residual() const { return residual_.data(); }
+  const double* tangent() const { return tangent_.data(); }
+
+ private:
+  template <bool Tangent, bool Damped>
+  void evaluate_layers(const BlockValues& values, const IntegratorFactors& f);
+
+  int count_ = 0;
+  bool damped_ = false;  // some layer has dashpots
+  // Per layer: E_r, k_r, k_t, m, c_r, c_t.
+  std::vector<double> radial_x_, radial_y_, radial_stiffness_, circumferential_stiffness_, mass_, radial_damping_,
+      circumferential_damping_;
+  std::vector<double> residual_, tangent_;  // [k * size + e]
 };
 
 }  // namespace tirefe

@@ -40,4 +40,55 @@ void TreadPressure::evaluate(const LocalState<kDofs>& local, const EvaluationCon
 
 ElementEnergy TreadPressure::energy(const LocalState<kDofs>&, const History&) const { return {}; }
 
+TreadPressure::Batch::Batch(const std::vector<TreadPressure>& loads) : loads_(loads) {
+  const size_t n = loads_.size();
+  chord_x_.assign(n, 0.0);
+  chord_y_.assign(n, 0.0);
+  half_load_.assign(n, 0.0);
+  residual_.assign(kDofs * n, 0.0);
+  tangent_.assign(kDofs * kDofs * n, 0.0);
+  for (size_t e = 0; e < n; ++e) {
+    chord_x_[e] = loads_[e].reference_chord_.x();
+    chord_y_[e] = loads_[e].reference_chord_.y();
+  }
+}
+
+void TreadPressure::Batch::evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent) {
+  const int n = size();
+  // Every load of a tire reads one schedule: its pressure is looked up once.
+  const PressureSchedule* schedule = nullptr;
+  double pressure = 0.0;
+  for (int e = 0; e < n; ++e) {
+    const TreadPressure& load = loads_[e];
+    if (load.pressure_.get() != schedule) {
+      schedule = load.pressure_.get();
+      pressure = schedule->at(context.time);
+    }
+    half_load_[e] = 0.5 * pressure * load.width_;
+  }
+  const IntegratorFactors& f = context.factors;
+  const double* u = values.displacement;
+  double* residual = residual_.data();
+  double* tangent = tangent_.data();
+#pragma omp simd
+  for (int e = 0; e < n; ++e) {
+    // r_a = r_b = (p w / 2) k x c, c the deformed chord.
+    const double chord_x = chord_x_[e] + u[3 * n + e] - u[e], chord_y = chord_y_[e] + u[4 * n + e] - u[n + e];
+    const double load = f.force_stiffness * half_load_[e];
+    residual[e] = residual[3 * n + e] = load * -chord_y;
+    residual[n + e] = residual[4 * n + e] = load * chord_x;
+  }
+  if (!with_tangent) return;
+#pragma omp simd
+  for (int e = 0; e < n; ++e) {
+    const double entry = f.tangent_stiffness * half_load_[e];
+    for (int row = 0; row < kDofs; row += 3) {
+      tangent[(row * kDofs + 1) * n + e] = entry;
+      tangent[((row + 1) * kDofs) * n + e] = -entry;
+      tangent[(row * kDofs + 4) * n + e] = -entry;
+      tangent[((row + 1) * kDofs + 3) * n + e] = entry;
+    }
+  }
+}
+
 }  // namespace tirefe

@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 #include <memory>
+#include <vector>
 
 #include "core/element.hpp"
 #include "elements/pressure_schedule.hpp"
@@ -33,11 +34,30 @@ class TreadPressure : public KernelShape<2> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+  /// The block's batch path (element.hpp): every load at once, the same numbers.
+  class Batch;
 
  private:
   Eigen::Vector2d reference_chord_;
   double width_;
   std::shared_ptr<const PressureSchedule> pressure_;
+};
+
+/// Loads over structure-of-arrays data: the pressure once per schedule, then one loop
+/// vectorised across loads. Only the eight load-stiffness entries change; the other
+/// tangent entries stay zero.
+class TreadPressure::Batch {
+ public:
+  explicit Batch(const std::vector<TreadPressure>& loads);
+  int size() const { return static_cast<int>(loads_.size()); }
+  void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
+  const double* residual() const { return residual_.data(); }
+  const double* tangent() const { return tangent_.data(); }
+
+ private:
+  std::vector<TreadPressure> loads_;
+  std::vector<double> chord_x_, chord_y_, half_load_;  // per load: reference chord, p w / 2
+  std::vector<double> residual_, tangent_;             // [k * size + e]
 };
 
 }  // namespace tirefe
