@@ -72,7 +72,8 @@ class RigidMotion {
 
   /// The pose at time t. Every node of an evaluation pass asks at the same time, so the
   /// last pose is kept (one per thread) and the motion's functions, sine and cosine run
-  /// once per pass rather than once per node.
+  /// once per pass rather than once per node. The functions must depend on time alone
+  /// (as their rates by differences already assume).
   RigidPose pose(double time) const;
 
   /// Spatial position at time t of the material point 'material'.
