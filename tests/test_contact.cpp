@@ -8,8 +8,10 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
@@ -345,21 +347,184 @@ TEST_CASE("a drum's projection skips the pieces that cannot be nearer and gives 
   cleat.angle = 0.5 * kPi;
   cleat.edge_radius = 0.005;
   const Drum drum(1.7, Eigen::Vector2d(0.1, -0.2), MotionFunction(), cleat);
-  int near_cleat = 0;
+  int near_cleat = 0, same_tangent = 0;
   for (int k = 0; k < 4000; ++k) {
     const double angle = 2.0 * kPi * k / 4000.0, lift = -0.005 + 0.045 * ((k * 37) % 101) / 100.0;
     const Eigen::Vector2d x = drum.centre() + (0.85 + lift) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     const SurfaceProjection p = drum.project(x, 0.0);
     double nearest = std::numeric_limits<double>::infinity();
-    Eigen::Vector2d point = Eigen::Vector2d::Zero();
+    Eigen::Vector2d point = Eigen::Vector2d::Zero(), tangent = Eigen::Vector2d::Zero();
     for (const auto& piece : drum.curve().pieces()) {
-      const Eigen::Vector2d candidate = piece.point(piece.closest(x));
-      if ((x - candidate).squaredNorm() < nearest) nearest = (x - candidate).squaredNorm(), point = candidate;
+      const double l = piece.closest(x);
+      const Eigen::Vector2d candidate = piece.point(l);
+      if ((x - candidate).squaredNorm() < nearest)
+        nearest = (x - candidate).squaredNorm(), point = candidate, tangent = piece.tangent(l);
     }
     CHECK((p.point - point).norm() <= 1e-15);
+    // Point and tangent from one sine and cosine: those of point() and tangent().
+    if (p.point == point && !p.at_vertex) {
+      CHECK(p.tangent == tangent);
+      ++same_tangent;
+    }
     near_cleat += std::abs(std::remainder(angle - cleat.angle, 2.0 * kPi)) < 0.5 ? 1 : 0;
   }
   CHECK(near_cleat > 500);
+  CHECK(same_tangent > 3500);
+}
+
+TEST_CASE("a surface's pose kept for one time gives the numbers of the motion evaluated afresh",
+          "[contact][surface][pose]") {
+  // A drum and a moving road asked in runs at one time, then the other surface, then
+  // another time and back (each change evaluates the pose again): projection and velocity
+  // equal, bit for bit, the plain formulas with the motion's functions, sine and cosine
+  // evaluated for the one query.
+  Cleat cleat;
+  cleat.height = 0.025;
+  cleat.arc_length = 0.66;
+  cleat.angle = -0.5 * kPi;
+  cleat.edge_radius = 0.005;
+  const Eigen::Vector2d centre(0.1, -0.2);
+  const Drum drum(1.7, centre, MotionFunction::ramped_rate(-16.8, 4.0, 2.0), cleat);
+  const RoadProfile road(RoadProfile::cleat_points(-0.05, 0.08, 0.01), 0.002,
+                         RigidMotion(MotionFunction::linear(-0.3), MotionFunction::linear(0.02),
+                                     MotionFunction::linear(0.1), Eigen::Vector2d(0.01, 0.0)));
+  struct Case {
+    const RigidSurface* surface;
+    std::function<Eigen::Vector2d(int)> point;
+    std::function<Eigen::Vector3d(double)> rates;  // x', y', theta'
+  };
+  const Case cases[] = {
+      {&drum,
+       [&](int k) {
+         const double angle = 2.0 * kPi * k / 400.0, lift = -0.004 + 0.05 * ((k * 37) % 101) / 100.0;
+         return Eigen::Vector2d(centre + (0.85 + lift) * Eigen::Vector2d(std::cos(angle), std::sin(angle)));
+       },
+       [](double t) { return Eigen::Vector3d(0.0, 0.0, t - 2.0 < 4.0 ? -16.8 * (t - 2.0) / 4.0 : -16.8); }},
+      {&road, [](int k) { return Eigen::Vector2d(-0.1 + 0.2 * k / 400.0, -0.004 + 0.03 * ((k * 37) % 101) / 100.0); },
+       [](double) { return Eigen::Vector3d(-0.3, 0.02, 0.1); }}};
+  int queries = 0;
+  for (double time : {2.7, 6.1, 2.7}) {
+    for (const Case& c : cases) {
+      const RigidMotion& motion = c.surface->motion();
+      const double angle = motion.angle_at(time);
+      Eigen::Matrix2d rotation;
+      rotation << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+      const Eigen::Vector2d o = motion.centre(), d = motion.translation_at(time);
+      const Eigen::Vector3d rates = c.rates(time);
+      for (int k = 0; k < 400; ++k) {
+        const Eigen::Vector2d x = c.point(k);
+        SurfaceProjection plain = c.surface->curve().project(o + rotation.transpose() * (x - o - d));
+        plain.point = o + d + rotation * (plain.point - o);
+        const SurfaceProjection p = c.surface->project(x, time);
+        CHECK(p.point == plain.point);
+        CHECK(p.normal == rotation * plain.normal);
+        CHECK(p.tangent == rotation * plain.tangent);
+        CHECK(p.gap == plain.gap);
+        CHECK(p.coordinate == plain.coordinate);
+        const Eigen::Vector2d arm = x - o - d;
+        CHECK(c.surface->velocity_at(x, time) ==
+              Eigen::Vector2d(rates.x() - rates.z() * arm.y(), rates.y() + rates.z() * arm.x()));
+        ++queries;
+      }
+    }
+  }
+  CHECK(queries == 2400);
+}
+
+TEST_CASE("a node beyond the search distance gets the full projection's answer without it",
+          "[contact][surface][pose]") {
+  // The deck's drum and cleat, turned part way: one kernel skips nodes whose clearance
+  // exceeds the search distance, its twin projects every node. Beyond the distance both
+  // give an open node with no force, no tangent and no multipliers (the skip reports the
+  // clearance, a lower bound of the gap, and keeps the last coordinate); within it, and in
+  // contact on the drum or on the cleat's rounded edge, the same numbers bit for bit.
+  Cleat cleat;
+  cleat.height = 0.025;
+  cleat.arc_length = 0.66;
+  cleat.angle = -0.5 * kPi;
+  cleat.edge_radius = 0.005;
+  const Eigen::Vector2d centre(0.0, 0.0);
+  auto drum = std::make_shared<Drum>(1.7, centre, MotionFunction::ramped_rate(-16.8, 4.0, 2.0), cleat);
+  const double time = 2.3, turned = drum->motion().angle_at(time), top = 0.85 + 0.025;
+  ContactParameters parameters = penalties(2e7, 2e6, 0.3);
+  ContactParameters projecting = parameters;
+  projecting.search_distance = 1e3;
+  const Eigen::Vector2d reference(0.0, 1.2);
+  const NodeSurfaceContact skipping_kernel(drum, reference, parameters), full_kernel(drum, reference, projecting);
+  auto evaluate = [&](const NodeSurfaceContact& kernel, const Eigen::Vector2d& x, const ContactHistory& base,
+                      ContactHistory& trial, NodeSurfaceContact::Vector& residual,
+                      NodeSurfaceContact::Matrix& tangent) {
+    LocalState<3> local;
+    local.displacement << x - reference, 0.0;
+    local.velocity << 0.3, -0.1, 0.0;
+    local.acceleration.setZero();
+    EvaluationContext context;
+    context.time = time;
+    context.factors = {0.9, 0.0, 0.0, 0.9, 0.0, 0.0};
+    trial = base;
+    kernel.evaluate(local, context, base, trial, residual, &tangent);
+  };
+  ContactHistory open;
+  open.coordinate = 0.4;  // projected at an earlier step
+  const Eigen::Vector2d up(0.0, 1.0);
+  // On the fillet of the cleat's top edge at angle + L/(2R), where it is at this time,
+  // 0.1 mm inside: the fillet's centre lies r below the top and r from the side face.
+  const double r = cleat.edge_radius, side = cleat.angle + 0.5 * cleat.arc_length / 0.85 + turned;
+  const double fillet_angle = side - std::asin(r / (top - r));
+  const Eigen::Vector2d fillet = centre + (top - r) * Eigen::Vector2d(std::cos(fillet_angle), std::sin(fillet_angle));
+  const Eigen::Vector2d corner = centre + top * Eigen::Vector2d(std::cos(side), std::sin(side));
+  const Eigen::Vector2d edge = fillet + (r - 1e-4) * (corner - fillet).normalized();
+  const struct {
+    const char* what;
+    Eigen::Vector2d x;
+    ContactHistory base;
+    bool skipped;
+  } nodes[] = {
+      {"just beyond the search distance", centre + (top + 0.05 * (1.0 + 1e-9)) * up, open, true},
+      {"far beyond it", centre + (top + 0.3) * up, open, true},
+      {"just within it", centre + (top + 0.05 * (1.0 - 1e-9)) * up, open, false},
+      {"touching down on the drum", centre + (0.85 - 2e-4) * up, open, false},
+      {"sticking on the drum", centre + (0.85 - 2e-4) * up, touching(500.0, 20.0, 0.5 * kPi * 0.85), false},
+      {"on the cleat's edge", edge, touching(300.0, -10.0, 0.0), false},
+  };
+  for (const auto& node : nodes) {
+    INFO(node.what);
+    ContactHistory fast, full;
+    NodeSurfaceContact::Vector fast_residual, full_residual;
+    NodeSurfaceContact::Matrix fast_tangent, full_tangent;
+    evaluate(skipping_kernel, node.x, node.base, fast, fast_residual, fast_tangent);
+    evaluate(full_kernel, node.x, node.base, full, full_residual, full_tangent);
+    CHECK(fast_residual == full_residual);
+    CHECK(fast_tangent == full_tangent);
+    CHECK(fast.state == full.state);
+    CHECK(fast.force == full.force);
+    CHECK(fast.normal_multiplier == full.normal_multiplier);
+    CHECK(fast.tangential_multiplier == full.tangential_multiplier);
+    CHECK(fast.normal_force == full.normal_force);
+    CHECK(fast.tangential_force == full.tangential_force);
+    CHECK(fast.sliding_velocity == full.sliding_velocity);
+    if (node.skipped) {
+      CHECK(full.state == ContactState::Open);
+      CHECK(fast_residual.isZero());
+      CHECK(fast_tangent.isZero());
+      CHECK(fast.coordinate == node.base.coordinate);
+      CHECK(fast.gap > parameters.search_distance);
+      CHECK(fast.gap <= full.gap);
+    } else {
+      CHECK(std::memcmp(&fast, &full, sizeof(ContactHistory)) == 0);
+    }
+  }
+  // The contact cases do touch (the comparisons above are of forces, not of zeros).
+  ContactHistory trial;
+  NodeSurfaceContact::Vector residual;
+  NodeSurfaceContact::Matrix tangent;
+  evaluate(skipping_kernel, nodes[5].x, nodes[5].base, trial, residual, tangent);
+  CHECK(trial.state != ContactState::Open);
+  CHECK(drum->project(nodes[5].x, time).curvature == Approx(1.0 / 0.005));
+  for (int k : {3, 4}) {
+    evaluate(skipping_kernel, nodes[k].x, nodes[k].base, trial, residual, tangent);
+    CHECK(trial.state != ContactState::Open);
+  }
 }
 
 // ======================================================================================

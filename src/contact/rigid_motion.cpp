@@ -1,6 +1,7 @@
 #include "contact/rigid_motion.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -50,18 +51,35 @@ Eigen::Matrix2d RigidMotion::rotation_at(double time) const {
   return rotation;
 }
 
-Eigen::Vector2d RigidMotion::to_space(const Eigen::Vector2d& material, double time) const {
-  return centre_ + translation_at(time) + rotation_at(time) * (material - centre_);
+RigidPose RigidMotion::evaluate_pose(double time) const {
+  RigidPose pose;
+  pose.rotation = rotation_at(time);
+  pose.translation = translation_at(time);
+  pose.translation_rate = Eigen::Vector2d(x_.rate(time), y_.rate(time));
+  pose.spin = angle_.rate(time);
+  return pose;
 }
 
-Eigen::Vector2d RigidMotion::to_material(const Eigen::Vector2d& spatial, double time) const {
-  return centre_ + rotation_at(time).transpose() * (spatial - centre_ - translation_at(time));
+RigidPose RigidMotion::pose(double time) const {
+  // One entry per thread: tires solved in parallel (TireGroup) never share it, and a
+  // motion destroyed and another built at its address cannot be mistaken for it.
+  struct Kept {
+    std::uint64_t identity = 0;  // 0: none (identities start at 1)
+    double time = 0.0;
+    RigidPose pose;
+  };
+  static thread_local Kept kept;
+  if (kept.identity != identity_ || !(kept.time == time)) {
+    kept.pose = evaluate_pose(time);
+    kept.identity = identity_;
+    kept.time = time;
+  }
+  return kept.pose;
 }
 
-Eigen::Vector2d RigidMotion::velocity(const Eigen::Vector2d& spatial, double time) const {
-  const Eigen::Vector2d arm = spatial - centre_ - translation_at(time);
-  const double spin = angle_.rate(time);
-  return Eigen::Vector2d(x_.rate(time) - spin * arm.y(), y_.rate(time) + spin * arm.x());
+std::uint64_t RigidMotion::new_identity() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
 }
 
 }  // namespace tirefe

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cstdint>
 #include <functional>
 
 #include "core/load_function.hpp"
@@ -44,6 +45,14 @@ class MotionFunction {
   std::function<double(double)> value_, rate_;
 };
 
+/// A rigid motion at one time: what the positions and velocities of its points need.
+struct RigidPose {
+  Eigen::Matrix2d rotation = Eigen::Matrix2d::Identity();      // R(theta(t))
+  Eigen::Vector2d translation = Eigen::Vector2d::Zero();       // d(t)
+  Eigen::Vector2d translation_rate = Eigen::Vector2d::Zero();  // d'(t)
+  double spin = 0.0;                                           // theta'(t)
+};
+
 class RigidMotion {
  public:
   /// At rest.
@@ -61,18 +70,45 @@ class RigidMotion {
   double angle_at(double time) const { return angle_.value(time); }
   Eigen::Matrix2d rotation_at(double time) const;
 
+  /// The pose at time t. Every node of an evaluation pass asks at the same time, so the
+  /// last pose is kept (one per thread) and the motion's functions, sine and cosine run
+  /// once per pass rather than once per node. The functions must depend on time alone
+  /// (as their rates by differences already assume).
+  RigidPose pose(double time) const;
+
   /// Spatial position at time t of the material point 'material'.
-  Eigen::Vector2d to_space(const Eigen::Vector2d& material, double time) const;
+  Eigen::Vector2d to_space(const Eigen::Vector2d& material, double time) const {
+    return to_space(material, pose(time));
+  }
+  Eigen::Vector2d to_space(const Eigen::Vector2d& material, const RigidPose& pose) const {
+    return centre_ + pose.translation + pose.rotation * (material - centre_);
+  }
   /// Material point that occupies 'spatial' at time t.
-  Eigen::Vector2d to_material(const Eigen::Vector2d& spatial, double time) const;
+  Eigen::Vector2d to_material(const Eigen::Vector2d& spatial, double time) const {
+    return to_material(spatial, pose(time));
+  }
+  Eigen::Vector2d to_material(const Eigen::Vector2d& spatial, const RigidPose& pose) const {
+    return centre_ + pose.rotation.transpose() * (spatial - centre_ - pose.translation);
+  }
   /// Velocity of the material point that occupies 'spatial' at time t.
-  Eigen::Vector2d velocity(const Eigen::Vector2d& spatial, double time) const;
+  Eigen::Vector2d velocity(const Eigen::Vector2d& spatial, double time) const { return velocity(spatial, pose(time)); }
+  Eigen::Vector2d velocity(const Eigen::Vector2d& spatial, const RigidPose& pose) const {
+    const Eigen::Vector2d arm = spatial - centre_ - pose.translation;
+    return Eigen::Vector2d(pose.translation_rate.x() - pose.spin * arm.y(),
+                           pose.translation_rate.y() + pose.spin * arm.x());
+  }
 
   const Eigen::Vector2d& centre() const { return centre_; }
 
  private:
+  /// The pose from the motion's functions, without the kept one.
+  RigidPose evaluate_pose(double time) const;
+
   MotionFunction x_, y_, angle_;
   Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
+  // Names the motion for the kept pose: copies share it (they have the same functions).
+  std::uint64_t identity_ = new_identity();
+  static std::uint64_t new_identity();
 };
 
 }  // namespace tirefe

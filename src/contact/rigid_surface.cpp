@@ -22,11 +22,11 @@ void require(bool condition, const std::string& message) {
 // ---- RigidSurface ------------------------------------------------------------------
 
 SurfaceProjection RigidSurface::project(const Eigen::Vector2d& x, double time) const {
-  SurfaceProjection projection = curve_.project(motion_.to_material(x, time));
-  const Eigen::Matrix2d rotation = motion_.rotation_at(time);
-  projection.point = motion_.to_space(projection.point, time);
-  projection.normal = rotation * projection.normal;
-  projection.tangent = rotation * projection.tangent;
+  const RigidPose pose = motion_.pose(time);
+  SurfaceProjection projection = curve_.project(motion_.to_material(x, pose));
+  projection.point = motion_.to_space(projection.point, pose);
+  projection.normal = pose.rotation * projection.normal;
+  projection.tangent = pose.rotation * projection.tangent;
   return projection;
 }
 
@@ -159,7 +159,7 @@ std::vector<Eigen::Vector2d> RoadProfile::cleat_points(double start, double leng
 }
 
 double Drum::clearance(const Eigen::Vector2d& x, double time) const {
-  const Eigen::Vector2d axis = centre() + motion().translation_at(time);
+  const Eigen::Vector2d axis = centre() + motion().pose(time).translation;
   return (x - axis).norm() - (radius_ + std::max(cleat_.height, 0.0));
 }
 

@@ -106,6 +106,18 @@ Eigen::Vector2d SurfaceCurve::Piece::tangent(double l) const {
   return orientation_ * Eigen::Vector2d(-std::sin(angle), std::cos(angle));
 }
 
+void SurfaceCurve::Piece::point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const {
+  if (!arc_) {
+    point = origin_ + l * direction_;
+    tangent = direction_;
+    return;
+  }
+  const double angle = start_angle_ + orientation_ * l / radius_;
+  const double cosine = std::cos(angle), sine = std::sin(angle);
+  point = origin_ + radius_ * Eigen::Vector2d(cosine, sine);
+  tangent = orientation_ * Eigen::Vector2d(-sine, cosine);
+}
+
 double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
   if (!arc_) return std::clamp((x - origin_).dot(direction_), begin_, end_);
   const Eigen::Vector2d radial = x - origin_;
@@ -359,22 +371,29 @@ SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
   candidate_range(x, first, last);
   int nearest = first;
   double nearest_l = 0.0, nearest_distance = kInfinity;
+  Eigen::Vector2d nearest_point, nearest_tangent;
   for (int i = first; i <= last; ++i) {
     // A piece that cannot come nearer than the nearest so far is not projected on (a drum's
     // cleat, away from it: its arcs' arctangents are most of a projection's cost). The
     // margin keeps round-off in the bound from skipping a piece as near.
     if (nearest_distance < kInfinity && distance_bound(i, x) > std::sqrt(nearest_distance) + 1e-9 * scale_) continue;
     const double l = pieces_[i].closest(x);
-    const double distance = (x - pieces_[i].point(l)).squaredNorm();
+    Eigen::Vector2d point, tangent;
+    pieces_[i].point_and_tangent(l, point, tangent);
+    const double distance = (x - point).squaredNorm();
     if (distance < nearest_distance) {
       nearest = i;
       nearest_l = l;
       nearest_distance = distance;
+      nearest_point = point;
+      nearest_tangent = tangent;
     }
   }
   const Piece& piece = pieces_[nearest];
+  // No piece nearer than infinity (x not finite or immensely far): the first piece's start.
+  if (!(nearest_distance < kInfinity)) piece.point_and_tangent(nearest_l, nearest_point, nearest_tangent);
   SurfaceProjection p;
-  p.point = piece.point(nearest_l);
+  p.point = nearest_point;
   p.coordinate = piece.shift_ + nearest_l;
 
   // At a corner, the vertex rule (header comment).
@@ -405,7 +424,7 @@ SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
       return p;
     }
   }
-  p.tangent = piece.tangent(nearest_l);
+  p.tangent = nearest_tangent;
   p.normal = left_normal(p.tangent);
   p.gap = (x - p.point).dot(p.normal);
   p.curvature = piece.curvature();

@@ -66,6 +66,9 @@ class SurfaceCurve {
     /// anchor point or the arc's start).
     Eigen::Vector2d point(double l) const;
     Eigen::Vector2d tangent(double l) const;
+    /// Point and tangent together (an arc's sine and cosine once), the values of point()
+    /// and tangent().
+    void point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const;
     double curvature() const { return arc_ ? -orientation_ / radius_ : 0.0; }
     /// Local arc length of the point of this piece closest to x.
     double closest(const Eigen::Vector2d& x) const;
