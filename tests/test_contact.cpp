@@ -33,6 +33,16 @@ using tirefe::testing::TempDir;
 
 constexpr double kPi = 3.14159265358979323846;
 
+/// The drum-cleat deck's cleat: 25 mm high, 660 mm long, 5 mm edges, its middle at 'angle'.
+Cleat deck_cleat(double angle) {
+  Cleat cleat;
+  cleat.height = 0.025;
+  cleat.arc_length = 0.66;
+  cleat.angle = angle;
+  cleat.edge_radius = 0.005;
+  return cleat;
+}
+
 double angle_between(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return std::atan2(std::abs(a.x() * b.y() - a.y() * b.x()), a.dot(b));
 }
@@ -341,11 +351,7 @@ TEST_CASE("a drum's projection skips the pieces that cannot be nearer and gives 
   // Points all round a drum with a rounded cleat, on the drum and up to 40 mm off it, near
   // the cleat's faces and fillets: the projection's point is the one of the nearest piece,
   // found by projecting on every piece.
-  Cleat cleat;
-  cleat.height = 0.025;
-  cleat.arc_length = 0.66;
-  cleat.angle = 0.5 * kPi;
-  cleat.edge_radius = 0.005;
+  const Cleat cleat = deck_cleat(0.5 * kPi);
   const Drum drum(1.7, Eigen::Vector2d(0.1, -0.2), MotionFunction(), cleat);
   int near_cleat = 0, same_tangent = 0;
   for (int k = 0; k < 4000; ++k) {
@@ -378,11 +384,7 @@ TEST_CASE("a surface's pose kept for one time gives the numbers of the motion ev
   // another time and back (each change evaluates the pose again): projection and velocity
   // equal, bit for bit, the plain formulas with the motion's functions, sine and cosine
   // evaluated for the one query.
-  Cleat cleat;
-  cleat.height = 0.025;
-  cleat.arc_length = 0.66;
-  cleat.angle = -0.5 * kPi;
-  cleat.edge_radius = 0.005;
+  const Cleat cleat = deck_cleat(-0.5 * kPi);
   const Eigen::Vector2d centre(0.1, -0.2);
   const Drum drum(1.7, centre, MotionFunction::ramped_rate(-16.8, 4.0, 2.0), cleat);
   const RoadProfile road(RoadProfile::cleat_points(-0.05, 0.08, 0.01), 0.002,
@@ -438,11 +440,7 @@ TEST_CASE("a node beyond the search distance gets the full projection's answer w
   // give an open node with no force, no tangent and no multipliers (the skip reports the
   // clearance, a lower bound of the gap, and keeps the last coordinate); within it, and in
   // contact on the drum or on the cleat's rounded edge, the same numbers bit for bit.
-  Cleat cleat;
-  cleat.height = 0.025;
-  cleat.arc_length = 0.66;
-  cleat.angle = -0.5 * kPi;
-  cleat.edge_radius = 0.005;
+  const Cleat cleat = deck_cleat(-0.5 * kPi);
   const Eigen::Vector2d centre(0.0, 0.0);
   auto drum = std::make_shared<Drum>(1.7, centre, MotionFunction::ramped_rate(-16.8, 4.0, 2.0), cleat);
   const double time = 2.3, turned = drum->motion().angle_at(time), top = 0.85 + 0.025;
