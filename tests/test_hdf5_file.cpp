@@ -11,10 +11,12 @@
 #include <set>
 #include <string>
 #include <sys/resource.h>
+#include <thread>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "io/hdf5_file.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using tirefe::io::Hdf5File;
@@ -260,28 +262,49 @@ TEST_CASE("a published file holds its last flush, whole, until the close renames
   CHECK_FALSE(fs::exists(working + ".copy"));
 }
 
+TEST_CASE("a flush written by another thread: rows appended meanwhile wait for the next, in order", "[io][hdf5]") {
+  TempPath temp;
+  constexpr int kStaged = 200, kMeanwhile = 5000;
+  {
+    Hdf5File file = Hdf5File::create_published(temp.str());
+    tirefe::io::ExtendibleDataset& time = file.create_extendible("/history/time", {});
+    tirefe::io::ExtendibleDataset& field = file.create_compressed_extendible("/fields/u", {40, 3});
+    std::vector<double> row(120);
+    auto append = [&](int i) {
+      time.append(i);
+      for (size_t k = 0; k < row.size(); ++k) row[k] = 1000.0 * i + static_cast<double>(k);
+      field.append(row.data());
+    };
+    for (int i = 0; i < kStaged; ++i) append(i);
+    file.stage();
+    std::thread writer([&] { file.flush_staged(); });
+    for (int i = kStaged; i < kStaged + kMeanwhile; ++i) append(i);  // while the flush is written
+    writer.join();
+    CHECK(time.rows() == kStaged + kMeanwhile);
+    CHECK(time.pending_bytes() == kMeanwhile * sizeof(double));
+    // A reader (or a kill) finds the staged rows, exactly.
+    const Hdf5File published = Hdf5File::open_read_only(temp.str());
+    const std::vector<double> flushed = published.read_doubles("/history/time");
+    REQUIRE(flushed.size() == kStaged);
+    CHECK(flushed.back() == kStaged - 1);
+    file.flush();
+  }
+  const Hdf5File file = Hdf5File::open_read_only(temp.str());
+  const std::vector<double> time = file.read_doubles("/history/time");
+  const std::vector<double> field = file.read_doubles("/fields/u");
+  REQUIRE(time.size() == kStaged + kMeanwhile);
+  REQUIRE(field.size() == 120 * time.size());
+  int out_of_place = 0;
+  for (size_t i = 0; i < time.size(); ++i) {
+    out_of_place += time[i] != static_cast<double>(i);
+    for (size_t k = 0; k < 120; ++k) out_of_place += field[120 * i + k] != 1000.0 * i + static_cast<double>(k);
+  }
+  CHECK(out_of_place == 0);
+}
+
 namespace {
 
-// While it lives, no file this process writes grows past 'bytes': a write beyond fails
-// (EFBIG, "File too large") as one on a full disk does, wherever HDF5 makes it.
-class FileSizeLimit {
- public:
-  explicit FileSizeLimit(rlim_t bytes) : ignored_(std::signal(SIGXFSZ, SIG_IGN)) {
-    getrlimit(RLIMIT_FSIZE, &saved_);
-    const rlimit limit{bytes, saved_.rlim_max};
-    setrlimit(RLIMIT_FSIZE, &limit);
-  }
-  ~FileSizeLimit() {
-    setrlimit(RLIMIT_FSIZE, &saved_);
-    std::signal(SIGXFSZ, ignored_);
-  }
-  FileSizeLimit(const FileSizeLimit&) = delete;
-  FileSizeLimit& operator=(const FileSizeLimit&) = delete;
-
- private:
-  rlimit saved_{};
-  void (*ignored_)(int);
-};
+using tirefe::testing::FileSizeLimit;
 
 constexpr int kFrames = 300, kNodes = 50;
 

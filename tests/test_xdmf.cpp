@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -294,4 +295,79 @@ TEST_CASE("result file: the views of frames written between flushes are made at 
   CHECK(count(text, "<Grid Name=\"square\" GridType=\"Uniform\">") == kFrames);
   CHECK(count(text, "<Grid Name=\"mesh\" GridType=\"Uniform\">") == kFrames);
   CHECK(count(text, "ring.h5:/fields/frames/5/displacement<") > 0);
+}
+
+TEST_CASE("result file: flushes written while the run goes on hold every frame, its views and the index",
+          "[io][xdmf]") {
+  tirefe::testing::TempDir folder;
+  Ring ring;
+  Analysis analysis(ring.model);
+  const int dofs = kDofsPerNode * ring.model.mesh().node_count();
+  // Some 400 bytes a frame: the waiting rows reach kFlushBytes every ~650 frames.
+  constexpr int kFrames = 3000;
+  const std::string path = folder.path("ring.h5");
+  {
+    io::ResultFile file(path, io::RunMetadata{"ring", "", "", {}});
+    for (int frame = 0; frame < kFrames; ++frame) {
+      analysis.mutable_state().time = 0.001 * frame;
+      analysis.mutable_state().displacement = analysis.mutable_state().velocity =
+          Eigen::VectorXd::Constant(dofs, frame);
+      file.write_fields(analysis, frame);
+      if (frame == kFrames / 2) {
+        file.file();  // waits for a flush being written: the file on disk then holds its frames
+        const size_t flushed = Hdf5File::open_read_only(path).read_doubles("/fields/time").size();
+        CHECK(flushed >= io::ResultFile::kFlushBytes / (8 * (2 * dofs + 2)));
+        CHECK(flushed <= static_cast<size_t>(frame + 1));
+      }
+    }
+  }
+  const Hdf5File file = Hdf5File::open_read_only(path);
+  const std::vector<double> time = file.read_doubles("/fields/time");
+  REQUIRE(time.size() == kFrames);
+  int wrong = 0;
+  for (int frame = 0; frame < kFrames; frame += 7) {
+    wrong += time[frame] != 0.001 * frame;
+    const std::vector<double> rotation = file.read_doubles("/fields/frames/" + std::to_string(frame) + "/rotation");
+    wrong += rotation != std::vector<double>(dofs / kDofsPerNode, frame);
+  }
+  CHECK(wrong == 0);
+  const std::string text = read_text(folder.path("ring.xmf"));
+  CHECK(count(text, "<Grid Name=\"mesh\" GridType=\"Uniform\">") == kFrames);
+  CHECK(count(text, "ring.h5:/fields/frames/" + std::to_string(kFrames - 1) + "/displacement<") > 0);
+}
+
+TEST_CASE("result file: a flush that fails while the run goes on fails the next step, naming the file",
+          "[io][xdmf][reliability]") {
+  tirefe::testing::TempDir folder;
+  Ring ring;
+  Analysis analysis(ring.model);
+  const int dofs = kDofsPerNode * ring.model.mesh().node_count();
+  const std::string path = folder.path("ring.h5");
+  std::string error;
+  int frames = 0;
+  {
+    io::ResultFile file(path, io::RunMetadata{"ring", "", "", {}});
+    const tirefe::testing::FileSizeLimit limited(2 << 20);
+    // The run goes on while the flush that fails is written: the failure comes at a later step.
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      for (; std::chrono::steady_clock::now() - start < std::chrono::seconds(60); ++frames) {
+        analysis.mutable_state().time = 0.001 * frames;
+        analysis.mutable_state().displacement = analysis.mutable_state().velocity =
+            Eigen::VectorXd::Constant(dofs, frames);
+        file.write_fields(analysis, frames);
+      }
+    } catch (const io::IoError& failure) {
+      error = failure.what();
+    }
+    CHECK(file.file().failed());
+  }
+  INFO(error);
+  CHECK_FALSE(error.empty());
+  CHECK_THAT(error, Catch::Contains(path) && Catch::EndsWith("File too large"));
+  // The file on disk is the last flush, whole.
+  const size_t flushed = Hdf5File::open_read_only(path).read_doubles("/fields/time").size();
+  INFO(flushed << " of " << frames << " frames flushed");
+  CHECK(flushed > 0);
+  CHECK(flushed < static_cast<size_t>(frames));
 }

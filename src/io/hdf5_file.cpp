@@ -87,8 +87,6 @@ T check(T rc, Message&& message) {
   return rc;
 }
 
-void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
-
 // HDF5 closes what is still open when the process exits, and crashes on a file whose
 // flush failed (HDF5 1.10.8, a full disk): every file here is closed by its owner, so the
 // library is left to the exit. Set before the library starts (static initialization).
@@ -233,6 +231,7 @@ ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> di
       dims_(std::move(dims)),
       start_(dims_.size(), 0),
       count_(dims_),
+      rows_(dims_[0]),
       latch_(&latch),
       path_(std::move(path)) {
   count_[0] = 1;
@@ -251,14 +250,7 @@ void ExtendibleDataset::close() {
 
 void ExtendibleDataset::append(const double* row_values) {
   pending_.insert(pending_.end(), row_values, row_values + row_size_);
-}
-
-void ExtendibleDataset::write_pending() {
-  if (pending_.empty()) return;
-  std::vector<double> rows;
-  rows.swap(pending_);  // written or not, they are not written twice
-  pending_.reserve(rows.capacity());
-  append_rows(rows.data(), static_cast<hsize_t>(rows.size() / row_size_));
+  ++rows_;
 }
 
 void ExtendibleDataset::append(double scalar) {
@@ -268,9 +260,33 @@ void ExtendibleDataset::append(double scalar) {
   append(&scalar);
 }
 
+void ExtendibleDataset::stage() {
+  if (staged_.empty()) {
+    staged_.swap(pending_);  // the buffers trade places: neither is reallocated
+  } else {
+    staged_.insert(staged_.end(), pending_.begin(), pending_.end());
+  }
+  pending_.clear();
+}
+
+void ExtendibleDataset::write_staged() {
+  if (staged_.empty()) return;
+  std::vector<double> rows;
+  rows.swap(staged_);  // written or not, they are not written twice
+  write_rows(rows.data(), static_cast<hsize_t>(rows.size() / row_size_));
+  rows.clear();
+  staged_.swap(rows);  // its capacity, for the next flush
+}
+
 void ExtendibleDataset::append_rows(const double* values, hsize_t rows) {
   if (rows == 0) return;
-  if (!pending_.empty() && values != pending_.data()) write_pending();  // in order
+  stage();  // in order
+  write_staged();
+  write_rows(values, rows);
+  rows_ += rows;
+}
+
+void ExtendibleDataset::write_rows(const double* values, hsize_t rows) {
   auto message = [&] { return describe("append rows to dataset", path_, latch_->file_path()); };
   latch_->refuse_if_failed(message);
   std::vector<hsize_t> dims = dims_, start(dims_.size(), 0), count = count_;
@@ -287,6 +303,8 @@ void ExtendibleDataset::append_rows(const double* values, hsize_t rows) {
   latch_->check(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory.get(), file_space_.get(), H5P_DEFAULT, values),
                 message);
 }
+
+void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 // --- Hdf5File ------------------------------------------------------------------------------
 
@@ -367,7 +385,10 @@ void Hdf5File::close() {
   std::string failure;
   try {
     if (!reported) {
-      for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
+      for (ExtendibleDataset& dataset : datasets_) {
+        dataset.stage();
+        dataset.write_staged();
+      }
       for (ExtendibleDataset& dataset : datasets_) dataset.close();
     }
   } catch (const IoError& error) {
@@ -546,7 +567,7 @@ void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleData
     throw IoError(message() + ": no such columns of '" + source.path() + "'");
   const hsize_t entries = dims[1];
   // The source as it will be once 'row' is written (appended rows may still wait in memory).
-  const std::vector<hsize_t> source_dims{std::max(source.rows(), row + 1), entries, dims[2]};
+  const std::vector<hsize_t> source_dims{std::max(source.staged_extent(), row + 1), entries, dims[2]};
   const std::vector<hsize_t> source_start{row, 0, first}, source_count{1, entries, count};
   Hdf5Handle source_space = dataspace_of(source_dims);
   latch_->check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, source_start.data(), nullptr,
@@ -645,9 +666,18 @@ bool Hdf5File::exists(const std::string& object_path) const {
 }
 
 void Hdf5File::flush() {
+  stage();
+  flush_staged();
+}
+
+void Hdf5File::stage() {
+  for (ExtendibleDataset& dataset : datasets_) dataset.stage();
+}
+
+void Hdf5File::flush_staged() {
   auto message = [&] { return "cannot flush '" + path_ + "'"; };
   latch_->refuse_if_failed(message);
-  for (ExtendibleDataset& dataset : datasets_) dataset.write_pending();
+  for (ExtendibleDataset& dataset : datasets_) dataset.write_staged();
   latch_->check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), message);
   if (working_path_.empty()) return;
   try {

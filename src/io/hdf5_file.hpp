@@ -22,6 +22,11 @@ class IoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// HDF5 prints its error stack unless told not to, once per thread: the errors it reports
+// are IoErrors here. Every file opened silences the thread that opens it; a thread that
+// writes to a file it did not open calls this first.
+void silence_hdf5_errors();
+
 // Owns one hid_t and closes it with the matching H5?close function.
 class Hdf5Handle {
  public:
@@ -79,7 +84,9 @@ class FailureLatch {
 // dimension. A row has a fixed shape (empty shape = a scalar per row -> 1-D dataset of
 // length rows(); shape {n,3} -> dataset rows() x n x 3). Doubles only. Appended rows
 // wait in memory until the file is flushed or closed (Hdf5File::flush): one write of many
-// rows costs about what one write of one row does.
+// rows costs about what one write of one row does. A flush may be written by another
+// thread (Hdf5File::stage, then write_staged): appending touches only the rows waiting,
+// never the rows staged for that flush, so the two threads share nothing.
 class ExtendibleDataset {
  public:
   ExtendibleDataset(ExtendibleDataset&&) noexcept = default;
@@ -88,9 +95,9 @@ class ExtendibleDataset {
   void append(const double* row_values);                 // row_size() doubles, row-major
   void append(double scalar);                            // only for scalar rows
   void append_rows(const double* values, hsize_t rows);  // rows * row_size() doubles (restarts)
-  hsize_t rows() const { return dims_[0] + pending_rows(); }
+  hsize_t rows() const { return rows_; }
   size_t row_size() const { return row_size_; }
-  /// Bytes of the rows waiting in memory.
+  /// Bytes of the rows waiting in memory (not those staged for a flush being written).
   size_t pending_bytes() const { return pending_.size() * sizeof(double); }
   const std::string& path() const { return path_; }
 
@@ -98,9 +105,13 @@ class ExtendibleDataset {
   friend class Hdf5File;
   ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> dims, FailureLatch& latch, std::string path);
 
-  hsize_t pending_rows() const { return static_cast<hsize_t>(pending_.size() / row_size_); }
-  /// Writes the rows waiting in memory.
-  void write_pending();
+  /// The rows waiting become the rows of the next write (after those staged before).
+  void stage();
+  /// Writes the staged rows; the rows in the file and staged, for the views a flush makes.
+  void write_staged();
+  hsize_t staged_extent() const { return dims_[0] + static_cast<hsize_t>(staged_.size() / row_size_); }
+  /// Writes 'rows' rows at the end of the dataset in the file.
+  void write_rows(const double* values, hsize_t rows);
   /// Closes the dataset (HDF5 may write its header then).
   void close();
 
@@ -109,7 +120,9 @@ class ExtendibleDataset {
   Hdf5Handle mem_space_;   // one row, flat
   std::vector<hsize_t> dims_, start_, count_;
   size_t row_size_ = 1;
-  std::vector<double> pending_;  // appended rows not yet written, row-major
+  std::vector<double> pending_;  // appended rows not yet staged, row-major
+  std::vector<double> staged_;   // rows for the flush being written
+  hsize_t rows_ = 0;             // in the file, staged and waiting: the appending thread's count
   FailureLatch* latch_;          // the file's
   std::string path_;
 };
@@ -187,6 +200,12 @@ class Hdf5File {
   // Writes the appended rows and flushes everything, so that a process killed afterwards
   // leaves a file readable up to here (a published file: copies it to its path).
   void flush();
+  // flush() in two parts, for a flush written by another thread: stage() takes the rows
+  // appended so far (the appending thread calls it, between appends), flush_staged()
+  // writes them and flushes (the writing thread: no other call on this file meanwhile,
+  // appends aside).
+  void stage();
+  void flush_staged();
   // Writes the appended rows and closes the file (a published file: renames it to its path).
   // Throws IoError; afterwards the object holds no file. The destructor closes quietly.
   // After a failed HDF5 call the file is dropped instead (a published one keeps its last copy).

@@ -61,8 +61,14 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
 }
 
 ResultFile::~ResultFile() {
+  try {
+    flush_job_.wait();
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "tirefe: warning: %s\n", error.what());
+  }
   if (file_.failed()) return;  // reported; the file on disk keeps its last flush
   try {
+    file_.stage();
     write_unflushed_views();
     file_.close();
     index_flushed_frames();
@@ -105,6 +111,7 @@ void ResultFile::write_index_if_due() {
 }
 
 void ResultFile::add_channel(const std::string& name, const std::string& unit, Channel channel) {
+  flush_job_.wait();
   // Checked here, at the macro that names the channel: HDF5 would take a '/' for a group
   // path and fail (or nest the channel) only when the first step writes it.
   if (name.empty() || name == "." || name.find('/') != std::string::npos)
@@ -124,6 +131,7 @@ void ResultFile::add_channel(const std::string& name, const std::string& unit, C
 }
 
 void ResultFile::start_history() {
+  flush_job_.wait();
   for (size_t i = 0; i < channel_names_.size(); ++i) {
     ExtendibleDataset& dataset =
         file_.create_extendible("/history/" + channel_names_[i].first, {}, channel_names_[i].second);
@@ -133,6 +141,7 @@ void ResultFile::start_history() {
 }
 
 void ResultFile::write_mesh(const Model& model) {
+  flush_job_.wait();
   const Mesh& mesh = model.mesh();
   Eigen::MatrixXd coordinates(mesh.node_count(), 2);
   for (int node = 0; node < mesh.node_count(); ++node) coordinates.row(node) = mesh.position(node).transpose();
@@ -247,6 +256,7 @@ void ResultFile::show_node_set(const std::string& name) {
 
 void ResultFile::add_surface(const std::string& name, bool closed, Outline outline) {
   if (discarded_) return;
+  flush_job_.wait();
   for (const Surface& surface : surfaces_)
     if (surface.name == name) throw IoError("surface '" + name + "' is drawn twice in '" + path() + "'");
   const std::vector<Eigen::Vector2d> points = outline(0.0, view_centre_, view_reach_);
@@ -335,6 +345,7 @@ void ResultFile::write_unflushed_views() {
 
 void ResultFile::index_restored_frames() {
   if (discarded_ || !mesh_written_) return;
+  flush_job_.wait();
   const std::vector<double> times = file_.read_doubles("/fields/time");
   for (size_t frame = frames_written(); frame < times.size(); ++frame) unflushed_frames_.push_back(times[frame]);
   // The frames go on where the interrupted run's would have, not at the first step.
@@ -345,12 +356,14 @@ void ResultFile::index_restored_frames() {
 
 void ResultFile::write_modes(const std::string& label, const Analysis& analysis, const ModalResult& modes) {
   if (discarded_) return;
+  flush_job_.wait();
   write_mode_group(label, analysis, modes.frequencies_hz, modes.rigid_body, modes.shapes);
   flush();
 }
 
 void ResultFile::write_modes(const std::string& label, const Analysis& analysis, const DampedModalResult& modes) {
   if (discarded_) return;
+  flush_job_.wait();
   const std::string group =
       write_mode_group(label, analysis, modes.frequencies_hz, modes.rigid_body, modes.shapes.real());
   file_.write_attribute(group, "spin_rate", modes.spin_rate);
@@ -454,26 +467,46 @@ void ResultFile::flush_if_due() {
   // the run. A fast run also flushes when its waiting rows reach half of what the file
   // holds: the file grows geometrically between copies, so that the copies cost at most
   // about three times the file, and a disk filling up still finds the last copy holding
-  // most of the rows (the copy needs room beside the file being written).
+  // most of the rows (the copy needs room beside the file being written). While a flush is
+  // being written, the rows wait for the next; rows that have grown so wait for it, so that
+  // a run faster than its disk holds no more than that in memory.
+  const bool grown = pending_bytes() >= std::max(kFlushBytes, flushed_bytes_ / 2);
+  if (!grown && flush_job_.running()) return;
+  flush_job_.wait();  // a finished flush's failure fails the step that finds it
   const auto since = std::chrono::steady_clock::now() - last_flush_;
-  const size_t waiting = pending_bytes();
-  const bool grown = waiting >= std::max(kFlushBytes, flushed_bytes_ / 2);
   if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) return;
-  flush();
+  start_flush();
 }
 
 void ResultFile::flush() {
+  start_flush();
+  flush_job_.wait();
+}
+
+void ResultFile::start_flush() {
+  flush_job_.wait();
+  // Taken between steps: the rows appended so far and the frames among them. The run goes
+  // on appending to buffers of its own while the flush writes these.
+  std::vector<double> frames;
+  frames.swap(unflushed_frames_);
+  const size_t first_frame = index_.frames();
+  flushed_bytes_ += pending_bytes();
+  file_.stage();
+  flush_job_.start([this, first_frame, frames = std::move(frames)] { write_flush(first_frame, frames); });
+}
+
+void ResultFile::write_flush(size_t first_frame, const std::vector<double>& frames) {
+  silence_hdf5_errors();  // the writer's own thread: failures are thrown, not printed
   // The views are the frames' own cost, made here together: not the flush's time, which
   // spaces the flushes.
-  write_unflushed_views();
+  for (size_t k = 0; k < frames.size(); ++k) write_views(first_frame + k);
   const auto start = std::chrono::steady_clock::now();
-  flushed_bytes_ += pending_bytes();
-  file_.flush();
+  file_.flush_staged();
   last_flush_ = std::chrono::steady_clock::now();
   last_flush_cost_ = last_flush_ - start;
-  if (unflushed_frames_.empty()) return;
+  if (frames.empty()) return;
   // After the flush: the index names only what the file holds.
-  index_flushed_frames();
+  for (double time : frames) index_.add_frame(time);
   write_index_if_due();
 }
 

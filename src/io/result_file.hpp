@@ -26,7 +26,9 @@
 // big that its flush, which copies it whole, takes over 12 ms; sooner when the waiting rows
 // reach half of what the file holds) and when the file closes, so
 // a run that fails leaves a file readable up to its last step and a killed run one readable
-// up to its last flush, at most a quarter second before the kill. The index is rewritten (whole, by
+// up to its last flush, some quarter second before the kill. A flush is written by a thread
+// of its own while the run goes on (its rows were taken between two steps); the next flush,
+// and anything else that writes to the file, waits for it. The index is rewritten (whole, by
 // a rename) after a flush that brought frames: at every such flush while it is small, at
 // most once a second beyond 1 MB, and at the close.
 //
@@ -47,12 +49,21 @@
 #include <utility>
 #include <vector>
 
+#include "io/background_job.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
 #include "solvers/analysis.hpp"
 #include "solvers/modal.hpp"
 
 namespace tirefe::io {
+
+/// Whether flushes may be written by a thread of their own: HDF5 built thread-safe (as
+/// Debian's is) serialises its calls; otherwise they are written by the run's thread.
+#ifdef H5_HAVE_THREADSAFE
+inline constexpr bool kHdf5Threadsafe = true;
+#else
+inline constexpr bool kHdf5Threadsafe = false;
+#endif
 
 /// Where a result file goes: to disk, or nowhere (an MPI rank that does not own the
 /// model: its writes land in memory and are dropped, and it records no steps).
@@ -76,7 +87,11 @@ class ResultFile {
   ResultFile& operator=(const ResultFile&) = delete;
   const std::string& path() const { return file_.path(); }
   bool discarded() const { return discarded_; }
-  Hdf5File& file() { return file_; }
+  /// The file, once a flush being written is done.
+  Hdf5File& file() {
+    flush_job_.wait();
+    return file_;
+  }
 
   /// Adds a history channel (one value per accepted step). A channel added after steps were
   /// recorded holds NaN for those earlier steps.
@@ -113,10 +128,13 @@ class ResultFile {
   void start(const Analysis& analysis);
   /// A restart's count of the rows refilled from its checkpoint.
   void set_steps_recorded(int steps) { steps_recorded_ = steps; }
+  /// Flushes and waits for the flush to be written.
   void flush();
-  /// Flushes if a quarter second of wall time has passed since the last flush (and twenty times
-  /// that flush's own time), or if the rows waiting in memory reach half the file's rows
-  /// (and at least kFlushBytes): what a kill can lose is bounded, what flushing costs too.
+  /// Starts a flush, written by a thread of its own while the run goes on, if a quarter
+  /// second of wall time has passed since the last flush (and twenty times that flush's own
+  /// time), or if the rows waiting in memory reach half the file's rows (and at least
+  /// kFlushBytes): what a kill can lose is bounded, what flushing costs too. A flush that
+  /// failed throws here, at the next step.
   void flush_if_due();
   /// The wall time between flushes while rows arrive.
   static constexpr std::chrono::milliseconds kFlushInterval{250};
@@ -126,6 +144,11 @@ class ResultFile {
  private:
   /// Bytes of the rows waiting in memory for the next flush.
   size_t pending_bytes() const;
+  /// Takes the rows and frames waiting and starts writing them (after the last flush).
+  void start_flush();
+  /// The flush's writing, on the writer's thread: the views of the frames from
+  /// 'first_frame' on, the rows, the file's copy, then the frames in the index.
+  void write_flush(size_t first_frame, const std::vector<double>& frames);
   struct HistoryChannel {
     ExtendibleDataset* dataset;
     Channel value;
@@ -193,6 +216,8 @@ class ResultFile {
   std::vector<double> unflushed_frames_;  // the times of frames written since the last flush
   size_t frames_indexed_ = 0;             // in the index file
   std::chrono::steady_clock::time_point last_index_write_ = std::chrono::steady_clock::now();
+  // Last, so that it is destroyed first: the flush it writes uses the members above.
+  BackgroundJob flush_job_{kHdf5Threadsafe};
 };
 
 }  // namespace tirefe::io
