@@ -123,7 +123,7 @@ TEST_CASE("arch: theta(L) solves eq. 1 to 1e-12 for L/l_sw in (0.05, 0.999), the
   CHECK_THROWS_AS(solve_arch(1.1 * l, l), std::domain_error);
 }
 
-TEST_CASE("arch: many half-angles at once are one arch's at a time, bit for bit, over [0, 1)", "[sidewall]") {
+TEST_CASE("arch: many half-angles at once are one arch's at a time, bit for bit, for 0 <= L/l_sw < 1", "[sidewall]") {
   // Service ratios end after the vectorised first step; small ones (a poor series start)
   // and exact roots take the one-arch solve; 0 and 0.999 are the ends.
   std::vector<double> ratios{0.0, 1e-9, 0.02, 0.3, 2.0 / kPi, 0.999, std::sin(1.0) / 1.0};

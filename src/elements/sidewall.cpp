@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/simd_clones.hpp"
 #include "elements/sine_cosine.hpp"
 
 namespace tirefe {
@@ -100,7 +101,8 @@ void require(bool condition, const std::string& message) {
 
 }  // namespace
 
-void solve_half_angles(const double* ratio, int count, double* half_angle, double* cos_half, double* sin_half) {
+TIREFE_SIMD_CLONES void solve_half_angles(const double* ratio, int count, double* half_angle, double* cos_half,
+                                          double* sin_half) {
   // solve_half_angle's first iteration, vectorised: it ends the solve of every chord of a
   // working tire. A chord it does not end is marked, then solved alone from the start.
   // The arithmetic is halley_step's and halley_solution's, written out: the vectoriser
@@ -444,7 +446,7 @@ void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
 }
 
 template <bool Tangent, bool Damped>
-void SidewallWedge::Batch::add_points(const BlockValues& values, const IntegratorFactors& f) {
+TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_points(const BlockValues& values, const IntegratorFactors& f) {
   const int n = size();
   const double* u = values.displacement;
   const double* v = values.velocity;
