@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <complex>
 #include <memory>
 #include <random>
@@ -120,6 +121,29 @@ TEST_CASE("arch: theta(L) solves eq. 1 to 1e-12 for L/l_sw in (0.05, 0.999), the
   }
   CHECK_THROWS_AS(solve_arch(l, l), std::domain_error);
   CHECK_THROWS_AS(solve_arch(1.1 * l, l), std::domain_error);
+}
+
+TEST_CASE("arch: many half-angles at once are one arch's at a time, bit for bit, for 0 <= L/l_sw < 1", "[sidewall]") {
+  // Service ratios end after the vectorised first step; small ones (a poor series start)
+  // and exact roots take the one-arch solve; 0 and 0.999 are the ends.
+  std::vector<double> ratios{0.0, 1e-9, 0.02, 0.3, 2.0 / kPi, 0.999, std::sin(1.0) / 1.0};
+  for (int i = 0; i < 997; ++i) ratios.push_back(i / 997.0);
+  for (double& ratio : ratios) ratio = ratio * kCordLength / kCordLength;  // as solve_arch forms it
+  const int count = static_cast<int>(ratios.size());
+  std::vector<double> half_angle(count), cos_half(count), sin_half(count);
+  tirefe::solve_half_angles(ratios.data(), count, half_angle.data(), cos_half.data(), sin_half.data());
+  int different = 0;
+  for (int i = 0; i < count; ++i) {
+    const double chord = ratios[i] * kCordLength;
+    const double alpha = solve_arch(chord, kCordLength).half_angle;
+    INFO("L/l_sw = " << ratios[i] << std::setprecision(3) << ", cos error " << cos_half[i] - std::cos(alpha)
+                     << ", sin error " << sin_half[i] - std::sin(alpha));
+    different += half_angle[i] != alpha;
+    // The cosine and sine go with the angle (the last step's Taylor terms leave a few 1e-15).
+    CHECK(std::abs(cos_half[i] - std::cos(alpha)) <= 5e-15);
+    CHECK(std::abs(sin_half[i] - std::sin(alpha)) <= 5e-15);
+  }
+  CHECK(different == 0);
 }
 
 TEST_CASE("membrane law: the chord force of a pressurised circular arc, p r cos(half angle) per sidewall",

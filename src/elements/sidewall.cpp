@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/simd_clones.hpp"
 #include "elements/sine_cosine.hpp"
 
 namespace tirefe {
@@ -33,10 +34,6 @@ constexpr double kGaussWeight = 0.5;
 /// k x a: the counter-clockwise perpendicular.
 inline Eigen::Vector2d perpendicular(const Eigen::Vector2d& a) { return {-a.y(), a.x()}; }
 
-struct ArchSolution {
-  double half_angle, cos_half, sin_half;
-};
-
 /// Root of f(alpha) = sin(alpha) - ratio alpha on (0, pi] for 0 <= ratio < 1. f is
 /// positive below the root and negative above (sinc decreases), which keeps a bracket
 /// for the bisection safeguard. The start is the series inversion of sinc about 0 to
@@ -45,34 +42,53 @@ struct ArchSolution {
 /// free with f) converge cubically: the error after a step d is about K d^3 with
 /// K <= 2 / alpha^2, so a step |d| <= 1e-5 alpha leaves 2e-15 alpha, and every chord of a
 /// working tire needs a single sine and cosine (sine_cosine.hpp, inline). Sine and cosine
-/// follow by Taylor to second order (error d^3/6, below round-off).
-ArchSolution solve_half_angle(double ratio) {
+/// follow by Taylor to second order (error d^3/6, below round-off). Its parts are
+/// written once for solve_half_angle (one chord) and solve_half_angles (many, vectorised).
+/// The series start; for ratios in [0, 1) it stays below 3.12 (its sum at ratio 0) < pi.
+inline double half_angle_series(double ratio) {
   const double y = 1.0 - ratio;
   // clang-format off
   constexpr double c[8] = {6.0, 9.0 / 5.0, 144.0 / 175.0, 78.0 / 175.0, 89226.0 / 336875.0,
                            522063.0 / 3128125.0, 83924688.0 / 766390625.0, 438337548.0 / 5922109375.0};
   // clang-format on
   double series = c[7];
+#pragma GCC unroll 7
   for (int k = 6; k >= 0; --k) series = c[k] + y * series;
-  double alpha = std::min(std::sqrt(y * series), kPi);
+  return std::sqrt(y * series);
+}
+
+// One safeguarded Halley step from alpha, its bracket moved to alpha.
+struct HalleyStep {
+  double next, step;
+};
+inline HalleyStep halley_step(double ratio, double alpha, const SineCosine& turn, double& low, double& high) {
+  const double residual = turn.sin - ratio * alpha;
+  low = residual > 0.0 ? alpha : low;
+  high = residual > 0.0 ? high : alpha;
+  const double slope = turn.cos - ratio;
+  double next = alpha - 2.0 * residual * slope / (2.0 * slope * slope + residual * turn.sin);
+  // A converged step may land on the bracket end just moved to alpha: keep it.
+  if (!(next >= low && next <= high)) next = 0.5 * (low + high);
+  return {next, next - alpha};
+}
+
+// Whether a step ends the solve, and the solution it gives: cosine and sine by Taylor.
+inline bool halley_converged(double alpha, double step) { return std::abs(step) <= 1e-5 * alpha; }
+inline ArchSolution halley_solution(double next, double step, const SineCosine& turn) {
+  const double half_square = 0.5 * step * step;
+  return {next, turn.cos - step * turn.sin - half_square * turn.cos,
+          turn.sin + step * turn.cos - half_square * turn.sin};
+}
+
+ArchSolution solve_half_angle(double ratio) {
+  double alpha = std::min(half_angle_series(ratio), kPi);
   double low = 0.0, high = kPi;
   for (int iteration = 0; iteration < 60; ++iteration) {
     const SineCosine turn = sine_cosine(alpha);  // inline: no call into the math library
-    const double sin_alpha = turn.sin, cos_alpha = turn.cos;
-    const double residual = sin_alpha - ratio * alpha;
-    if (residual == 0.0) break;
-    (residual > 0.0 ? low : high) = alpha;
-    const double slope = cos_alpha - ratio;
-    double next = alpha - 2.0 * residual * slope / (2.0 * slope * slope + residual * sin_alpha);
-    // A converged step may land on the bracket end just moved to alpha: keep it.
-    if (!(next >= low && next <= high)) next = 0.5 * (low + high);
-    const double step = next - alpha;
-    if (std::abs(step) <= 1e-5 * alpha) {
-      const double half_square = 0.5 * step * step;
-      return {next, cos_alpha - step * sin_alpha - half_square * cos_alpha,
-              sin_alpha + step * cos_alpha - half_square * sin_alpha};
-    }
-    alpha = next;
+    if (turn.sin - ratio * alpha == 0.0) break;
+    const HalleyStep step = halley_step(ratio, alpha, turn, low, high);
+    if (halley_converged(alpha, step.step)) return halley_solution(step.next, step.step, turn);
+    alpha = step.next;
     if (high - low <= 1e-15 * high) break;  // the end of a bisection run
   }
   const SineCosine turn = sine_cosine(alpha);
@@ -84,6 +100,37 @@ void require(bool condition, const std::string& message) {
 }
 
 }  // namespace
+
+TIREFE_SIMD_CLONES void solve_half_angles(const double* ratio, int count, double* half_angle, double* cos_half,
+                                          double* sin_half) {
+  // solve_half_angle's first iteration, vectorised: it ends the solve of every chord of a
+  // working tire. A chord it does not end is marked, then solved alone from the start.
+  // The arithmetic is halley_step's and halley_solution's, written out: the vectoriser
+  // takes selects, not the bracket moved through a reference.
+  constexpr double kUnsolved = std::numeric_limits<double>::quiet_NaN();
+#pragma omp simd
+  for (int i = 0; i < count; ++i) {
+    const double r = ratio[i], alpha = half_angle_series(r);  // below pi: solve_half_angle's start
+    const SineCosine turn = sine_cosine(alpha);
+    const double residual = turn.sin - r * alpha;
+    const double low = residual > 0.0 ? alpha : 0.0, high = residual > 0.0 ? kPi : alpha;
+    const double slope = turn.cos - r;
+    double next = alpha - 2.0 * residual * slope / (2.0 * slope * slope + residual * turn.sin);
+    if (!(next >= low && next <= high)) next = 0.5 * (low + high);
+    const double step = next - alpha, half_square = 0.5 * step * step;
+    const bool root = residual == 0.0;
+    half_angle[i] = root ? alpha : halley_converged(alpha, step) ? next : kUnsolved;
+    cos_half[i] = root ? turn.cos : turn.cos - step * turn.sin - half_square * turn.cos;
+    sin_half[i] = root ? turn.sin : turn.sin + step * turn.cos - half_square * turn.sin;
+  }
+  for (int i = 0; i < count; ++i) {
+    if (!std::isnan(half_angle[i])) continue;
+    const ArchSolution arch = solve_half_angle(ratio[i]);
+    half_angle[i] = arch.half_angle;
+    cos_half[i] = arch.cos_half;
+    sin_half[i] = arch.sin_half;
+  }
+}
 
 double ArchShape::meridian_angle() const { return 0.5 * kPi - half_angle; }
 double ArchShape::radius(double cord_length) const { return cord_length / (2.0 * half_angle); }
@@ -142,14 +189,17 @@ void SidewallLaw::arch_force(double alpha, double cos_half, double sin_half, dou
                        signed_bending_ * ((2.0 * alpha - alpha0) * cos_half - bending_shape * sin_half);
 }
 
-SidewallLaw::CordForce SidewallLaw::cord_force(double chord, double alpha0, double pressure) const {
+SidewallLaw::CordForce SidewallLaw::arch_cord_force(double chord, const ArchSolution& arch, double alpha0,
+                                                    double pressure) const {
   double force, dforce_dhalf_angle;
-  if (chord < switch_chord_) {
-    const double l = properties_.cord_length;
-    const ArchSolution arch = solve_half_angle(chord / l);
-    arch_force(arch.half_angle, arch.cos_half, arch.sin_half, alpha0, pressure, force, dforce_dhalf_angle);
-    return {force, dforce_dhalf_angle * arch.half_angle / (l * arch.cos_half - chord)};
-  }
+  arch_force(arch.half_angle, arch.cos_half, arch.sin_half, alpha0, pressure, force, dforce_dhalf_angle);
+  return {force, dforce_dhalf_angle * arch.half_angle / (properties_.cord_length * arch.cos_half - chord)};
+}
+
+SidewallLaw::CordForce SidewallLaw::cord_force(double chord, double alpha0, double pressure) const {
+  if (chord < switch_chord_)
+    return arch_cord_force(chord, solve_half_angle(chord / properties_.cord_length), alpha0, pressure);
+  double force, dforce_dhalf_angle;
   // Near-straight or stretched cord: the linear continuation of the arch law from L*.
   arch_force(properties_.straight_cord_half_angle, switch_cos_, switch_sin_, alpha0, pressure, force,
              dforce_dhalf_angle);
@@ -326,8 +376,8 @@ SidewallWedge::Batch::Batch(const std::vector<SidewallWedge>& wedges) : wedges_(
   for (auto* field : {&tread_a_x_, &tread_a_y_, &tread_b_x_, &tread_b_y_, &shear_stiffness_, &radial_damping_,
                       &circumferential_damping_})
     field->assign(n, 0.0);
-  for (auto* field :
-       {&rim_x_, &rim_y_, &cord_x_, &cord_y_, &e_y_x_, &e_y_y_, &chord_, &force_, &stiffness_, &shear_angle_})
+  for (auto* field : {&rim_x_, &rim_y_, &cord_x_, &cord_y_, &e_y_x_, &e_y_y_, &chord_, &force_, &stiffness_,
+                      &shear_angle_, &ratio_, &half_angle_, &cos_half_, &sin_half_})
     field->assign(kQuadraturePoints * n, 0.0);
   residual_.assign(kDofs * n, 0.0);
   tangent_.assign(kDofs * kDofs * n, 0.0);
@@ -349,8 +399,6 @@ void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
   const int n = size();
   // Every wedge of a tire turns with one spindle: its sine and cosine are computed once.
   double spin = std::numeric_limits<double>::quiet_NaN(), cos_spin = 0.0, sin_spin = 0.0;
-  const PressureSchedule* schedule = nullptr;
-  double pressure = 0.0;
   Vector u;
   for (int e = 0; e < n; ++e) {
     const SidewallWedge& wedge = wedges_[e];
@@ -360,13 +408,8 @@ void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
       cos_spin = std::cos(spin);
       sin_spin = std::sin(spin);
     }
-    if (wedge.pressure_.get() != schedule) {
-      schedule = wedge.pressure_.get();
-      pressure = schedule->at(time);
-    }
     for (int q = 0; q < kQuadraturePoints; ++q) {
       const Kinematics k = wedge.kinematics(u, q, cos_spin, sin_spin);
-      const SidewallLaw::CordForce cord = wedge.law_.cord_force(k.chord, wedge.reference_half_angle_[q], pressure);
       const int i = q * n + e;
       rim_x_[i] = k.rim_offset.x();
       rim_y_[i] = k.rim_offset.y();
@@ -375,15 +418,35 @@ void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
       e_y_x_[i] = k.e_y.x();
       e_y_y_[i] = k.e_y.y();
       chord_[i] = k.chord;
+      shear_angle_[i] = k.shear_angle;
+      // A near-straight cord takes the law's linear continuation: its arch is not solved.
+      ratio_[i] = k.chord < wedge.law_.switch_chord() ? k.chord / wedge.law_.properties().cord_length : 0.5;
+    }
+  }
+  solve_half_angles(ratio_.data(), kQuadraturePoints * n, half_angle_.data(), cos_half_.data(), sin_half_.data());
+  const PressureSchedule* schedule = nullptr;
+  double pressure = 0.0;
+  for (int e = 0; e < n; ++e) {
+    const SidewallWedge& wedge = wedges_[e];
+    if (wedge.pressure_.get() != schedule) {
+      schedule = wedge.pressure_.get();
+      pressure = schedule->at(time);
+    }
+    for (int q = 0; q < kQuadraturePoints; ++q) {
+      const int i = q * n + e;
+      const double alpha0 = wedge.reference_half_angle_[q];
+      const SidewallLaw::CordForce cord =
+          chord_[i] < wedge.law_.switch_chord()
+              ? wedge.law_.arch_cord_force(chord_[i], {half_angle_[i], cos_half_[i], sin_half_[i]}, alpha0, pressure)
+              : wedge.law_.cord_force(chord_[i], alpha0, pressure);
       force_[i] = cord.force;
       stiffness_[i] = cord.stiffness;
-      shear_angle_[i] = k.shear_angle;
     }
   }
 }
 
 template <bool Tangent, bool Damped>
-void SidewallWedge::Batch::add_points(const BlockValues& values, const IntegratorFactors& f) {
+TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_points(const BlockValues& values, const IntegratorFactors& f) {
   const int n = size();
   const double* u = values.displacement;
   const double* v = values.velocity;

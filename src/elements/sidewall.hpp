@@ -65,6 +65,14 @@ struct ArchShape {
 /// (to round-off); throws std::domain_error outside that range (no arch exists).
 ArchShape solve_arch(double chord, double cord_length);
 
+/// The arch's half-angle alpha with its cosine and sine, for a chord ratio L / l_sw.
+struct ArchSolution {
+  double half_angle, cos_half, sin_half;
+};
+/// The half-angles of 'count' arches at once (ratios in [0, 1)), vectorised across them:
+/// the same numbers, bit for bit, as one arch at a time (solve_arch's root).
+void solve_half_angles(const double* ratio, int count, double* half_angle, double* cos_half, double* sin_half);
+
 struct SidewallProperties {
   double rim_radius = 0.0;                // r_rim [m]
   double cord_length = 0.0;               // l_sw [m]
@@ -94,6 +102,8 @@ class SidewallLaw {
   /// alpha0 of a reference chord; throws ModelError unless 0 < chord < switch_chord().
   double reference_half_angle(double chord) const;
   CordForce cord_force(double chord, double reference_half_angle, double pressure) const;
+  /// cord_force of a chord below switch_chord() whose arch is solved already.
+  CordForce arch_cord_force(double chord, const ArchSolution& arch, double reference_half_angle, double pressure) const;
   /// L* = l_sw sin(alpha*)/alpha*, where the linear continuation takes over.
   double switch_chord() const { return switch_chord_; }
   const SidewallProperties& properties() const { return properties_; }
@@ -145,10 +155,11 @@ class SidewallWedge : public KernelShape<3> {
   std::array<double, kQuadraturePoints> reference_half_angle_;
 };
 
-/// Wedges over structure-of-arrays data: per quadrature point, a scalar pass solves the
-/// cord (arch, shear angle: the transcendental part, one sine and cosine per spindle
-/// angle rather than per wedge), then a pass vectorised across wedges forms the weighted
-/// tractions, their derivatives and the element vectors and matrices of evaluate().
+/// Wedges over structure-of-arrays data: per quadrature point, a scalar pass finds the
+/// cord (shear angle: one sine and cosine per spindle angle rather than per wedge), a pass
+/// vectorised across the points solves their arches, a scalar pass their force law; then
+/// a pass vectorised across wedges forms the weighted tractions, their derivatives and the
+/// element vectors and matrices of evaluate().
 class SidewallWedge::Batch {
  public:
   explicit Batch(const std::vector<SidewallWedge>& wedges);
@@ -171,6 +182,8 @@ class SidewallWedge::Batch {
   bool damped_ = false;  // some wedge has dashpots
   // Per wedge and point [q * size + e]: rho, P, e_y, L, F, dF/dL, gamma.
   std::vector<double> rim_x_, rim_y_, cord_x_, cord_y_, e_y_x_, e_y_y_, chord_, force_, stiffness_, shear_angle_;
+  // Per wedge and point: the arch's chord ratio L / l_sw and its solution.
+  std::vector<double> ratio_, half_angle_, cos_half_, sin_half_;
   std::vector<double> residual_, tangent_;  // [k * size + e]
 };
 

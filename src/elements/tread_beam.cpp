@@ -3,6 +3,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/simd_clones.hpp"
 #include "elements/sine_cosine.hpp"
 
 namespace tirefe {
@@ -153,7 +154,7 @@ TreadBeam::Batch::Batch(const std::vector<TreadBeam>& beams) : count_(static_cas
 }
 
 template <bool Tangent>
-void TreadBeam::Batch::evaluate_beams(const BlockValues& values, const IntegratorFactors& f) {
+TIREFE_SIMD_CLONES void TreadBeam::Batch::evaluate_beams(const BlockValues& values, const IntegratorFactors& f) {
   const int n = count_;
   const double* u = values.displacement;
   const double* v = values.velocity;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/simd_clones.hpp"
 #include "elements/sine_cosine.hpp"
 
 namespace tirefe {
@@ -139,7 +140,7 @@ TreadLayer::Batch::Batch(const std::vector<TreadLayer>& layers) : count_(static_
 }
 
 template <bool Tangent, bool Damped>
-void TreadLayer::Batch::evaluate_layers(const BlockValues& values, const IntegratorFactors& f) {
+TIREFE_SIMD_CLONES void TreadLayer::Batch::evaluate_layers(const BlockValues& values, const IntegratorFactors& f) {
   const int n = count_;
   const double* u = values.displacement;
   const double* v = values.velocity;
