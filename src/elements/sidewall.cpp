@@ -95,6 +95,26 @@ ArchSolution solve_half_angle(double ratio) {
   return {alpha, turn.cos, turn.sin};
 }
 
+// F and dF/dalpha on the arch branch, at a half-angle with known cos and sin: the membrane
+// n_sw p r sin(theta) with r = l_sw/(2 alpha), sin(theta) = cos(alpha), and the bending.
+struct ArchForce {
+  double force, dforce_dhalf_angle;
+};
+inline ArchForce arch_force(double membrane_scale, double signed_bending, double alpha, double cos_half,
+                            double sin_half, double alpha0) {
+  const double bending_shape = alpha * (alpha - alpha0);
+  return {membrane_scale * cos_half / alpha + signed_bending * bending_shape * cos_half,
+          -membrane_scale * (alpha * sin_half + cos_half) / (alpha * alpha) +
+              signed_bending * ((2.0 * alpha - alpha0) * cos_half - bending_shape * sin_half)};
+}
+
+// F and dF/dL of a chord L on the arch branch: dalpha/dL = alpha / (l_sw cos(alpha) - L).
+inline SidewallLaw::CordForce arch_law(double membrane_scale, double signed_bending, double cord_length, double chord,
+                                       double alpha, double cos_half, double sin_half, double alpha0) {
+  const ArchForce arch = arch_force(membrane_scale, signed_bending, alpha, cos_half, sin_half, alpha0);
+  return {arch.force, arch.dforce_dhalf_angle * alpha / (cord_length * cos_half - chord)};
+}
+
 void require(bool condition, const std::string& message) {
   if (!condition) throw ModelError("sidewall: " + message);
 }
@@ -179,32 +199,20 @@ double SidewallLaw::reference_half_angle(double chord) const {
   return solve_arch(chord, properties_.cord_length).half_angle;
 }
 
-void SidewallLaw::arch_force(double alpha, double cos_half, double sin_half, double alpha0, double pressure,
-                             double& force, double& dforce_dhalf_angle) const {
-  // Membrane n_sw p r sin(theta) with r = l_sw/(2 alpha), sin(theta) = cos(alpha).
-  const double membrane_scale = 0.5 * properties_.sidewall_count * pressure * properties_.cord_length;
-  const double bending_shape = alpha * (alpha - alpha0);
-  force = membrane_scale * cos_half / alpha + signed_bending_ * bending_shape * cos_half;
-  dforce_dhalf_angle = -membrane_scale * (alpha * sin_half + cos_half) / (alpha * alpha) +
-                       signed_bending_ * ((2.0 * alpha - alpha0) * cos_half - bending_shape * sin_half);
-}
-
 SidewallLaw::CordForce SidewallLaw::arch_cord_force(double chord, const ArchSolution& arch, double alpha0,
                                                     double pressure) const {
-  double force, dforce_dhalf_angle;
-  arch_force(arch.half_angle, arch.cos_half, arch.sin_half, alpha0, pressure, force, dforce_dhalf_angle);
-  return {force, dforce_dhalf_angle * arch.half_angle / (properties_.cord_length * arch.cos_half - chord)};
+  return arch_law(membrane_scale(pressure), signed_bending_, properties_.cord_length, chord, arch.half_angle,
+                  arch.cos_half, arch.sin_half, alpha0);
 }
 
 SidewallLaw::CordForce SidewallLaw::cord_force(double chord, double alpha0, double pressure) const {
   if (chord < switch_chord_)
     return arch_cord_force(chord, solve_half_angle(chord / properties_.cord_length), alpha0, pressure);
-  double force, dforce_dhalf_angle;
   // Near-straight or stretched cord: the linear continuation of the arch law from L*.
-  arch_force(properties_.straight_cord_half_angle, switch_cos_, switch_sin_, alpha0, pressure, force,
-             dforce_dhalf_angle);
-  const double stiffness = dforce_dhalf_angle * switch_dhalf_angle_dchord_;
-  return {force + stiffness * (chord - switch_chord_), stiffness};
+  const ArchForce start = arch_force(membrane_scale(pressure), signed_bending_, properties_.straight_cord_half_angle,
+                                     switch_cos_, switch_sin_, alpha0);
+  const double stiffness = start.dforce_dhalf_angle * switch_dhalf_angle_dchord_;
+  return {start.force + stiffness * (chord - switch_chord_), stiffness};
 }
 
 struct SidewallWedge::Kinematics {
@@ -379,10 +387,30 @@ SidewallWedge::Batch::Batch(const std::vector<SidewallWedge>& wedges) : wedges_(
   for (auto* field : {&rim_x_, &rim_y_, &cord_x_, &cord_y_, &e_y_x_, &e_y_y_, &chord_, &force_, &stiffness_,
                       &shear_angle_, &ratio_, &half_angle_, &cos_half_, &sin_half_})
     field->assign(kQuadraturePoints * n, 0.0);
+  for (auto* field : {&reference_tread_x_, &reference_tread_y_, &reference_rim_x_, &reference_rim_y_,
+                      &reference_half_angle_, &cross_, &dot_})
+    field->assign(kQuadraturePoints * n, 0.0);
+  for (auto* field : {&spindle_x_, &spindle_y_, &cord_length_, &switch_chord_, &rim_radius_, &signed_bending_,
+                      &cos_spin_, &sin_spin_, &membrane_scale_})
+    field->assign(n, 0.0);
   residual_.assign(kDofs * n, 0.0);
   tangent_.assign(kDofs * kDofs * n, 0.0);
   for (size_t e = 0; e < n; ++e) {
     const SidewallWedge& wedge = wedges_[e];
+    for (int q = 0; q < kQuadraturePoints; ++q) {
+      const size_t i = q * n + e;
+      reference_tread_x_[i] = wedge.reference_tread_[q].x();
+      reference_tread_y_[i] = wedge.reference_tread_[q].y();
+      reference_rim_x_[i] = wedge.reference_rim_offset_[q].x();
+      reference_rim_y_[i] = wedge.reference_rim_offset_[q].y();
+      reference_half_angle_[i] = wedge.reference_half_angle_[q];
+    }
+    spindle_x_[e] = wedge.spindle_.x();
+    spindle_y_[e] = wedge.spindle_.y();
+    cord_length_[e] = wedge.law_.properties().cord_length;
+    switch_chord_[e] = wedge.law_.switch_chord();
+    rim_radius_[e] = wedge.law_.properties().rim_radius;
+    signed_bending_[e] = wedge.law_.signed_bending();
     tread_a_x_[e] = wedge.tread_a_.x();
     tread_a_y_[e] = wedge.tread_a_.y();
     tread_b_x_[e] = wedge.tread_b_.x();
@@ -397,51 +425,94 @@ SidewallWedge::Batch::Batch(const std::vector<SidewallWedge>& wedges) : wedges_(
 
 void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
   const int n = size();
-  // Every wedge of a tire turns with one spindle: its sine and cosine are computed once.
+  const double* u = values.displacement;
+  // Every wedge of a tire turns with one spindle and reads one pressure: the spin's sine
+  // and cosine and the pressure are computed once.
   double spin = std::numeric_limits<double>::quiet_NaN(), cos_spin = 0.0, sin_spin = 0.0;
-  Vector u;
-  for (int e = 0; e < n; ++e) {
-    const SidewallWedge& wedge = wedges_[e];
-    for (int k = 0; k < kDofs; ++k) u[k] = values.displacement[k * n + e];
-    if (!(u[2] == spin)) {
-      spin = u[2];
-      cos_spin = std::cos(spin);
-      sin_spin = std::sin(spin);
-    }
-    for (int q = 0; q < kQuadraturePoints; ++q) {
-      const Kinematics k = wedge.kinematics(u, q, cos_spin, sin_spin);
-      const int i = q * n + e;
-      rim_x_[i] = k.rim_offset.x();
-      rim_y_[i] = k.rim_offset.y();
-      cord_x_[i] = k.cord.x();
-      cord_y_[i] = k.cord.y();
-      e_y_x_[i] = k.e_y.x();
-      e_y_y_[i] = k.e_y.y();
-      chord_[i] = k.chord;
-      shear_angle_[i] = k.shear_angle;
-      // A near-straight cord takes the law's linear continuation: its arch is not solved.
-      ratio_[i] = k.chord < wedge.law_.switch_chord() ? k.chord / wedge.law_.properties().cord_length : 0.5;
-    }
-  }
-  solve_half_angles(ratio_.data(), kQuadraturePoints * n, half_angle_.data(), cos_half_.data(), sin_half_.data());
   const PressureSchedule* schedule = nullptr;
   double pressure = 0.0;
   for (int e = 0; e < n; ++e) {
     const SidewallWedge& wedge = wedges_[e];
+    if (!(u[2 * n + e] == spin)) {
+      spin = u[2 * n + e];
+      cos_spin = std::cos(spin);
+      sin_spin = std::sin(spin);
+    }
     if (wedge.pressure_.get() != schedule) {
       schedule = wedge.pressure_.get();
       pressure = schedule->at(time);
     }
+    cos_spin_[e] = cos_spin;
+    sin_spin_[e] = sin_spin;
+    membrane_scale_[e] = wedge.law_.membrane_scale(pressure);
+  }
+  for (int q = 0; q < kQuadraturePoints; ++q) add_cords(u, q);
+  for (int i = 0; i < kQuadraturePoints * n; ++i) {
+    // gamma: from the rotated reference cord -rho (length r_rim) to e_y. Within 45 degrees
+    // its sine is well conditioned (d gamma = d sin / cos gamma) and asin costs a fraction
+    // of atan2, which takes over beyond.
+    const double cross = cross_[i], dot = dot_[i];
+    shear_angle_[i] = std::abs(cross) <= dot ? std::asin(cross / rim_radius_[i % n]) : std::atan2(cross, dot);
+  }
+  solve_half_angles(ratio_.data(), kQuadraturePoints * n, half_angle_.data(), cos_half_.data(), sin_half_.data());
+  for (int q = 0; q < kQuadraturePoints; ++q) add_cord_forces(q);
+  for (int e = 0; e < n; ++e) {
+    const SidewallWedge& wedge = wedges_[e];
     for (int q = 0; q < kQuadraturePoints; ++q) {
       const int i = q * n + e;
-      const double alpha0 = wedge.reference_half_angle_[q];
+      if (chord_[i] < switch_chord_[e]) continue;
       const SidewallLaw::CordForce cord =
-          chord_[i] < wedge.law_.switch_chord()
-              ? wedge.law_.arch_cord_force(chord_[i], {half_angle_[i], cos_half_[i], sin_half_[i]}, alpha0, pressure)
-              : wedge.law_.cord_force(chord_[i], alpha0, pressure);
+          wedge.law_.cord_force(chord_[i], wedge.reference_half_angle_[q], wedge.pressure_->at(time));
       force_[i] = cord.force;
       stiffness_[i] = cord.stiffness;
     }
+  }
+}
+
+TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_cords(const double* u, int q) {
+  // kinematics() across the wedges, term for term, on plain arrays (which the vectoriser
+  // sees apart).
+  const int n = size();
+  const double shape_a = 1.0 - kGaussPoints[q], shape_b = kGaussPoints[q];
+  const double *offset_x = &reference_rim_x_[q * n], *offset_y = &reference_rim_y_[q * n];
+  const double *reference_x = &reference_tread_x_[q * n], *reference_y = &reference_tread_y_[q * n];
+  const double *cos_spin = cos_spin_.data(), *sin_spin = sin_spin_.data(), *spindle_x = spindle_x_.data(),
+               *spindle_y = spindle_y_.data(), *switch_chord = switch_chord_.data(), *cord_length = cord_length_.data();
+  double *rim_x = &rim_x_[q * n], *rim_y = &rim_y_[q * n], *cord_x = &cord_x_[q * n], *cord_y = &cord_y_[q * n];
+  double *e_y_x = &e_y_x_[q * n], *e_y_y = &e_y_y_[q * n], *chord = &chord_[q * n], *cross = &cross_[q * n],
+         *dot = &dot_[q * n], *ratio = &ratio_[q * n];
+#pragma omp simd
+  for (int e = 0; e < n; ++e) {
+    const double rx = cos_spin[e] * offset_x[e] - sin_spin[e] * offset_y[e];
+    const double ry = sin_spin[e] * offset_x[e] + cos_spin[e] * offset_y[e];
+    const double tread_x = reference_x[e] + shape_a * u[3 * n + e] + shape_b * u[6 * n + e];
+    const double tread_y = reference_y[e] + shape_a * u[4 * n + e] + shape_b * u[7 * n + e];
+    const double px = spindle_x[e] + u[e] + rx - tread_x, py = spindle_y[e] + u[n + e] + ry - tread_y;
+    const double length = std::sqrt(px * px + py * py);
+    const double ex = px / length, ey = py / length;
+    rim_x[e] = rx;
+    rim_y[e] = ry;
+    cord_x[e] = px;
+    cord_y[e] = py;
+    e_y_x[e] = ex;
+    e_y_y[e] = ey;
+    chord[e] = length;
+    cross[e] = -rx * ey - -ry * ex;
+    dot[e] = -rx * ex + -ry * ey;
+    // A near-straight cord takes the law's linear continuation: its arch is not solved.
+    ratio[e] = length < switch_chord[e] ? length / cord_length[e] : 0.5;
+  }
+}
+
+TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_cord_forces(int q) {
+  const int n = size();
+#pragma omp simd
+  for (int e = 0; e < n; ++e) {
+    const int i = q * n + e;
+    const SidewallLaw::CordForce cord = arch_law(membrane_scale_[e], signed_bending_[e], cord_length_[e], chord_[i],
+                                                 half_angle_[i], cos_half_[i], sin_half_[i], reference_half_angle_[i]);
+    force_[i] = cord.force;
+    stiffness_[i] = cord.stiffness;
   }
 }
 

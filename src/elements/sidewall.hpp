@@ -107,12 +107,13 @@ class SidewallLaw {
   /// L* = l_sw sin(alpha*)/alpha*, where the linear continuation takes over.
   double switch_chord() const { return switch_chord_; }
   const SidewallProperties& properties() const { return properties_; }
+  /// The membrane term's factor n_sw p l_sw / 2 [N], and the bending term's s k_sw 4 / l_sw^2.
+  double membrane_scale(double pressure) const {
+    return 0.5 * properties_.sidewall_count * pressure * properties_.cord_length;
+  }
+  double signed_bending() const { return signed_bending_; }
 
  private:
-  /// F and dF/dalpha on the arch branch, at a half-angle with known cos and sin.
-  void arch_force(double half_angle, double cos_half, double sin_half, double reference_half_angle, double pressure,
-                  double& force, double& dforce_dhalf_angle) const;
-
   SidewallProperties properties_;
   double signed_bending_;  // s k_sw (4 / l_sw^2) [N/m]
   double switch_chord_, switch_cos_, switch_sin_, switch_dhalf_angle_dchord_;
@@ -155,11 +156,11 @@ class SidewallWedge : public KernelShape<3> {
   std::array<double, kQuadraturePoints> reference_half_angle_;
 };
 
-/// Wedges over structure-of-arrays data: per quadrature point, a scalar pass finds the
-/// cord (shear angle: one sine and cosine per spindle angle rather than per wedge), a pass
-/// vectorised across the points solves their arches, a scalar pass their force law; then
-/// a pass vectorised across wedges forms the weighted tractions, their derivatives and the
-/// element vectors and matrices of evaluate().
+/// Wedges over structure-of-arrays data: passes vectorised across the wedges' points find
+/// the cords, solve their arches and take their force law (the shear angle's arcsine, one
+/// sine and cosine per spindle angle and a near-straight cord's law are scalar passes);
+/// then a pass vectorised across wedges forms the weighted tractions, their derivatives
+/// and the element vectors and matrices of evaluate().
 class SidewallWedge::Batch {
  public:
   explicit Batch(const std::vector<SidewallWedge>& wedges);
@@ -171,6 +172,11 @@ class SidewallWedge::Batch {
  private:
   /// The cord at both points of every wedge: directions, chord, force law, shear angle.
   void solve_cords(const BlockValues& values, double time);
+  /// The cords at point q of every wedge, without gamma.
+  void add_cords(const double* displacement, int q);
+  /// The arch branch of the force law at point q of every wedge (near-straight cords are
+  /// solve_cords' to correct).
+  void add_cord_forces(int q);
   /// The element vectors (and matrices) from the weighted tractions (and their derivatives).
   template <bool Tangent, bool Damped>
   void add_points(const BlockValues& values, const IntegratorFactors& f);
@@ -182,8 +188,15 @@ class SidewallWedge::Batch {
   bool damped_ = false;  // some wedge has dashpots
   // Per wedge and point [q * size + e]: rho, P, e_y, L, F, dF/dL, gamma.
   std::vector<double> rim_x_, rim_y_, cord_x_, cord_y_, e_y_x_, e_y_y_, chord_, force_, stiffness_, shear_angle_;
-  // Per wedge and point: the arch's chord ratio L / l_sw and its solution.
-  std::vector<double> ratio_, half_angle_, cos_half_, sin_half_;
+  // Per wedge and point: the reference tread point, rim offset and alpha0; the cross and
+  // dot products of the turned reference cord with e_y (for gamma); the arch's chord ratio
+  // L / l_sw and its solution.
+  std::vector<double> reference_tread_x_, reference_tread_y_, reference_rim_x_, reference_rim_y_, reference_half_angle_,
+      cross_, dot_, ratio_, half_angle_, cos_half_, sin_half_;
+  // Per wedge: the spindle's reference position, the law's constants; the spin's cosine
+  // and sine and the pressure terms of the evaluation.
+  std::vector<double> spindle_x_, spindle_y_, cord_length_, switch_chord_, rim_radius_, signed_bending_, cos_spin_,
+      sin_spin_, membrane_scale_;
   std::vector<double> residual_, tangent_;  // [k * size + e]
 };
 
