@@ -236,6 +236,7 @@ ExtendibleDataset::ExtendibleDataset(Hdf5Handle dataset, std::vector<hsize_t> di
       path_(std::move(path)) {
   count_[0] = 1;
   row_size_ = static_cast<size_t>(element_count(count_));
+  scalar_rows_ = dims_.size() == 1;
   file_space_ = Hdf5Handle(
       latch.check(H5Dget_space(dataset_.get()), [&] { return describe("open dataset", path_, latch.file_path()); }),
       H5Sclose);
@@ -254,7 +255,7 @@ void ExtendibleDataset::append(const double* row_values) {
 }
 
 void ExtendibleDataset::append(double scalar) {
-  if (row_size_ != 1 || dims_.size() != 1) {
+  if (!scalar_rows_) {
     throw IoError(describe("append a scalar to dataset", path_, latch_->file_path()) + ": rows are not scalars");
   }
   append(&scalar);

@@ -120,6 +120,7 @@ class ExtendibleDataset {
   Hdf5Handle mem_space_;   // one row, flat
   std::vector<hsize_t> dims_, start_, count_;
   size_t row_size_ = 1;
+  bool scalar_rows_ = false;     // a 1-D dataset (dims_ is the writing thread's while a flush is written)
   std::vector<double> pending_;  // appended rows not yet staged, row-major
   std::vector<double> staged_;   // rows for the flush being written
   hsize_t rows_ = 0;             // in the file, staged and waiting: the appending thread's count
