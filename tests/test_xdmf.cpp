@@ -297,26 +297,34 @@ TEST_CASE("result file: the views of frames written between flushes are made at 
   CHECK(count(text, "ring.h5:/fields/frames/5/displacement<") > 0);
 }
 
-TEST_CASE("result file: flushes written while the run goes on hold every frame, its views and the index",
-          "[io][xdmf]") {
+// A ring model whose state changes with each frame: frame k sets every displacement and
+// velocity to k at time k ms, and writes the frame.
+struct RingFrames {
   tirefe::testing::TempDir folder;
   Ring ring;
-  Analysis analysis(ring.model);
+  Analysis analysis{ring.model};
   const int dofs = kDofsPerNode * ring.model.mesh().node_count();
+  void write(io::ResultFile& file, int frame) {
+    analysis.mutable_state().time = 0.001 * frame;
+    analysis.mutable_state().displacement = analysis.mutable_state().velocity = Eigen::VectorXd::Constant(dofs, frame);
+    file.write_fields(analysis, frame);
+  }
+};
+
+TEST_CASE("result file: flushes written while the run goes on hold every frame, its views and the index",
+          "[io][xdmf]") {
+  RingFrames run;
   // Some 400 bytes a frame: the waiting rows reach kFlushBytes every ~650 frames.
   constexpr int kFrames = 3000;
-  const std::string path = folder.path("ring.h5");
+  const std::string path = run.folder.path("ring.h5");
   {
     io::ResultFile file(path, io::RunMetadata{"ring", "", "", {}});
     for (int frame = 0; frame < kFrames; ++frame) {
-      analysis.mutable_state().time = 0.001 * frame;
-      analysis.mutable_state().displacement = analysis.mutable_state().velocity =
-          Eigen::VectorXd::Constant(dofs, frame);
-      file.write_fields(analysis, frame);
+      run.write(file, frame);
       if (frame == kFrames / 2) {
         file.file();  // waits for a flush being written: the file on disk then holds its frames
         const size_t flushed = Hdf5File::open_read_only(path).read_doubles("/fields/time").size();
-        CHECK(flushed >= io::ResultFile::kFlushBytes / (8 * (2 * dofs + 2)));
+        CHECK(flushed >= io::ResultFile::kFlushBytes / (8 * (2 * run.dofs + 2)));
         CHECK(flushed <= static_cast<size_t>(frame + 1));
       }
     }
@@ -328,21 +336,18 @@ TEST_CASE("result file: flushes written while the run goes on hold every frame, 
   for (int frame = 0; frame < kFrames; frame += 7) {
     wrong += time[frame] != 0.001 * frame;
     const std::vector<double> rotation = file.read_doubles("/fields/frames/" + std::to_string(frame) + "/rotation");
-    wrong += rotation != std::vector<double>(dofs / kDofsPerNode, frame);
+    wrong += rotation != std::vector<double>(run.dofs / kDofsPerNode, frame);
   }
   CHECK(wrong == 0);
-  const std::string text = read_text(folder.path("ring.xmf"));
+  const std::string text = read_text(run.folder.path("ring.xmf"));
   CHECK(count(text, "<Grid Name=\"mesh\" GridType=\"Uniform\">") == kFrames);
   CHECK(count(text, "ring.h5:/fields/frames/" + std::to_string(kFrames - 1) + "/displacement<") > 0);
 }
 
 TEST_CASE("result file: a flush that fails while the run goes on fails the next step, naming the file",
           "[io][xdmf][reliability]") {
-  tirefe::testing::TempDir folder;
-  Ring ring;
-  Analysis analysis(ring.model);
-  const int dofs = kDofsPerNode * ring.model.mesh().node_count();
-  const std::string path = folder.path("ring.h5");
+  RingFrames run;
+  const std::string path = run.folder.path("ring.h5");
   std::string error;
   int frames = 0;
   {
@@ -351,12 +356,7 @@ TEST_CASE("result file: a flush that fails while the run goes on fails the next 
     // The run goes on while the flush that fails is written: the failure comes at a later step.
     const auto start = std::chrono::steady_clock::now();
     try {
-      for (; std::chrono::steady_clock::now() - start < std::chrono::seconds(60); ++frames) {
-        analysis.mutable_state().time = 0.001 * frames;
-        analysis.mutable_state().displacement = analysis.mutable_state().velocity =
-            Eigen::VectorXd::Constant(dofs, frames);
-        file.write_fields(analysis, frames);
-      }
+      for (; std::chrono::steady_clock::now() - start < std::chrono::seconds(60); ++frames) run.write(file, frames);
     } catch (const io::IoError& failure) {
       error = failure.what();
     }
