@@ -335,6 +335,13 @@ class ElementBlockOf final : public ElementBlock {
     static_assert(std::is_empty_v<History>, "a batch kernel keeps no history");
     batch_ = std::make_unique<Batch>(kernels_);
     gathered_.assign(static_cast<size_t>(3) * kDofs * size(), 0.0);
+    // The entries again with their place in the batch's tangent, [entry * size + e]: the
+    // scatter reads them in the same order and multiplies nothing.
+    batch_entries_.clear();
+    if (element_entries_.size() != static_cast<size_t>(size()) + 1) return;  // no slots bound yet
+    for (int e = 0; e < size(); ++e)
+      for (int t = element_entries_[e]; t < element_entries_[e + 1]; ++t)
+        batch_entries_.push_back({tangent_entries_[t].entry * size() + e, tangent_entries_[t].slot});
   }
 
   /// The batch path: gather every element's nodal values as structure of arrays, evaluate
@@ -374,11 +381,7 @@ class ElementBlockOf final : public ElementBlock {
     }
     if (!with_tangent) return;
     const double* tangent = batch_->tangent();
-    for (int e = 0; e < count; ++e) {
-      const TangentEntry* end = tangent_entries_.data() + element_entries_[e + 1];
-      for (const TangentEntry* t = tangent_entries_.data() + element_entries_[e]; t != end; ++t)
-        target.tangent_values[t->slot] += tangent[t->entry * count + e];
-    }
+    for (const TangentEntry& t : batch_entries_) target.tangent_values[t.slot] += tangent[t.entry];
   }
 
   void gather(int e, const State& state, LocalState<kDofs>& local) const {
@@ -427,9 +430,10 @@ class ElementBlockOf final : public ElementBlock {
     int slot;   // position in the sparse values
   };
   std::vector<TangentEntry> tangent_entries_;
-  std::vector<int> element_entries_;  // element e's entries: [element_entries_[e], element_entries_[e + 1])
-  std::unique_ptr<Batch> batch_;      // kernels with a batch path only
-  std::vector<double> gathered_;      // the batch's displacement, velocity and acceleration
+  std::vector<int> element_entries_;         // element e's entries: [element_entries_[e], element_entries_[e + 1])
+  std::vector<TangentEntry> batch_entries_;  // entry: the place in the batch's tangent
+  std::unique_ptr<Batch> batch_;             // kernels with a batch path only
+  std::vector<double> gathered_;             // the batch's displacement, velocity and acceleration
 };
 
 }  // namespace tirefe
