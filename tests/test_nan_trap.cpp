@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/model.hpp"
+#include "elements/tread_beam.hpp"
 #include "solvers/analysis.hpp"
 
 namespace {
@@ -66,4 +67,36 @@ TEST_CASE("a NaN in an element residual names the block, element, node and DOF",
   CHECK(analysis.state().time >= 4.0);
   CHECK(analysis.state().time < 5.33);
   CHECK(analysis.state().displacement.allFinite());
+}
+
+TEST_CASE("a NaN in a batched block's residual names its element, node and DOF too", "[reliability][nan]") {
+  // Three tread beams in a row (a batch kernel); a NaN displacement at the third node
+  // makes the second and third beams' residuals NaN: the second is named, at its node.
+  Model model;
+  for (int i = 0; i < 4; ++i) model.mesh().add_node({0.1 * i, 0.0});
+  BeamSection section;
+  section.axial_stiffness = section.shear_stiffness = 1e5;
+  section.bending_stiffness = 10.0;
+  section.mass_per_length = 1.0;
+  auto& beams = model.add_block<TreadBeam>("beams");
+  for (int i = 0; i < 3; ++i)
+    beams.add({i, i + 1}, TreadBeam(model.mesh().position(i), model.mesh().position(i + 1), section));
+  Assembler assembler(model);
+  assembler.update_pattern();
+  State state;
+  state.resize(model.mesh().dof_count());
+  state.displacement[dof_index(2, 1)] = std::numeric_limits<double>::quiet_NaN();
+  EvaluationContext context;
+  context.factors = Integrator::internal_force_factors();
+  context.want_tangent = true;
+  Eigen::VectorXd residual;
+  try {
+    assembler.query(context, state, residual);
+    FAIL("the NaN went unnoticed");
+  } catch (const NonFiniteResult& failure) {
+    const std::string message = failure.what();
+    INFO(message);
+    CHECK(message.find("element 2 of block 'beams' (nodes 2, 3) produced a non-finite residual at node 2") !=
+          std::string::npos);
+  }
 }

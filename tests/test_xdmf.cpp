@@ -364,7 +364,9 @@ TEST_CASE("result file: a flush that fails while the run goes on fails the next 
   }
   INFO(error);
   CHECK_FALSE(error.empty());
-  CHECK_THAT(error, Catch::Contains(path) && Catch::EndsWith("File too large"));
+  // The disk fills under the file or under its XDMF index, whichever is written first.
+  CHECK_THAT(error, (Catch::Contains(path) || Catch::Contains(run.folder.path("ring.xmf"))) &&
+                        Catch::EndsWith("File too large"));
   // The file on disk is the last flush, whole.
   const size_t flushed = Hdf5File::open_read_only(path).read_doubles("/fields/time").size();
   INFO(flushed << " of " << frames << " frames flushed");

@@ -335,6 +335,18 @@ class ElementBlockOf final : public ElementBlock {
     static_assert(std::is_empty_v<History>, "a batch kernel keeps no history");
     batch_ = std::make_unique<Batch>(kernels_);
     gathered_.assign(static_cast<size_t>(3) * kDofs * size(), 0.0);
+    // Where each of the batch's values comes from and goes: [k * size + e], local DOF k.
+    batch_dofs_.resize(static_cast<size_t>(kDofs) * size());
+    for (int e = 0; e < size(); ++e)
+      for (int k = 0; k < kDofs; ++k)
+        batch_dofs_[k * size() + e] = dof_index(nodes_[e][k / kDofsPerNode], k % kDofsPerNode);
+    // The entries again with their place in the batch's tangent, [entry * size + e]: the
+    // scatter reads them in the same order and multiplies nothing.
+    batch_entries_.clear();
+    if (element_entries_.size() != static_cast<size_t>(size()) + 1) return;  // no slots bound yet
+    for (int e = 0; e < size(); ++e)
+      for (int t = element_entries_[e]; t < element_entries_[e + 1]; ++t)
+        batch_entries_.push_back({tangent_entries_[t].entry * size() + e, tangent_entries_[t].slot});
   }
 
   /// The batch path: gather every element's nodal values as structure of arrays, evaluate
@@ -346,39 +358,26 @@ class ElementBlockOf final : public ElementBlock {
     double* velocity = displacement + kDofs * count;
     double* acceleration = velocity + kDofs * count;
     constexpr bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value;
-    for (int e = 0; e < count; ++e)
-      for (int n = 0; n < kNodes; ++n)
-        for (int c = 0; c < kDofsPerNode; ++c) {
-          const int k = (kDofsPerNode * n + c) * count + e, dof = dof_index(nodes_[e][n], c);
-          displacement[k] = state.displacement[dof];
-          velocity[k] = state.velocity[dof];
-          if constexpr (reads_acceleration) acceleration[k] = state.acceleration[dof];
-        }
+    const int* dofs = batch_dofs_.data();
+    for (int k = 0; k < kDofs * count; ++k) {
+      displacement[k] = state.displacement[dofs[k]];
+      velocity[k] = state.velocity[dofs[k]];
+      if constexpr (reads_acceleration) acceleration[k] = state.acceleration[dofs[k]];
+    }
     const BlockValues values{count, displacement, velocity, reads_acceleration ? acceleration : nullptr};
     const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
     batch_->evaluate(values, context, with_tangent);
 
     const double* residual = batch_->residual();
+    bool finite = true;
+    for (int k = 0; k < kDofs * count; ++k) finite &= std::isfinite(residual[k]);
+    if (!finite) throw_non_finite_batch();
     Eigen::VectorXd& global = *target.residual;
-    for (int e = 0; e < count; ++e) {
-      bool finite = true;
-      for (int k = 0; k < kDofs; ++k) finite = finite && std::isfinite(residual[k * count + e]);
-      if (!finite) {
-        Vector element;
-        for (int k = 0; k < kDofs; ++k) element[k] = residual[k * count + e];
-        throw_non_finite(e, "residual", element);
-      }
-      for (int n = 0; n < kNodes; ++n)
-        for (int c = 0; c < kDofsPerNode; ++c)
-          global[dof_index(nodes_[e][n], c)] += residual[(kDofsPerNode * n + c) * count + e];
-    }
+    for (int e = 0; e < count; ++e)  // element by element, as one at a time would add them
+      for (int k = 0; k < kDofs; ++k) global[dofs[k * count + e]] += residual[k * count + e];
     if (!with_tangent) return;
     const double* tangent = batch_->tangent();
-    for (int e = 0; e < count; ++e) {
-      const TangentEntry* end = tangent_entries_.data() + element_entries_[e + 1];
-      for (const TangentEntry* t = tangent_entries_.data() + element_entries_[e]; t != end; ++t)
-        target.tangent_values[t->slot] += tangent[t->entry * count + e];
-    }
+    for (const TangentEntry& t : batch_entries_) target.tangent_values[t.slot] += tangent[t.entry];
   }
 
   void gather(int e, const State& state, LocalState<kDofs>& local) const {
@@ -404,6 +403,17 @@ class ElementBlockOf final : public ElementBlock {
     for (const TangentEntry* t = tangent_entries_.data() + element_entries_[e]; t != end; ++t)
       values[t->slot] += entry[t->entry];
   }
+  /// The batch's first element with a non-finite residual entry, named.
+  [[noreturn]] void throw_non_finite_batch() const {
+    const double* residual = batch_->residual();
+    const int count = size();
+    for (int e = 0; e < count; ++e) {
+      Vector element;
+      for (int k = 0; k < kDofs; ++k) element[k] = residual[k * count + e];
+      if (!element.allFinite()) throw_non_finite(e, "residual", element);
+    }
+    throw std::logic_error("block '" + name_ + "': a non-finite residual entry went missing");
+  }
   /// Names the element, its nodes and the first node and DOF whose entry is NaN or infinite
   /// (nodes and elements numbered from 1, as in decks).
   [[noreturn]] void throw_non_finite(int e, const char* what, const Vector& values) const {
@@ -427,9 +437,11 @@ class ElementBlockOf final : public ElementBlock {
     int slot;   // position in the sparse values
   };
   std::vector<TangentEntry> tangent_entries_;
-  std::vector<int> element_entries_;  // element e's entries: [element_entries_[e], element_entries_[e + 1])
-  std::unique_ptr<Batch> batch_;      // kernels with a batch path only
-  std::vector<double> gathered_;      // the batch's displacement, velocity and acceleration
+  std::vector<int> element_entries_;         // element e's entries: [element_entries_[e], element_entries_[e + 1])
+  std::vector<TangentEntry> batch_entries_;  // entry: the place in the batch's tangent
+  std::vector<int> batch_dofs_;              // the global DOF of the batch's value [k * size + e]
+  std::unique_ptr<Batch> batch_;             // kernels with a batch path only
+  std::vector<double> gathered_;             // the batch's displacement, velocity and acceleration
 };
 
 }  // namespace tirefe
