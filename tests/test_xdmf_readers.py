@@ -149,12 +149,13 @@ def test_a_reader_opening_the_index_while_the_run_writes_it(folder):
     snapshots, failures = [], 0
     try:
         # At least three reads, and on until the index has grown: it follows the flushes,
-        # which come further apart as the file grows.
+        # which come further apart as the file grows. The run goes on only between the reads,
+        # in short slices, so that even a run of a fifth of a second is read several times.
         def grown():
             return len(snapshots) >= 3 and len(snapshots[-1][0]) > len(snapshots[0][0])
 
         while process.poll() is None and not grown() and len(snapshots) < 40:
-            time.sleep(0.15)
+            time.sleep(0.02)
             if not os.path.exists(index):
                 continue
             process.send_signal(signal.SIGSTOP)
