@@ -21,7 +21,7 @@ const char* const kComponentNames[kDofsPerNode] = {"ux", "uy", "rz"};
 // position of the first pivot not above RingSolver::kPivotTolerance times its row's
 // scale (NaN included), or -1.
 template <class Factors>
-int lu_factor(Factors&& a, int* swaps, double* row_scale) {
+[[gnu::always_inline]] inline int lu_factor(Factors&& a, int* swaps, double* row_scale) {
   const Eigen::Index size = a.rows();
   for (Eigen::Index j = 0; j < size; ++j) {
     Eigen::Index pivot_row = j;
@@ -44,7 +44,7 @@ int lu_factor(Factors&& a, int* swaps, double* row_scale) {
 
 // B <- A^-1 B with the factors of lu_factor(), for any number of columns of B.
 template <class Factors, class Columns>
-void lu_solve(const Factors& lu, const int* swaps, Columns&& b) {
+[[gnu::always_inline]] inline void lu_solve(const Factors& lu, const int* swaps, Columns&& b) {
   const Eigen::Index size = lu.rows();
   for (Eigen::Index j = 0; j < size; ++j)
     if (swaps[j] != j) b.row(j).swap(b.row(swaps[j]));
@@ -178,6 +178,7 @@ void RingSolver::analyze(const Matrix& pattern) {
 
   // Every stored entry must land in a block of the structure.
   destination_.resize(pattern.nonZeros());
+  row_position_.resize(pattern.nonZeros());
   const int* starts = pattern.outerIndexPtr();
   const int* rows = pattern.innerIndexPtr();
   for (int column = 0; column < equations; ++column)
@@ -185,6 +186,7 @@ void RingSolver::analyze(const Matrix& pattern) {
       const int row_position = position_of_equation_[rows[entry]];
       const int column_position = position_of_equation_[column];
       destination_[entry] = entry_offset(row_position, column_position);
+      row_position_[entry] = row_position;
       if (destination_[entry] < 0)
         throw ModelError("ring solver: the tangent couples " + describe_node(row_position) + " (" +
                          kComponentNames[row_position % 3] + ") to " + describe_node(column_position) + " (" +
@@ -192,6 +194,8 @@ void RingSolver::analyze(const Matrix& pattern) {
                          "), which are not ring neighbours; give the ring nodes in ring order, the nodes "
                          "coupled to everything as border nodes, or use the KLU solver");
     }
+  padding_offsets_.clear();
+  for (int position : padding_) padding_offsets_.push_back(entry_offset(position, position));
   pattern_starts_.assign(starts, starts + equations + 1);
   pattern_rows_.assign(rows, rows + pattern.nonZeros());
 
@@ -274,16 +278,15 @@ void RingSolver::factorize_interior(const Matrix& matrix) {
   std::fill(blocks_.begin(), blocks_.end(), 0.0);
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
   const double* values = matrix.valuePtr();
-  const int* rows = matrix.innerIndexPtr();
   const int stored = static_cast<int>(matrix.nonZeros());
   for (int entry = 0; entry < stored; ++entry) {
     blocks_[destination_[entry]] = values[entry];
-    double& scale = row_scale_[position_of_equation_[rows[entry]]];
+    double& scale = row_scale_[row_position_[entry]];
     scale = std::max(scale, std::abs(values[entry]));
   }
-  for (int position : padding_) {
-    blocks_[entry_offset(position, position)] = 1.0;
-    row_scale_[position] = 1.0;
+  for (size_t i = 0; i < padding_.size(); ++i) {
+    blocks_[padding_offsets_[i]] = 1.0;
+    row_scale_[padding_[i]] = 1.0;
   }
 
   eliminate_satellites();

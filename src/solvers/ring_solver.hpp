@@ -172,7 +172,9 @@ class RingSolver final : public LinearSolver {
   std::vector<int> satellite_hosts_;  // padded position of each satellite's host (3k or 3m)
   std::vector<int> position_of_equation_;
   std::vector<int> padding_;                        // padded positions without an equation: identity rows
+  std::vector<int> padding_offsets_;                // their diagonal entries' offsets in blocks_
   std::vector<int> destination_;                    // offset in blocks_ of each stored entry of the pattern
+  std::vector<int> row_position_;                   // and the padded position of its row
   std::vector<int> pattern_starts_, pattern_rows_;  // the analysed pattern, to check factorize()'s
   std::vector<int> border_equations_;
   std::vector<int> border_slots_;  // each border equation's index in H (padded)
