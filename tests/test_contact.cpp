@@ -87,7 +87,8 @@ const ContactHistory& history(const Rig& rig) { return rig.contact->committed_hi
 /// The kernel's tangent equals central differences of its residual (relative 1e-6), with
 /// HHT-like weights so that the factor handling is checked too.
 void check_tangent(const NodeSurfaceContact& kernel, const Eigen::Vector2d& displacement, double time,
-                   const ContactHistory& base, ContactState expected, double step = 1e-8) {
+                   const ContactHistory& base, ContactState expected, double step = 1e-8,
+                   bool first_evaluation = false) {
   LocalState<3> local;
   local.displacement << displacement, 0.0;
   local.velocity << 0.3, -0.1, 0.0;
@@ -95,6 +96,7 @@ void check_tangent(const NodeSurfaceContact& kernel, const Eigen::Vector2d& disp
   EvaluationContext context;
   context.time = time;
   context.factors = {0.9, 0.0, 0.0, 0.9, 0.0, 0.0};
+  context.first_evaluation = first_evaluation;
   ContactHistory trial = base;
   NodeSurfaceContact::Vector residual;
   NodeSurfaceContact::Matrix tangent;
@@ -601,6 +603,73 @@ TEST_CASE("contact tangent equals finite differences on a rounded edge and at a 
     check_tangent(kernel, Eigen::Vector2d::Zero(), 0.0, touching(500.0, 20.0, p.coordinate - 1e-5),
                   ContactState::Stick);
     check_tangent(kernel, Eigen::Vector2d::Zero(), 0.0, touching(500.0, 20.0, p.coordinate - 1e-3), ContactState::Slip);
+  }
+}
+
+TEST_CASE("a node in contact when its step began, lifted off by the predictor, is held in the first evaluation",
+          "[contact][tangent][hold]") {
+  // A drum's node 1 mm off the surface, sticking there at the step's start with lambda_N =
+  // 500 N: the law alone leaves it open (500 - 1e6 * 1e-3 < 0); held, it is pulled back by
+  // t_N = lambda_N - eps_N g = -500 N and its stick traction, and its tangent is the
+  // derivative of that force.
+  const double radius = 0.85, eps_n = 1e6, eps_t = 5e5;
+  auto drum = std::make_shared<Drum>(2.0 * radius, Eigen::Vector2d(0.0, -radius), MotionFunction::linear(2.0));
+  const Eigen::Vector2d position(0.05, 0.0);
+  const double time = 0.3;
+  const Eigen::Vector2d u(0.004, -0.003);
+  const SurfaceProjection on = drum->project(position + u, time);
+  const Eigen::Vector2d lifted = u + (1e-3 - on.gap) * on.normal;
+  const SurfaceProjection p = drum->project(position + lifted, time);
+  REQUIRE(p.gap == Approx(1e-3));
+  const ContactHistory base = touching(500.0, -80.0, p.coordinate + 5e-5);
+  const NodeSurfaceContact kernel(drum, position, penalties(eps_n, eps_t, 0.4));
+
+  // The held force, its tangent against central differences; the history says open.
+  check_tangent(kernel, lifted, time, base, ContactState::Open, 1e-8, true);
+  LocalState<3> local;
+  local.displacement << lifted, 0.0;
+  local.velocity.setZero();
+  local.acceleration.setZero();
+  EvaluationContext first;
+  first.time = time;
+  first.first_evaluation = true;
+  ContactHistory trial = base;
+  NodeSurfaceContact::Vector residual;
+  NodeSurfaceContact::Matrix tangent;
+  kernel.evaluate(local, first, base, trial, residual, &tangent);
+  const double normal = 500.0 - eps_n * 1e-3;
+  const double traction = -80.0 - eps_t * drum->arc_difference(p.coordinate, base.stick_coordinate);
+  const Eigen::Vector2d expected = -(normal * p.normal + traction * p.tangent);
+  CHECK((residual.head<2>() - expected).norm() <= 1e-9 * expected.norm());
+  CHECK(normal == Approx(-500.0));
+  CHECK(trial.state == ContactState::Open);
+  CHECK(trial.normal_force == 0.0);
+  CHECK(trial.force.isZero());
+  CHECK(trial.normal_multiplier == 0.0);
+
+  // Later evaluations, a node open when its step began, and the hold switched off: the law.
+  ContactHistory open_base = base;
+  open_base.state = ContactState::Open;
+  ContactParameters unheld = penalties(eps_n, eps_t, 0.4);
+  unheld.hold_first_evaluation = false;
+  const NodeSurfaceContact plain(drum, position, unheld);
+  const struct {
+    const char* what;
+    const NodeSurfaceContact& kernel;
+    const ContactHistory& base;
+    bool first;
+  } laws[] = {{"a later evaluation", kernel, base, false},
+              {"open when the step began", kernel, open_base, true},
+              {"the hold switched off", plain, base, true}};
+  for (const auto& law : laws) {
+    INFO(law.what);
+    EvaluationContext context = first;
+    context.first_evaluation = law.first;
+    trial = law.base;
+    law.kernel.evaluate(local, context, law.base, trial, residual, &tangent);
+    CHECK(trial.state == ContactState::Open);
+    CHECK(residual.isZero());
+    CHECK(tangent.isZero());
   }
 }
 

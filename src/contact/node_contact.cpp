@@ -65,7 +65,8 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
 
   const double eps_n = parameters_.normal_penalty, eps_t = tangential_penalty_, mu = parameters_.friction;
   const double normal_force = base.normal_multiplier - eps_n * p.gap;
-  if (!(normal_force >= 0.0)) {
+  const bool open = !(normal_force >= 0.0);
+  if (open) {
     // Open: no force; the multipliers lapse and a later touch-down sticks where it lands.
     // (A node exactly touching counts as closed: its stiffness holds a structure that
     // rests on the surface from the first iteration.)
@@ -74,8 +75,17 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
     trial.stick_coordinate = p.coordinate;
     trial.normal_force = trial.tangential_force = trial.sliding_velocity = 0.0;
     trial.force.setZero();
-    return;
   }
+  // Held: a node in contact when the step began that the predictor has lifted off keeps
+  // that contact in the solve's first evaluation, sticking, its penalty force pulling it
+  // back (t_N < 0). The predictor extrapolates the patch's light nodes from rates that
+  // alternate from step to step, and a node left open there gets no contact stiffness:
+  // the first increment would push it millimetres into the surface and the next undo it.
+  // Only the first linearisation changes: the history records the node open, and every
+  // later evaluation applies the contact law itself.
+  const bool held =
+      open && context.first_evaluation && parameters_.hold_first_evaluation && base.state != ContactState::Open;
+  if (open && !held) return;
 
   // A node open at the start of the step sticks to the surface point it was above then.
   const bool touching_down = base.state == ContactState::Open;
@@ -85,20 +95,23 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
   const double tangential_multiplier = touching_down ? 0.0 : base.tangential_multiplier;
   const double trial_traction = tangential_multiplier - eps_t * surface_->arc_difference(p.coordinate, anchor);
   const double slip_limit = mu * normal_force;
-  const bool stick = mu > 0.0 && std::abs(trial_traction) <= slip_limit;
+  const bool stick = held || (mu > 0.0 && std::abs(trial_traction) <= slip_limit);
   const double slip_sign = trial_traction >= 0.0 ? 1.0 : -1.0;
   const double tangential_force = stick ? trial_traction : slip_sign * slip_limit;
+  const Eigen::Vector2d force = normal_force * p.normal + tangential_force * p.tangent;
 
-  trial.state = stick ? ContactState::Stick : ContactState::Slip;
-  trial.stick_coordinate = stick ? anchor : p.coordinate - (tangential_multiplier - tangential_force) / eps_t;
-  trial.normal_multiplier = base.normal_multiplier;
-  trial.tangential_multiplier = tangential_multiplier;
-  trial.normal_force = normal_force;
-  trial.tangential_force = tangential_force;
-  trial.force = normal_force * p.normal + tangential_force * p.tangent;
-  trial.sliding_velocity = (local.velocity.head<2>() - surface_->velocity_at(p.point, context.time)).dot(p.tangent);
+  if (!held) {
+    trial.state = stick ? ContactState::Stick : ContactState::Slip;
+    trial.stick_coordinate = stick ? anchor : p.coordinate - (tangential_multiplier - tangential_force) / eps_t;
+    trial.normal_multiplier = base.normal_multiplier;
+    trial.tangential_multiplier = tangential_multiplier;
+    trial.normal_force = normal_force;
+    trial.tangential_force = tangential_force;
+    trial.force = force;
+    trial.sliding_velocity = (local.velocity.head<2>() - surface_->velocity_at(p.point, context.time)).dot(p.tangent);
+  }
 
-  residual.head<2>() = -context.factors.force_stiffness * trial.force;
+  residual.head<2>() = -context.factors.force_stiffness * force;
   if (!tangent) return;
   const Eigen::Vector2d& nu = p.normal;
   const Eigen::Vector2d& tau = p.tangent;

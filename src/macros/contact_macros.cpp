@@ -242,6 +242,7 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
   parameters.multiplier_tolerance = arguments.number("multiplier_tolerance");
   parameters.penetration_limit = arguments.number("penetration_limit");
   parameters.search_distance = arguments.number("search_distance");
+  parameters.hold_first_evaluation = arguments.boolean("hold_first_evaluation");
   const ContactBlock& block =
       add_contact_block(deck.model(), name, surface, nodes, parameters, deck.analysis().state().time);
   const std::string prefix = arguments.string_or("history", "");
@@ -381,6 +382,10 @@ void add_contact_macros(MacroTable& table) {
         {"search_distance", VT::Number, false, "m",
          "open nodes farther from the surface than this skip the projection (more than a step's approach)",
          std::string("0.05"), Range::Positive},
+        {"hold_first_evaluation", VT::Boolean, false, "",
+         "a solve's first evaluation keeps the nodes in contact that were when the step began, lifted off by the "
+         "predictor or not",
+         std::string("true")},
         {"history", VT::String, false, "",
          "prefix of history channels <prefix>_fx, _fy, _patch_length, "
          "_nodes_in_contact, _surface_angle, _surface_x"},

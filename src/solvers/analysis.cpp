@@ -129,6 +129,8 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
   context.time_step = carried_.steps.current;
   context.factors = integrator_.factors(carried_.steps.current);
   context.want_tangent = with_tangent;
+  context.first_evaluation = first_evaluation_;
+  first_evaluation_ = false;
   assembler_.assemble(context, trial_, residual_all_);
 
   integrator_.add_load_terms(external_new_, carried_.old_internal_forces, carried_.external_old, residual_all_);
@@ -184,6 +186,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
 bool Analysis::iterate(double step, StepRecord& record) {
   try {
     LinearSolver& linear_solver = solvers_.newton_solver();
+    first_evaluation_ = true;
     const NewtonReport* report = &newton_.solve(*this, linear_solver);
     if (resolve_reference_ == 0.0) trial_reference_ = report->reference_force;
     record.newton_iterations = report->iterations;
@@ -192,6 +195,7 @@ bool Analysis::iterate(double step, StepRecord& record) {
     // constraints are met to their tolerance (or the augmentation budget is spent).
     while (record.augmentations < controller_.settings().max_augmentations && model_.augment()) {
       ++record.augmentations;
+      first_evaluation_ = true;
       report = &newton_.solve(*this, linear_solver);
       record.newton_iterations += report->iterations;
     }

@@ -1,7 +1,8 @@
 // NewtonSolver: full Newton-Raphson iterations on one step's equations.
 //
 // Convergence is judged on the normalised residual |R| / R_ref, where R_ref is the
-// largest of the first residual, the external force and the reaction force levels of
+// largest of the first residual (where contact holds the contacts the step began with:
+// node_contact.hpp), the external force and the reaction force levels of
 // the step, or on an increment at round-off level. A NaN, a residual growing past
 // divergence_ratio * R_ref, or running out of iterations throws ConvergenceFailure so
 // that the driver can cut the step.
