@@ -33,6 +33,7 @@ local p = tirefe.parameters{
   tangential_factor = { 30, "tangential penalty / the structure's tangential stiffness at a contact node" },
   contact_tolerance = { 5e-4, "penetration left after the Uzawa updates", unit = "m" },
   multiplier_tolerance = { 1e3, "relative multiplier change asking for an update (1e3: only penetration does)" },
+  contact_hold = { true, "each Newton solve's first evaluation keeps the contacts its step began with (false: the contact law from the first evaluation on)" },
   speed_kmh = { 51.3, "final drum surface speed", unit = "km/h" },
   spin_up_time = { 4.0, "spin-up of the drum from rest, from t = 2 s", unit = "s" },
   end_time = { 8.0, "end of the run", unit = "s" },
@@ -98,7 +99,8 @@ model:surface{ name = "drum", type = "drum", diameter = p.drum_diameter, cleat_h
                speed = -rig.omega, ramp_time = p.spin_up_time, start_time = rig.start }
 model:contact{ surface = "drum", set = tire.contact_set, friction = p.friction, penalty = p.contact_penalty,
                tangential_factor = p.tangential_factor,
-               tolerance = p.contact_tolerance, multiplier_tolerance = p.multiplier_tolerance, history = "drum",
+               tolerance = p.contact_tolerance, multiplier_tolerance = p.multiplier_tolerance,
+               hold_first_evaluation = p.contact_hold, history = "drum",
                output_every = 20 }
 
 -- 1-2 s: press. Five steps toward a first guess of the deflection, then secant steps on the
