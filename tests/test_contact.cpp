@@ -622,7 +622,9 @@ TEST_CASE("a node in contact when its step began, lifted off by the predictor, i
   const SurfaceProjection p = drum->project(position + lifted, time);
   REQUIRE(p.gap == Approx(1e-3));
   const ContactHistory base = touching(500.0, -80.0, p.coordinate + 5e-5);
-  const NodeSurfaceContact kernel(drum, position, penalties(eps_n, eps_t, 0.4));
+  ContactParameters holding = penalties(eps_n, eps_t, 0.4);
+  holding.hold_first_evaluation = true;
+  const NodeSurfaceContact kernel(drum, position, holding);
 
   // The held force, its tangent against central differences; the history says open.
   check_tangent(kernel, lifted, time, base, ContactState::Open, 1e-8, true);
@@ -650,9 +652,7 @@ TEST_CASE("a node in contact when its step began, lifted off by the predictor, i
   // Later evaluations, a node open when its step began, and the hold switched off: the law.
   ContactHistory open_base = base;
   open_base.state = ContactState::Open;
-  ContactParameters unheld = penalties(eps_n, eps_t, 0.4);
-  unheld.hold_first_evaluation = false;
-  const NodeSurfaceContact plain(drum, position, unheld);
+  const NodeSurfaceContact plain(drum, position, penalties(eps_n, eps_t, 0.4));  // the default: no hold
   const struct {
     const char* what;
     const NodeSurfaceContact& kernel;
@@ -660,7 +660,7 @@ TEST_CASE("a node in contact when its step began, lifted off by the predictor, i
     bool first;
   } laws[] = {{"a later evaluation", kernel, base, false},
               {"open when the step began", kernel, open_base, true},
-              {"the hold switched off", plain, base, true}};
+              {"the hold off (the default)", plain, base, true}};
   for (const auto& law : laws) {
     INFO(law.what);
     EvaluationContext context = first;

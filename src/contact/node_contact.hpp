@@ -28,13 +28,14 @@
 // penetration_tolerance are ignored). A converged node leaves its multipliers alone, so
 // the last solve's history stays consistent with the multipliers it used. A converged
 // penetration beyond penetration_limit is a failure (ContactFailure: the step is cut).
-// First evaluation: a Newton solve starts at the predicted state, where a node that was in
-// contact when the step began may have been lifted off. There the node is held: its force
-// and stick tangent at the predicted gap (t_N = lambda_N - eps_N g < 0, a pull back onto
-// the surface) enter the residual and tangent, while its history records it open; every
-// later evaluation applies the law above. The converged state is the law's, to Newton's
-// tolerance; the first increment lands such nodes on the surface instead of millimetres
-// into it (docs/dynamics.md).
+// First evaluation (hold_first_evaluation, off by default): a Newton solve starts at the
+// predicted state, where a node that was in contact when the step began may have been
+// lifted off. Held, such a node's force and stick tangent at the predicted gap (t_N =
+// lambda_N - eps_N g < 0, a pull back onto the surface) enter the residual and tangent,
+// while its history records it open; every later evaluation applies the law above. The
+// converged state is the law's, to Newton's tolerance. It pays where the predictor lifts
+// light nodes off that stay (their rates alternating at HHT's high-frequency limit: the
+// drum-cleat deck), and costs an increment where nodes truly leave (docs/contact.md).
 // Dynamics: the kernel has no mass or damping; the contact force is weighted by wK like
 // every internal force, so HHT-alpha enforces (1 + alpha) f_{n+1} - alpha f_n.
 #pragma once
@@ -69,7 +70,7 @@ struct ContactParameters {
   double multiplier_tolerance = 1e-2;   // ... and below this relative multiplier change
   double penetration_limit = 1e-2;      // [m], deeper after a converged solve is a failure
   double search_distance = 0.05;        // [m], open nodes farther than this skip the projection
-  bool hold_first_evaluation = true;    // a solve's first evaluation keeps the step start's contacts (below)
+  bool hold_first_evaluation = false;   // a solve's first evaluation keeps the step start's contacts (below)
 
   /// Throws ModelError naming the first non-physical value.
   void check() const;

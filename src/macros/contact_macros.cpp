@@ -384,8 +384,8 @@ void add_contact_macros(MacroTable& table) {
          std::string("0.05"), Range::Positive},
         {"hold_first_evaluation", VT::Boolean, false, "",
          "a solve's first evaluation keeps the nodes in contact that were when the step began, lifted off by the "
-         "predictor or not",
-         std::string("true")},
+         "predictor or not (for light patch nodes whose predicted rates alternate)",
+         std::string("false")},
         {"history", VT::String, false, "",
          "prefix of history channels <prefix>_fx, _fy, _patch_length, "
          "_nodes_in_contact, _surface_angle, _surface_x"},

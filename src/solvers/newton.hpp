@@ -1,9 +1,9 @@
 // NewtonSolver: full Newton-Raphson iterations on one step's equations.
 //
 // Convergence is judged on the normalised residual |R| / R_ref, where R_ref is the
-// largest of the first residual (where contact holds the contacts the step began with:
-// node_contact.hpp), the external force and the reaction force levels of
-// the step, or on an increment at round-off level. A NaN, a residual growing past
+// largest of the first residual (with the contacts the step began with held, where a
+// contact block asks for it: node_contact.hpp), the external force and the reaction force
+// levels of the step, or on an increment at round-off level. A NaN, a residual growing past
 // divergence_ratio * R_ref, or running out of iterations throws ConvergenceFailure so
 // that the driver can cut the step.
 //
