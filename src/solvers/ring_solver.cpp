@@ -15,27 +15,29 @@ namespace {
 const char* const kComponentNames[kDofsPerNode] = {"ux", "uy", "rz"};
 
 // LU factorization with partial pivoting in place, LAPACK style: step j swaps row j with
-// the row p >= j holding the largest |a(p, j)| (swaps[j] = p) and eliminates below the
-// pivot; L (unit diagonal) is left below the diagonal, U on and above it. The row scales
-// travel with their rows so that each pivot is judged against its own row. Returns the
-// position of the first pivot not above RingSolver::kPivotTolerance times its row's
-// scale (NaN included), or -1.
+// the row p >= j holding the largest |a(p, j)| (pivots[j].row = p) and eliminates below
+// the pivot; L (unit diagonal) is left below the diagonal, U on and above it, and the
+// pivot's reciprocal in pivots[j].inverse: the solves multiply, a division costs several
+// multiplications. The row scales travel with their rows so that each pivot is judged
+// against its own row. Returns the position of the first pivot not above
+// RingSolver::kPivotTolerance times its row's scale (NaN included), or -1.
 template <class Factors>
-[[gnu::always_inline]] inline int lu_factor(Factors&& a, int* swaps, double* row_scale) {
+[[gnu::always_inline]] inline int lu_factor(Factors&& a, RingSolver::Pivot* pivots, double* row_scale) {
   const Eigen::Index size = a.rows();
   for (Eigen::Index j = 0; j < size; ++j) {
     Eigen::Index pivot_row = j;
     for (Eigen::Index i = j + 1; i < size; ++i)
       if (std::abs(a(i, j)) > std::abs(a(pivot_row, j))) pivot_row = i;
-    swaps[j] = static_cast<int>(pivot_row);
+    pivots[j].row = static_cast<int>(pivot_row);
     if (pivot_row != j) {
       a.row(j).swap(a.row(pivot_row));
       std::swap(row_scale[j], row_scale[pivot_row]);
     }
     const double pivot = a(j, j);
     if (!(std::abs(pivot) > RingSolver::kPivotTolerance * row_scale[j])) return static_cast<int>(j);
+    pivots[j].inverse = 1.0 / pivot;
     for (Eigen::Index i = j + 1; i < size; ++i) {
-      a(i, j) /= pivot;
+      a(i, j) *= pivots[j].inverse;
       for (Eigen::Index c = j + 1; c < size; ++c) a(i, c) -= a(i, j) * a(j, c);
     }
   }
@@ -44,14 +46,14 @@ template <class Factors>
 
 // B <- A^-1 B with the factors of lu_factor(), for any number of columns of B.
 template <class Factors, class Columns>
-[[gnu::always_inline]] inline void lu_solve(const Factors& lu, const int* swaps, Columns&& b) {
+[[gnu::always_inline]] inline void lu_solve(const Factors& lu, const RingSolver::Pivot* pivots, Columns&& b) {
   const Eigen::Index size = lu.rows();
   for (Eigen::Index j = 0; j < size; ++j)
-    if (swaps[j] != j) b.row(j).swap(b.row(swaps[j]));
+    if (pivots[j].row != j) b.row(j).swap(b.row(pivots[j].row));
   for (Eigen::Index j = 0; j < size; ++j)
     for (Eigen::Index i = j + 1; i < size; ++i) b.row(i) -= lu(i, j) * b.row(j);
   for (Eigen::Index j = size - 1; j >= 0; --j) {
-    b.row(j) /= lu(j, j);
+    b.row(j) *= pivots[j].inverse;
     for (Eigen::Index i = 0; i < j; ++i) b.row(i) -= lu(i, j) * b.row(j);
   }
 }
@@ -120,7 +122,7 @@ std::string RingSolver::describe_node(int position) const {
   const int border_start = 3 * chain_;
   const int ring_size = static_cast<int>(ring_nodes_.size());
   if (position >= border_start + 3)
-    return "border node " + std::to_string(border_nodes_[(position - border_start - 3) / 3]);
+    return "border node " + std::to_string(dofs_.dof(border_equations_[position - border_start - 3]) / kDofsPerNode);
   const int ring_position = position < border_start ? position / 3 + 1 : 0;
   return "ring node " + std::to_string(ring_nodes_[ring_position]) + " (position " + std::to_string(ring_position) +
          " of " + std::to_string(ring_size) + " in the ring)";
@@ -134,35 +136,40 @@ void RingSolver::analyze(const Matrix& pattern) {
                      std::to_string(pattern.cols()) + " but the model numbers " + std::to_string(equations) +
                      " free equations (analyse the assembled, compressed tangent after Model::finalize)");
   chain_ = static_cast<int>(ring_nodes_.size()) - 1;
-  width_ = 3 + 3 * static_cast<int>(border_nodes_.size());
-  satellite_start_ = 3 * chain_ + width_;
 
-  // Equations -> padded positions; DOFs without an equation become identity padding.
+  // Equations -> padded positions; ring and satellite DOFs without an equation become
+  // identity padding, the border's are left out.
   position_of_equation_.assign(equations, -1);
   padding_.clear();
   border_equations_.clear();
-  border_slots_.clear();
-  auto place = [&](int node, int first_position, bool border) {
+  auto check_node = [&](int node) {
     if (dof_index(node, 0) >= dofs_.dof_count())
       throw ModelError("ring solver: node " + std::to_string(node) + " does not exist (the model has " +
                        std::to_string(dofs_.dof_count() / kDofsPerNode) + " nodes)");
+  };
+  auto place = [&](int node, int first_position) {
+    check_node(node);
     for (int c = 0; c < kDofsPerNode; ++c) {
       const int equation = dofs_.equation(dof_index(node, c)), position = first_position + c;
-      if (equation == DofMap::kPrescribed) {
+      if (equation == DofMap::kPrescribed)
         padding_.push_back(position);
-        continue;
-      }
-      position_of_equation_[equation] = position;
-      if (border) {
-        border_equations_.push_back(equation);
-        border_slots_.push_back(position - 3 * chain_ - 3);
-      }
+      else
+        position_of_equation_[equation] = position;
     }
   };
-  for (int k = 0; k < chain_; ++k) place(ring_nodes_[k + 1], 3 * k, false);
-  place(ring_nodes_[0], 3 * chain_, false);
-  for (size_t j = 0; j < border_nodes_.size(); ++j)
-    place(border_nodes_[j], 3 * chain_ + 3 + 3 * static_cast<int>(j), true);
+  for (int k = 0; k < chain_; ++k) place(ring_nodes_[k + 1], 3 * k);
+  place(ring_nodes_[0], 3 * chain_);
+  for (int node : border_nodes_) {
+    check_node(node);
+    for (int c = 0; c < kDofsPerNode; ++c) {
+      const int equation = dofs_.equation(dof_index(node, c));
+      if (equation == DofMap::kPrescribed) continue;
+      position_of_equation_[equation] = 3 * chain_ + 3 + static_cast<int>(border_equations_.size());
+      border_equations_.push_back(equation);
+    }
+  }
+  width_ = 3 + border_size();
+  satellite_start_ = 3 * chain_ + 3 * ((width_ + 2) / 3);  // on a multiple of 3, as the node blocks are
   // The nodes of the remaining equations are satellites, if find_hosts() finds them a host.
   satellite_nodes_.clear();
   satellite_hosts_.clear();
@@ -170,7 +177,7 @@ void RingSolver::analyze(const Matrix& pattern) {
     if (position_of_equation_[equation] < 0) {
       satellite_nodes_.push_back(dofs_.dof(equation) / kDofsPerNode);
       satellite_hosts_.push_back(-1);
-      place(satellite_nodes_.back(), satellite_position(static_cast<int>(satellite_nodes_.size()) - 1), false);
+      place(satellite_nodes_.back(), satellite_position(static_cast<int>(satellite_nodes_.size()) - 1));
     }
   const int satellites = static_cast<int>(satellite_nodes_.size());
   padded_size_ = satellite_start_ + 3 * satellites;
@@ -201,7 +208,7 @@ void RingSolver::analyze(const Matrix& pattern) {
 
   blocks_.assign(satellite_offset(satellites), 0.0);
   row_scale_.assign(padded_size_, 0.0);
-  swaps_.assign(padded_size_, 0);
+  pivots_.assign(padded_size_, Pivot{});
   border_schur_.setZero(border_size(), border_size());
   work_.setZero(padded_size_);
 }
@@ -250,9 +257,13 @@ void RingSolver::check_same_pattern(const Matrix& matrix) const {
 
 template <class Work>
 void RingSolver::with_width(Work&& work) const {
-  // A one-node border (the spindle) gets fixed-size blocks; other widths run the same
-  // code on dynamic-size blocks.
-  if (width_ == 6)
+  // A spindle border (fixed, on a dead axle, free) gets fixed-size blocks; other widths
+  // run the same code on dynamic-size blocks.
+  if (width_ == 3)
+    work(std::integral_constant<int, 3>{});
+  else if (width_ == 4)
+    work(std::integral_constant<int, 4>{});
+  else if (width_ == 6)
     work(std::integral_constant<int, 6>{});
   else
     work(std::integral_constant<int, Eigen::Dynamic>{});
@@ -293,8 +304,7 @@ void RingSolver::factorize_interior(const Matrix& matrix) {
   with_width([this](auto width) { eliminate_chain<decltype(width)::value>(); });
   eliminate_first_ring_node();
   Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
-  for (int i = 0; i < border_size(); ++i)
-    for (int j = 0; j < border_size(); ++j) border_schur_(i, j) = s(3 + border_slots_[i], 3 + border_slots_[j]);
+  border_schur_ = s.bottomRightCorner(border_size(), border_size());
   interior_factored_ = true;
   ++fresh_factorizations_;
 }
@@ -310,9 +320,9 @@ void RingSolver::eliminate_satellites() {
   for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
     const int position = satellite_position(i);
     Block d(base + satellite_offset(i)), to_host(base + satellite_offset(i) + 9);
-    const int failed = lu_factor(d, &swaps_[position], &row_scale_[position]);
+    const int failed = lu_factor(d, &pivots_[position], &row_scale_[position]);
     if (failed >= 0) throw_singular(position + failed, d(failed, failed), row_scale_[position + failed]);
-    lu_solve(d, &swaps_[position], to_host);
+    lu_solve(d, &pivots_[position], to_host);
     host_block(i) -= ConstBlock(base + satellite_offset(i) + 18).lazyProduct(to_host);
   }
 }
@@ -321,7 +331,7 @@ void RingSolver::forward_satellites(double* y) const {
   const double* base = blocks_.data();
   for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
     Vector3 z(y + satellite_position(i));
-    lu_solve(ConstBlock(base + satellite_offset(i)), &swaps_[satellite_position(i)], z);
+    lu_solve(ConstBlock(base + satellite_offset(i)), &pivots_[satellite_position(i)], z);
     Vector3(y + satellite_hosts_[i]) -= ConstBlock(base + satellite_offset(i) + 18).lazyProduct(z);
   }
 }
@@ -351,11 +361,11 @@ void RingSolver::eliminate_chain() {
       w -= lower.lazyProduct(Columns(base + border_column_offset(k - 1), 3, width_));
       v -= Rows(base + border_row_offset(k - 1), width_, 3).lazyProduct(x);
     }
-    const int failed = lu_factor(d, &swaps_[3 * k], &row_scale_[3 * k]);
+    const int failed = lu_factor(d, &pivots_[3 * k], &row_scale_[3 * k]);
     if (failed >= 0) throw_singular(3 * k + failed, d(failed, failed), row_scale_[3 * k + failed]);
-    lu_solve(d, &swaps_[3 * k], w);
+    lu_solve(d, &pivots_[3 * k], w);
     s -= v.lazyProduct(w);
-    if (k + 1 < chain_) lu_solve(d, &swaps_[3 * k], Block(base + upper_offset(k)));
+    if (k + 1 < chain_) lu_solve(d, &pivots_[3 * k], Block(base + upper_offset(k)));
   }
 }
 
@@ -363,10 +373,10 @@ void RingSolver::eliminate_first_ring_node() {
   Eigen::Map<Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
   const int first = 3 * chain_, border = width_ - 3;
   auto s00 = s.topLeftCorner<3, 3>();
-  const int failed = lu_factor(s00, &swaps_[first], &row_scale_[first]);
+  const int failed = lu_factor(s00, &pivots_[first], &row_scale_[first]);
   if (failed >= 0) throw_singular(first + failed, s00(failed, failed), row_scale_[first + failed]);
   auto s0b = s.topRightCorner(3, border);
-  lu_solve(s00, &swaps_[first], s0b);
+  lu_solve(s00, &pivots_[first], s0b);
   s.bottomRightCorner(border, border) -= s.bottomLeftCorner(border, 3).lazyProduct(s0b);
 }
 
@@ -374,7 +384,7 @@ void RingSolver::factorize(const Matrix& matrix) {
   factorize_interior(matrix);
   const int first = 3 * chain_ + 3, border = width_ - 3;
   Eigen::Map<Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
-  const int failed = lu_factor(s.bottomRightCorner(border, border), &swaps_[first], &row_scale_[first]);
+  const int failed = lu_factor(s.bottomRightCorner(border, border), &pivots_[first], &row_scale_[first]);
   if (failed >= 0) throw_singular(first + failed, s(3 + failed, 3 + failed), row_scale_[first + failed]);
   border_factored_ = true;
 }
@@ -400,13 +410,13 @@ void RingSolver::forward(double* y) const {
   for (int k = 0; k < chain_; ++k) {
     Vector3 z(y + 3 * k);
     if (k > 0) z -= ConstBlock(base + lower_offset(k - 1)).lazyProduct(ConstVector3(y + 3 * k - 3));
-    lu_solve(ConstBlock(base + diagonal_offset(k)), &swaps_[3 * k], z);
+    lu_solve(ConstBlock(base + diagonal_offset(k)), &pivots_[3 * k], z);
     y_border -= ConstRows(base + border_row_offset(k), width_, 3).lazyProduct(z);
   }
   Eigen::Map<const Eigen::MatrixXd> s(base + border_block_offset(), width_, width_);
   const int border = width_ - 3;
   Vector3 z0(y + 3 * chain_);
-  lu_solve(s.topLeftCorner<3, 3>(), &swaps_[3 * chain_], z0);
+  lu_solve(s.topLeftCorner<3, 3>(), &pivots_[3 * chain_], z0);
   if (border > 0)
     Eigen::Map<Eigen::VectorXd>(y + 3 * chain_ + 3, border) -= s.bottomLeftCorner(border, 3).lazyProduct(z0);
 }
@@ -436,7 +446,7 @@ void RingSolver::solve_in_place(double* values) const {
   with_width([this, y](auto width) { forward<decltype(width)::value>(y); });
   const int first = 3 * chain_ + 3, border = width_ - 3;
   Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
-  lu_solve(s.bottomRightCorner(border, border), &swaps_[first], Eigen::Map<Eigen::VectorXd>(y + first, border));
+  lu_solve(s.bottomRightCorner(border, border), &pivots_[first], Eigen::Map<Eigen::VectorXd>(y + first, border));
   with_width([this, y](auto width) { back<decltype(width)::value>(y); });
   for (size_t equation = 0; equation < position_of_equation_.size(); ++equation)
     values[equation] = y[position_of_equation_[equation]];
@@ -461,7 +471,7 @@ void RingSolver::condense(const Eigen::VectorXd& right_hand_side, Eigen::VectorX
   double* y = work_.data();
   with_width([this, y](auto width) { forward<decltype(width)::value>(y); });
   condensed_border_rhs.resize(border_size());
-  for (int i = 0; i < border_size(); ++i) condensed_border_rhs[i] = y[3 * chain_ + 3 + border_slots_[i]];
+  for (int i = 0; i < border_size(); ++i) condensed_border_rhs[i] = y[3 * chain_ + 3 + i];
 }
 
 }  // namespace tirefe

@@ -16,13 +16,15 @@
 // y_h -= A(h,s) z_s; back, x_s = z_s - (D_s^-1 A(s,h)) x_h. A node in neither list that
 // couples to two ring nodes, to the border or to another satellite is refused.
 //
-// Padding. Every block is padded to 3x3: a prescribed DOF's slot gets a 1 on the
-// diagonal and zeros elsewhere (right-hand side 0), an exact decoupled identity, so all
-// ring arithmetic runs on fixed-size 3x3 blocks whatever the boundary conditions.
-//
+// Padding. Every ring and satellite block is padded to 3x3: a prescribed DOF's slot gets
+// a 1 on the diagonal and zeros elsewhere (right-hand side 0), an exact decoupled identity,
+// so all ring arithmetic runs on fixed-size 3x3 blocks whatever the boundary conditions.
+// The border holds its free equations only (a dead axle's spindle: rz alone), so the
+// products along the chain skip the columns that padding would keep at zero.
+
 // Ordering. The chain c_k = r_{k+1}, k = 0..m-1 (m = n-1), comes first; the first ring
 // node r_0 joins the border in the "extended border" E = [r_0, border] (width
-// e = 3 + 3 * border nodes). The ring's closing couplings r_1-r_0 and r_{n-1}-r_0 are
+// e = 3 + border equations). The ring's closing couplings r_1-r_0 and r_{n-1}-r_0 are
 // then border couplings, and what is left of the ring is block tridiagonal:
 //
 //         [ T  W ]   T: diagonal blocks D_k, U_k = A(c_k, c_{k+1}), L_k = A(c_{k+1}, c_k)
@@ -51,8 +53,9 @@
 //     border    x_b = H^-1 y_b
 //     back      x_0 = z_0 - (S_00^-1 S_0b) x_b,   x_k = z_k - X_k x_{k+1} - Y_k x_E  (k = m-1..0)
 //
-// Cost: about 350 multiply-adds per ring node with a one-node border and about 80 per
-// satellite, no sparse bookkeeping: ~13 us to factor the 100-element tire, 4 us to solve
+// Cost: about 350 multiply-adds per ring node with a spindle free (6 border columns), 250
+// on a dead axle (4), and about 80 per satellite, no sparse bookkeeping: 12-13 us to
+// factor the 100-element tire with its tread layer on a dead axle, 3 us to solve
 // (bench_tire_iteration).
 //
 // A pivot not above kPivotTolerance times the largest entry of its row in the assembled
@@ -83,6 +86,11 @@ class RingSolver final : public LinearSolver {
  public:
   /// Pivots below this fraction of their row's largest assembled entry count as zero.
   static constexpr double kPivotTolerance = 1e-11;
+  /// A row interchange of a block's LU factorisation and the reciprocal of its pivot.
+  struct Pivot {
+    int row = 0;
+    double inverse = 0.0;
+  };
 
   /// ring_nodes in ring order (each coupled to the next, the last to the first);
   /// border_nodes coupled to anything (the spindle); any other node with equations must be
@@ -163,10 +171,10 @@ class RingSolver final : public LinearSolver {
   std::vector<int> ring_nodes_, border_nodes_;
 
   // From analyze(). Padded positions: chain node k at 3k + c, r_0 at 3m + c, border
-  // node j at 3m + 3 + 3j + c, satellite i at 3m + e + 3i + c.
+  // equation j at 3m + 3 + j, satellite i at 3m + 3 ceil(e / 3) + 3i + c.
   int chain_ = 0;            // m = ring nodes - 1
-  int width_ = 0;            // e = 3 + 3 * border nodes
-  int satellite_start_ = 0;  // 3m + e
+  int width_ = 0;            // e = 3 + border equations
+  int satellite_start_ = 0;  // 3m + e rounded up to a multiple of 3
   int padded_size_ = 0;
   std::vector<int> satellite_nodes_;
   std::vector<int> satellite_hosts_;  // padded position of each satellite's host (3k or 3m)
@@ -177,12 +185,11 @@ class RingSolver final : public LinearSolver {
   std::vector<int> row_position_;                   // and the padded position of its row
   std::vector<int> pattern_starts_, pattern_rows_;  // the analysed pattern, to check factorize()'s
   std::vector<int> border_equations_;
-  std::vector<int> border_slots_;  // each border equation's index in H (padded)
 
   // From factorize().
   std::vector<double> blocks_;     // D, U (then X), L, W (then Y), V, S (then its factors)
   std::vector<double> row_scale_;  // largest |entry| of each padded row (permuted with the pivots)
-  std::vector<int> swaps_;         // row interchanges: 3 per chain node, 3 for r_0, H's, 3 per satellite
+  std::vector<Pivot> pivots_;      // 3 per chain node, 3 for r_0, H's, 3 per satellite
   Eigen::MatrixXd border_schur_;
   mutable Eigen::VectorXd work_;  // a padded right-hand side
   bool interior_factored_ = false;
