@@ -260,9 +260,16 @@ TEST_CASE("vehicle pothole deck, short version: loads, strikes, four result file
     CHECK(time.back() == Approx(3.0).epsilon(1e-9));
     for (const char* channel : {"spindle_fx", "spindle_fz", "vehicle_heave", "vehicle_pitch", "vehicle_roll", "jounce"})
       CHECK(hdf5.read_doubles(std::string("/history/") + channel).size() == time.size());
-    // Driving in +x: the wheel loads are up, a few kN each after the crossing.
+    // Driving in +x: the wheel loads are up, a few kN each after the crossing. Averaged over
+    // the last 0.2 s: the rear wheel still rings there (its load swings from -0.5 to 12 kN).
     CHECK(hdf5.read_string_attribute("/", "heading") == "+x");
-    CHECK(hdf5.read_doubles("/history/spindle_fz").back() == Approx(3500.0).margin(2000.0));
+    const std::vector<double> fz = hdf5.read_doubles("/history/spindle_fz");
+    double sum = 0.0;
+    int count = 0;
+    for (size_t i = 0; i < time.size(); ++i)
+      if (time[i] >= 2.8) sum += fz[i], ++count;
+    REQUIRE(count > 0);
+    CHECK(sum / count == Approx(3500.0).margin(2000.0));
   }
   const std::string plot = "/usr/bin/python3 " + (fs::path(TIREFE_SOURCE_DIR) / "post" / "plot_vehicle.py").string() +
                            " 2.6 3.0 " + (output / "vehicle_pothole_LF.h5").string() + " " +
