@@ -11,7 +11,8 @@ machine the CPU time is the steadier of the two.
     /usr/bin/python3 bench/drum_cleat_speed.py [--runs 2] [--tirefe build/tirefe ...] [key=value ...]
 
 Give --tirefe twice (a build before a change and one after) to compare them; key=value
-goes to every run (tire=tires.145SR12 for the paper's model).
+goes to every run (tire=tires.145SR12 for the paper's model). A binary in a checkout's
+build/ folder runs that checkout's deck, so that each build runs the deck of its own code.
 """
 import argparse
 import os
@@ -26,8 +27,14 @@ import h5py
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
+def deck_of(tirefe):
+    """The deck of the checkout whose build/ folder holds the binary, or this one's."""
+    own = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(tirefe))), "inputs", "drum_cleat.lua")
+    return own if os.path.isfile(own) else os.path.join(ROOT, "inputs", "drum_cleat.lua")
+
+
 def run(tirefe, extra, output_dir):
-    command = [tirefe, os.path.join(ROOT, "inputs", "drum_cleat.lua"), "--quiet", "--output-dir", output_dir] + extra
+    command = [tirefe, deck_of(tirefe), "--quiet", "--output-dir", output_dir] + extra
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
     finished = subprocess.run(command, capture_output=True, text=True)
