@@ -65,8 +65,8 @@ struct EvaluationContext {
   double time_step = 0.0;
   IntegratorFactors factors;
   bool want_tangent = true;
-  // The first evaluation of a Newton solve, at the predicted state: contact linearises
-  // about the state the step began with there (node_contact.hpp).
+  // The first evaluation of a Newton solve, at the predicted state: a contact block that
+  // holds its contacts there linearises about the state the step began with (node_contact.hpp).
   bool first_evaluation = false;
 };
 
