@@ -4,10 +4,11 @@
 // (started once, waiting between rounds), and each lane takes the next tire not yet
 // taken, so a tire crossing a pothole does not hold back the lane that also has a tire
 // on the flat. Commit computes in the lanes too (the state moving on, the energies) and
-// writes output in turn (the HDF5 library is not thread-safe). The tires share nothing,
-// so the replies are those of a sequential round, bit for bit. MpiTireGroup
-// (src/parallel/) asks tires on other MPI ranks through the same requests and replies
-// (tire_exchange.hpp, docs/spindle.md).
+// writes output in turn (HDF5 takes one call at a time: even built thread-safe it holds
+// one lock for all; each result file's flushes go to its own writer thread, result_file.hpp).
+// The tires share nothing, so the replies are those of a sequential round, bit for bit.
+// MpiTireGroup (src/parallel/) asks tires on other MPI ranks through the same requests and
+// replies (tire_exchange.hpp, docs/spindle.md).
 #pragma once
 
 #include <atomic>
