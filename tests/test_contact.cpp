@@ -1,6 +1,7 @@
 // Contact: rigid surfaces (projection, vertex rule, fillets, motion, profile files), the
 // node-to-surface kernel (tangent vs finite differences in stick and slip on flat, drum,
-// fillet and vertex), and solved problems with closed forms: the Uzawa convergence law,
+// fillet and vertex; the secant of a slip that reverses between iterates), and solved
+// problems with closed forms: the Uzawa convergence law,
 // stick/slip under a ramped load, a block sliding to rest, a moving road dragging a node,
 // nodes passing a cleat's edge and a pothole, and a clear failure for hopeless contact.
 #include <sys/wait.h>
@@ -910,6 +911,87 @@ TEST_CASE("a moving road drags a node frame-indifferently: stick, then slip at m
     });
     analysis.advance(1.5);
   }
+}
+
+TEST_CASE("a node whose slip reverses between Newton iterates gets the secant of its friction on the stick term",
+          "[contact][tangent][reversal]") {
+  // On a tilted road, a node pressed 1 mm in slips forwards in one iterate and backwards in
+  // the next: its tangent there is the slip tangent plus sigma eps_T tau tau^T, sigma the
+  // secant (t_T - t_T,last) / (t_T* - t_T*,last); its residual is the law's.
+  auto road = std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(1.0, 0.1));
+  const double eps_n = 1e6, eps_t = 5e5, mu = 0.3;
+  const NodeSurfaceContact kernel(road, Eigen::Vector2d::Zero(), penalties(eps_n, eps_t, mu));
+  const SurfaceProjection start = road->project(Eigen::Vector2d::Zero(), 0.0);
+  const ContactHistory base = touching(0.0, 0.0, start.coordinate);
+  auto at = [&](double along) {  // 1 mm into the road, 'along' from the stick point
+    LocalState<3> local;
+    local.displacement << road->point(start.coordinate + along, 0.0) - 1e-3 * start.normal, 0.0;
+    local.velocity.setZero();
+    local.acceleration.setZero();
+    return local;
+  };
+  EvaluationContext later;  // not a solve's first evaluation
+  NodeSurfaceContact::Vector residual, plain_residual;
+  NodeSurfaceContact::Matrix tangent, plain_tangent;
+  ContactHistory forwards = base;
+  kernel.evaluate(at(-2e-3), later, base, forwards, residual, &tangent);
+  REQUIRE(forwards.state == ContactState::Slip);
+  REQUIRE(forwards.tangential_force > 0.0);
+
+  ContactHistory backwards = forwards, plain = base;
+  kernel.evaluate(at(3e-3), later, base, backwards, residual, &tangent);
+  kernel.evaluate(at(3e-3), later, base, plain, plain_residual, &plain_tangent);
+  REQUIRE(backwards.state == ContactState::Slip);
+  REQUIRE(backwards.tangential_force < 0.0);
+  CHECK(std::memcmp(&backwards, &plain, sizeof(ContactHistory)) == 0);
+  CHECK(residual == plain_residual);
+  const double sigma =
+      (backwards.tangential_force - forwards.tangential_force) / (backwards.trial_traction - forwards.trial_traction);
+  CHECK(sigma == Approx(2.0 * mu * eps_n * 1e-3 / (eps_t * 5e-3)));
+  const Eigen::Matrix2d secant = sigma * eps_t * start.tangent * start.tangent.transpose();
+  CHECK((tangent.topLeftCorner<2, 2>() - plain_tangent.topLeftCorner<2, 2>() - secant).norm() <= 1e-9 * secant.norm());
+  // The plain tangent is the law's (finite differences), so the secant is all that differs.
+  check_tangent(kernel, at(3e-3).displacement.head<2>(), 0.0, base, ContactState::Slip);
+
+  // A solve's first evaluation starts afresh: the last iterate was another step's.
+  EvaluationContext first = later;
+  first.first_evaluation = true;
+  backwards = forwards;
+  kernel.evaluate(at(3e-3), first, base, backwards, residual, &tangent);
+  CHECK(tangent == plain_tangent);
+}
+
+TEST_CASE("a node slipping one way then the other around its stick zone converges to stick in three increments",
+          "[contact][friction][reversal]") {
+  // A node on a spring k_x, pressed by N onto a road that moves by d in one step, with
+  // eps_T = 11 k_x (the drum-cleat deck's patch-edge nodes). The law's answer is stick,
+  // u_x = eps_T d / (k_x + eps_T). The first iterate (u_x = 0) slips; the slip tangent
+  // (k_x alone) sends the node to the slip equilibrium -mu N / k_x, where it slips the
+  // other way. There the secant of its friction between the two iterates brings it into
+  // the stick zone; with the slip tangent it would go back, and backtracking would take
+  // two increments more (five). Over other ratios the secant takes as many or one more.
+  const double normal = 500.0, mu = 0.3, k_x = 2e4, eps_t = 11.0 * k_x, d = -3e-3;
+  const double stick = eps_t * d / (k_x + eps_t);
+  const double slip = -mu * normal / k_x;
+  REQUIRE(std::abs(k_x * stick) < mu * normal);  // the answer sticks,
+  REQUIRE(eps_t * std::abs(d) > mu * normal);    // the first iterate slips,
+  REQUIRE(eps_t * (slip - d) < -mu * normal);    // and the second slips the other way
+  Rig rig;
+  auto road = std::make_shared<FlatRoad>(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX(),
+                                         RigidMotion::translation(MotionFunction::linear(d)));
+  build_rig(rig, Eigen::Vector2d::Zero(), k_x, 0.0, 0.0, road, penalties(1e6, eps_t, mu));
+  press(rig, normal);
+  rig.model.add_nodal_load(rig.node, kUy, -normal, constant_function(rig.model));
+  Analysis analysis(rig.model);
+  analysis.newton_settings().residual_tolerance = 1e-12;
+  analysis.step_control().max_augmentations = 0;
+  analysis.set_time_step(1.0);
+  int iterations = 0;
+  analysis.add_step_observer([&](const Analysis&, const StepRecord& record) { iterations = record.newton_iterations; });
+  analysis.advance(1.0);
+  CHECK(history(rig).state == ContactState::Stick);
+  CHECK(analysis.state().displacement[dof_index(rig.node, kUx)] == Approx(stick).epsilon(1e-9));
+  CHECK(iterations == 3);
 }
 
 TEST_CASE("a node passing a cleat's edge stays converged, outside the surface and without force spikes",

@@ -43,6 +43,10 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
                                   History& trial, Vector& residual, Matrix* tangent) const {
   residual.setZero();
   if (tangent) tangent->setZero();
+  // 'trial' holds the last evaluation's history until it is overwritten (kReadsLastTrial).
+  const bool last_slipped = trial.state == ContactState::Slip;
+  const double last_traction = trial.trial_traction, last_tangential_force = trial.tangential_force;
+  trial.trial_traction = 0.0;
   const Eigen::Vector2d x = reference_position_ + local.displacement.head<2>();
   if (base.state == ContactState::Open) {
     // Far from the surface: open, and no projection (most of a tire's nodes). The gap
@@ -107,6 +111,7 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
     trial.tangential_multiplier = tangential_multiplier;
     trial.normal_force = normal_force;
     trial.tangential_force = tangential_force;
+    trial.trial_traction = trial_traction;
     trial.force = force;
     trial.sliding_velocity = (local.velocity.head<2>() - surface_->velocity_at(p.point, context.time)).dot(p.tangent);
   }
@@ -117,10 +122,16 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
   const Eigen::Vector2d& tau = p.tangent;
   Eigen::Matrix2d stiffness = eps_n * nu * nu.transpose() - (normal_force * p.normal_rate) * tau * tau.transpose() +
                               (tangential_force * p.normal_rate) * nu * tau.transpose();
-  if (stick)
+  if (stick) {
     stiffness += (eps_t * p.arc_rate) * tau * tau.transpose();
-  else
+  } else {
     stiffness += (mu * slip_sign * eps_n) * tau * nu.transpose();
+    const bool reversed = last_slipped && !context.first_evaluation && (last_traction >= 0.0) != (slip_sign > 0.0);
+    if (reversed) {
+      const double secant = (tangential_force - last_tangential_force) / (trial_traction - last_traction);
+      stiffness += (std::clamp(secant, 0.0, 1.0) * eps_t * p.arc_rate) * tau * tau.transpose();
+    }
+  }
   tangent->topLeftCorner<2, 2>() = context.factors.tangent_stiffness * stiffness;
 }
 

@@ -36,6 +36,13 @@
 // converged state is the law's, to Newton's tolerance. It pays where the predictor lifts
 // light nodes off that stay (their rates alternating at HHT's high-frequency limit: the
 // drum-cleat deck), and costs an increment where nodes truly leave (docs/contact.md).
+// Slip reversal: a node slipping one way in one Newton iterate and the other way in the
+// next has jumped over its stick zone; the slip tangent (nothing along tau) would send it
+// back, and the two iterates repeat (a patch edge's node, eps_T tens of times the
+// structure's stiffness there). Its tangent then takes the secant of t_T over t_T*
+// between the two iterates, sigma = (t_T - t_T,last) / (t_T* - t_T*,last) in (0, 1), on
+// the stick term: K = ... + sigma eps_T a tau tau^T + mu sign eps_N tau nu^T. Only the
+// tangent changes; the residual, and so the converged state, is the law's.
 // Dynamics: the kernel has no mass or damping; the contact force is weighted by wK like
 // every internal force, so HHT-alpha enforces (1 + alpha) f_{n+1} - alpha f_n.
 #pragma once
@@ -90,7 +97,7 @@ struct ContactHistory {
   double normal_force = 0.0;                             // t_N [N]
   double tangential_force = 0.0;                         // t_T [N], along tau
   double sliding_velocity = 0.0;                         // (v_node - v_surface).tau [m/s]
-  double unused_before_force = 0.0;                      // explicit padding: 'force' is 16-byte aligned
+  double trial_traction = 0.0;                           // t_T* [N] (0 when open): the slip reversal's secant
   Eigen::Vector2d force = Eigen::Vector2d::Zero();       // t_N nu + t_T tau, on the node [N]
 };
 // No implicit padding, whose bytes would be uninitialised in a checkpoint.
@@ -102,6 +109,8 @@ class NodeSurfaceContact : public KernelShape<1, ContactHistory> {
   /// first step sticks to the surface point below its reference position at start_time.
   NodeSurfaceContact(std::shared_ptr<const RigidSurface> surface, const Eigen::Vector2d& reference_position,
                      const ContactParameters& parameters, int node = -1, double start_time = 0.0);
+
+  static constexpr bool kReadsLastTrial = true;  // the slip reversal's secant (above)
 
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& base, History& trial,
                 Vector& residual, Matrix* tangent) const;

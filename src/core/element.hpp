@@ -164,6 +164,9 @@ struct HasAugment<Kernel,
 //   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
 //   static constexpr std::array<int, N> kIdleDofs = {...};  // local DOFs whose residual
 //       row and tangent row and column are always zero (neither read nor loaded)
+//   static constexpr bool kReadsLastTrial = true;  // 'trial' arrives holding what the
+//       element's last evaluation left (the previous Newton iterate's history) rather than
+//       a copy of 'base'; the kernel then writes every field of it
 // Optional batch path: a history-free kernel may evaluate its whole block in one call,
 //   class Kernel::Batch {
 //     explicit Batch(const std::vector<Kernel>& kernels);
@@ -187,6 +190,12 @@ struct ReadsAcceleration : std::true_type {};
 template <class Kernel>
 struct ReadsAcceleration<Kernel, std::void_t<decltype(Kernel::kReadsAcceleration)>>
     : std::bool_constant<Kernel::kReadsAcceleration> {};
+
+template <class Kernel, class = void>
+struct ReadsLastTrial : std::false_type {};
+template <class Kernel>
+struct ReadsLastTrial<Kernel, std::void_t<decltype(Kernel::kReadsLastTrial)>>
+    : std::bool_constant<Kernel::kReadsLastTrial> {};
 
 /// Which local DOFs a kernel declares idle (all false unless it has kIdleDofs).
 template <class Kernel, class = void>
@@ -269,7 +278,7 @@ class ElementBlockOf final : public ElementBlock {
     const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
     for (int e = 0; e < size(); ++e) {
       gather(e, state, local);
-      trial_[e] = base_[e];
+      if constexpr (!detail::ReadsLastTrial<Kernel>::value) trial_[e] = base_[e];
       kernels_[e].evaluate(local, context, base_[e], trial_[e], residual, with_tangent ? &tangent : nullptr);
       if (!residual.allFinite()) throw_non_finite(e, "residual", residual);
       scatter_residual(e, residual, *target.residual);
