@@ -124,6 +124,21 @@ double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kD
   return largest;
 }
 
+/// |r - M a| / |M a| for a kernel with mass_times (element.hpp): r its residual with the
+/// inertia weight alone, M a what mass_times says of the same acceleration. HHT finds the
+/// end of a step's internal forces from mass_times, so it must be the kernel's inertia.
+template <class Kernel>
+double mass_times_deviation(const Kernel& kernel, const LocalState<Kernel::kDofs>& local) {
+  EvaluationContext context;
+  context.factors = IntegratorFactors::inertia_force();
+  context.want_tangent = false;
+  typename Kernel::Vector residual;
+  typename Kernel::History history{};
+  kernel.evaluate(local, context, history, history, residual, nullptr);
+  const typename Kernel::Vector inertia = kernel.mass_times(local.acceleration);
+  return (residual - inertia).norm() / inertia.norm();
+}
+
 /// The largest relative difference between a batch kernel's numbers (element.hpp) and
 /// evaluate()'s over a block of elements at the given states: per element
 /// |r_batch - r| / |r| and, with the tangent, |K_batch - K| / |K| (the tangent entries of

@@ -36,6 +36,7 @@ TEST_CASE("beam tangent equals central finite differences of the residual at lar
     INFO("trial " << trial);
     CHECK(testing::relative_tangent_error(beam, local, testing::dynamic_context(1e-3), &asymmetry) <= 1e-6);
     CHECK(asymmetry <= 1e-12);
+    CHECK(testing::mass_times_deviation(beam, local) <= 1e-15);
   }
 }
 

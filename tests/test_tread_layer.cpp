@@ -34,6 +34,7 @@ static void check_tangent(const TreadLayer& layer, unsigned seed, bool symmetric
     CHECK(testing::relative_tangent_error(layer, local, testing::dynamic_context(1e-3), &asymmetry) <= 1e-6);
     if (symmetric) CHECK(asymmetry <= 1e-12);
     CHECK(testing::declared_zero_magnitude(layer, local, testing::dynamic_context(1e-3)) == 0.0);
+    CHECK(testing::mass_times_deviation(layer, local) <= 1e-15);
   }
 }
 

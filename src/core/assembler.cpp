@@ -69,6 +69,13 @@ void Assembler::assemble(const EvaluationContext& context, const State& state, E
   for (const auto& block : model_.blocks()) block->assemble(context, state, target);
 }
 
+bool Assembler::inertia_forces(const State& state, Eigen::VectorXd& forces) const {
+  forces.setZero(model_.mesh().dof_count());
+  for (const auto& block : model_.blocks())
+    if (!block->add_inertia_forces(state, forces)) return false;
+  return true;
+}
+
 void Assembler::query(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual) {
   struct HistoryRestorer {
     Model& model;

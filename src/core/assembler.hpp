@@ -31,6 +31,10 @@ class Assembler {
   /// next step.
   void query(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual);
 
+  /// The inertia forces M a at 'state', one entry per DOF, from the kernels' constant
+  /// masses without evaluating them; false when a block cannot give them.
+  bool inertia_forces(const State& state, Eigen::VectorXd& forces) const;
+
   const SparseMatrix& tangent() const { return tangent_; }
   SparseMatrix& tangent() { return tangent_; }
   int pattern_version() const { return pattern_version_; }

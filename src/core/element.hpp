@@ -125,6 +125,10 @@ class ElementBlock {
 
   virtual void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) = 0;
   virtual ElementEnergy energy(const State& state) const = 0;
+  /// Adds the block's inertia forces M a at 'state' to 'global' (one entry per DOF) and
+  /// returns true; false, adding nothing, when the kernel cannot say (it reads the
+  /// acceleration but has no mass_times).
+  virtual bool add_inertia_forces(const State& state, Eigen::VectorXd& global) const = 0;
   virtual void commit() = 0;
   virtual void revert() = 0;
   /// Uzawa update after a converged Newton solve; true if the block wants another solve.
@@ -164,6 +168,9 @@ struct HasAugment<Kernel,
 //   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
 //   static constexpr std::array<int, N> kIdleDofs = {...};  // local DOFs whose residual
 //       row and tangent row and column are always zero (neither read nor loaded)
+//   Vector mass_times(const Vector& x) const;  // M x: the inertia forces M a of a kernel
+//       that reads the acceleration, without evaluating the rest (its mass is constant,
+//       as the contract's tangent cM M has it)
 //   static constexpr bool kReadsLastTrial = true;  // 'trial' arrives holding what the
 //       element's last evaluation left (the previous Newton iterate's history) rather than
 //       a copy of 'base'; the kernel then writes every field of it
@@ -190,6 +197,12 @@ struct ReadsAcceleration : std::true_type {};
 template <class Kernel>
 struct ReadsAcceleration<Kernel, std::void_t<decltype(Kernel::kReadsAcceleration)>>
     : std::bool_constant<Kernel::kReadsAcceleration> {};
+
+template <class Kernel, class = void>
+struct HasMassTimes : std::false_type {};
+template <class Kernel>
+struct HasMassTimes<Kernel, std::void_t<decltype(std::declval<const Kernel&>().mass_times(
+                                std::declval<const typename Kernel::Vector&>()))>> : std::true_type {};
 
 template <class Kernel, class = void>
 struct ReadsLastTrial : std::false_type {};
@@ -295,6 +308,23 @@ class ElementBlockOf final : public ElementBlock {
       total += kernels_[e].energy(local, trial_[e]);
     }
     return total;
+  }
+
+  bool add_inertia_forces(const State& state, Eigen::VectorXd& global) const override {
+    if constexpr (!detail::ReadsAcceleration<Kernel>::value) {
+      return true;  // no mass
+    } else if constexpr (detail::HasMassTimes<Kernel>::value) {
+      Vector acceleration;
+      for (int e = 0; e < size(); ++e) {
+        for (int n = 0; n < kNodes; ++n)
+          acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
+              state.acceleration.template segment<kDofsPerNode>(dof_index(nodes_[e][n], 0));
+        scatter_residual(e, kernels_[e].mass_times(acceleration), global);
+      }
+      return true;
+    } else {
+      return false;
+    }
   }
 
   void commit() override {

@@ -34,6 +34,8 @@ class NodalSpringMass : public KernelShape<1> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+  /// M x: (m, m, J) times x.
+  Vector mass_times(const Vector& x) const { return inertia_.cwiseProduct(x); }
 
   const SpringMassProperties& properties() const { return properties_; }
 

@@ -39,6 +39,8 @@ class TreadBeam : public KernelShape<2> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+  /// M x with the consistent mass of linear shape functions (M a: the inertia forces).
+  Vector mass_times(const Vector& x) const;
 
   struct Strains {
     double axial, shear, curvature;
@@ -50,7 +52,6 @@ class TreadBeam : public KernelShape<2> {
 
  private:
   /// M x for the consistent mass matrix.
-  Vector mass_times(const Vector& x) const;
   void add_mass(double factor, Matrix& tangent) const;
 
   BeamSection section_;

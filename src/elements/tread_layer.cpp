@@ -106,6 +106,12 @@ void TreadLayer::add_damping(const LocalState<kDofs>& local, const EvaluationCon
   K(5, 5) += -turned.dot(force_by_theta);
 }
 
+TreadLayer::Vector TreadLayer::mass_times(const Vector& x) const {
+  Vector product = Vector::Zero();
+  product.segment<2>(0) = properties_.mass * x.segment<2>(0);
+  return product;
+}
+
 ElementEnergy TreadLayer::energy(const LocalState<kDofs>& local, const History&) const {
   const Eigen::Vector2d d = local.displacement.segment<2>(0) - local.displacement.segment<2>(3);
   ElementEnergy energy;

@@ -48,6 +48,8 @@ class TreadLayer : public KernelShape<2> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
+  /// M x: the mass on the contact node's translations.
+  Vector mass_times(const Vector& x) const;
   /// The block's batch path (element.hpp): every layer at once, the same numbers.
   class Batch;
 

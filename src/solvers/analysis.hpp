@@ -193,6 +193,7 @@ class Analysis : private StepEquations, private SteppedSystem {
   Eigen::VectorXd driven_move_, response_;
   double trial_reference_ = 0.0;    // Newton's reference force of the step's trial from the predictor
   double resolve_reference_ = 0.0;  // that force, a floor of the force level while resolving
+  Eigen::VectorXd inertia_forces_;  // M a of the step being finished
   bool first_evaluation_ = false;   // the next evaluate() is the first of a Newton solve
 };
 
