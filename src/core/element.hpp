@@ -314,12 +314,10 @@ class ElementBlockOf final : public ElementBlock {
     if constexpr (!detail::ReadsAcceleration<Kernel>::value) {
       return true;  // no mass
     } else if constexpr (detail::HasMassTimes<Kernel>::value) {
-      Vector acceleration;
+      LocalState<kDofs> local;
       for (int e = 0; e < size(); ++e) {
-        for (int n = 0; n < kNodes; ++n)
-          acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
-              state.acceleration.template segment<kDofsPerNode>(dof_index(nodes_[e][n], 0));
-        scatter_residual(e, kernels_[e].mass_times(acceleration), global);
+        gather(e, state, local);
+        scatter_residual(e, kernels_[e].mass_times(local.acceleration), global);
       }
       return true;
     } else {

@@ -51,7 +51,7 @@ class TreadBeam : public KernelShape<2> {
   class Batch;
 
  private:
-  /// M x for the consistent mass matrix.
+  /// tangent += factor M.
   void add_mass(double factor, Matrix& tangent) const;
 
   BeamSection section_;
