@@ -5,9 +5,13 @@
 
 #include <sys/stat.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <string>
+#include <thread>
+#include <vector>
 
 #include "io/hdf5_file.hpp"
 #include "macros/deck_files.hpp"
@@ -133,6 +137,32 @@ TEST_CASE("a deck writes only in the output folder, never over a file of another
     tirefe::macros::release_outputs(session, "the result file of model 1 ('a')");
     CHECK(deck_output_path(session, "sub/r.h5", OutputFile::hdf5("a fit result file")) == dir.path("out/sub/r.h5"));
   }
+}
+
+TEST_CASE("runs that make the same output folder at once all get it", "[files]") {
+  // MPI ranks of one vehicle each write their corner's file into one new folder.
+  TempDir dir;
+  constexpr int kRuns = 8, kRounds = 100;
+  std::atomic<int> ready{0}, refused{0};
+  std::vector<std::thread> runs;
+  for (int r = 0; r < kRuns; ++r)
+    runs.emplace_back([&, r] {
+      for (int round = 0; round < kRounds; ++round) {
+        tirefe::macros::DeckSession session;
+        place_in(session, dir);
+        ready.fetch_add(1);
+        while (ready.load() < (round + 1) * kRuns) std::this_thread::yield();  // start each round together
+        const std::string file = "round" + std::to_string(round) + "/a/b/r" + std::to_string(r) + ".h5";
+        try {
+          deck_output_path(session, file, OutputFile::hdf5("corner " + std::to_string(r)));
+        } catch (const std::exception&) {
+          refused.fetch_add(1);
+        }
+      }
+    });
+  for (std::thread& run : runs) run.join();
+  CHECK(refused.load() == 0);
+  CHECK(fs::is_directory(dir.path("out/round" + std::to_string(kRounds - 1) + "/a/b")));
 }
 
 TEST_CASE("a folder, a missing file or a FIFO as the deck: one line and exit status 2", "[files][decks]") {

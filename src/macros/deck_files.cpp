@@ -66,13 +66,15 @@ void create_output_folder(const fs::path& file) {
     return ModelError("cannot create the output folder '" + folder.string() + "' for '" + file.string() +
                       "': " + reason);
   };
+  // Another process (an MPI rank writing its own corner) may make the same folder at the
+  // same time: try to make it first, and judge what is there only when that fails.
   fs::path made;
   for (const fs::path& part : file.parent_path()) {
     made /= part;
-    std::error_code error;
-    if (fs::is_directory(made, error)) continue;
-    if (fs::exists(made, error)) throw failure(made, "a file of that name is in the way");
-    if (!fs::create_directory(made, error) && error) throw failure(made, error.message());
+    std::error_code error, ignored;
+    if (fs::create_directory(made, error) || fs::is_directory(made, ignored)) continue;
+    if (fs::exists(made, ignored)) throw failure(made, "a file of that name is in the way");
+    throw failure(made, error.message());
   }
 }
 
