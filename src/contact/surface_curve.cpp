@@ -128,6 +128,17 @@ double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
   return (x - point(begin_)).squaredNorm() <= (x - point(end_)).squaredNorm() ? begin_ : end_;
 }
 
+void SurfaceCurve::Piece::closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point,
+                                        Eigen::Vector2d& tangent) const {
+  l = closest(x);
+  const Eigen::Vector2d radial = x - origin_;
+  const double distance = radial.norm();
+  if (!arc_ || !(distance > 0.0) || l <= begin_ || l >= end_) return point_and_tangent(l, point, tangent);
+  const Eigen::Vector2d outward = radial / distance;
+  point = origin_ + radius_ * outward;
+  tangent = orientation_ * Eigen::Vector2d(-outward.y(), outward.x());
+}
+
 // ---- building ----------------------------------------------------------------------
 
 namespace {
@@ -377,9 +388,9 @@ SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
     // cleat, away from it: its arcs' arctangents are most of a projection's cost). The
     // margin keeps round-off in the bound from skipping a piece as near.
     if (nearest_distance < kInfinity && distance_bound(i, x) > std::sqrt(nearest_distance) + 1e-9 * scale_) continue;
-    const double l = pieces_[i].closest(x);
+    double l = 0.0;
     Eigen::Vector2d point, tangent;
-    pieces_[i].point_and_tangent(l, point, tangent);
+    pieces_[i].closest_point(x, l, point, tangent);
     const double distance = (x - point).squaredNorm();
     if (distance < nearest_distance) {
       nearest = i;

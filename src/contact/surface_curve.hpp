@@ -72,6 +72,9 @@ class SurfaceCurve {
     double curvature() const { return arc_ ? -orientation_ / radius_ : 0.0; }
     /// Local arc length of the point of this piece closest to x.
     double closest(const Eigen::Vector2d& x) const;
+    /// closest(x) with the point and tangent there; inside an arc's span they come from
+    /// the direction of x from the centre rather than from the sine and cosine of an angle.
+    void closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const;
 
    private:
     friend class SurfaceCurve;
