@@ -143,20 +143,38 @@ double mass_times_deviation(const Kernel& kernel, const LocalState<Kernel::kDofs
 /// evaluate()'s over a block of elements at the given states: per element
 /// |r_batch - r| / |r| and, with the tangent, |K_batch - K| / |K| (the tangent entries of
 /// idle DOFs, never read, set to evaluate()'s zeros; the residual's are compared as they are).
+/// Element states as a block's structure of arrays (element.hpp, BlockValues): 'values'
+/// points into 'arrays', which must outlive it.
+template <class Kernel>
+struct BatchStates {
+  std::vector<double> arrays;
+  BlockValues values;
+
+  explicit BatchStates(const std::vector<LocalState<Kernel::kDofs>>& locals) {
+    constexpr int kDofs = Kernel::kDofs;
+    const int count = static_cast<int>(locals.size());
+    arrays.resize(3 * kDofs * count);
+    double* displacement = arrays.data();
+    double* velocity = displacement + kDofs * count;
+    double* acceleration = velocity + kDofs * count;
+    for (int e = 0; e < count; ++e)
+      for (int k = 0; k < kDofs; ++k) {
+        displacement[k * count + e] = locals[e].displacement[k];
+        velocity[k * count + e] = locals[e].velocity[k];
+        acceleration[k * count + e] = locals[e].acceleration[k];
+      }
+    values =
+        BlockValues{count, displacement, velocity, detail::ReadsAcceleration<Kernel>::value ? acceleration : nullptr};
+  }
+};
+
 template <class Kernel>
 double batch_deviation(const std::vector<Kernel>& kernels, const std::vector<LocalState<Kernel::kDofs>>& locals,
                        const EvaluationContext& context, bool with_tangent) {
   constexpr int kDofs = Kernel::kDofs;
   const int count = static_cast<int>(kernels.size());
-  std::vector<double> displacement(kDofs * count), velocity(kDofs * count), acceleration(kDofs * count);
-  for (int e = 0; e < count; ++e)
-    for (int k = 0; k < kDofs; ++k) {
-      displacement[k * count + e] = locals[e].displacement[k];
-      velocity[k * count + e] = locals[e].velocity[k];
-      acceleration[k * count + e] = locals[e].acceleration[k];
-    }
-  const BlockValues values{count, displacement.data(), velocity.data(),
-                           detail::ReadsAcceleration<Kernel>::value ? acceleration.data() : nullptr};
+  const BatchStates<Kernel> states(locals);
+  const BlockValues& values = states.values;
   typename Kernel::Batch batch(kernels);
   batch.evaluate(values, context, with_tangent);
   constexpr auto idle = detail::IdleDofs<Kernel>::mask();
@@ -174,6 +192,19 @@ double batch_deviation(const std::vector<Kernel>& kernels, const std::vector<Loc
     worst = std::max(worst, (batch_tangent - tangent).norm() / tangent.norm());
   }
   return worst;
+}
+
+/// The largest relative difference between a batch kernel's summed strain and kinetic
+/// energy and the sums of the elements' energy().
+template <class Kernel>
+double batch_energy_deviation(const std::vector<Kernel>& kernels,
+                              const std::vector<LocalState<Kernel::kDofs>>& locals) {
+  const BatchStates<Kernel> states(locals);
+  const ElementEnergy batch = typename Kernel::Batch(kernels).energy(states.values);
+  ElementEnergy sum;
+  for (size_t e = 0; e < kernels.size(); ++e) sum += kernels[e].energy(locals[e], typename Kernel::History{});
+  return std::max(std::abs(batch.strain - sum.strain) / std::abs(sum.strain),
+                  std::abs(batch.kinetic - sum.kinetic) / std::abs(sum.kinetic));
 }
 
 /// The integrator factor combinations a batch kernel is checked under: static, Newmark

@@ -147,4 +147,6 @@ TEST_CASE("beam batch path: every beam of a perturbed, rolled ring as evaluate()
       INFO("tangent " << with_tangent << ", mass factor " << context.factors.tangent_mass);
       CHECK(testing::batch_deviation(beams, locals, context, with_tangent) <= 1e-14);
     }
+  // The stored energy the energy balance books each step, summed over the block.
+  CHECK(testing::batch_energy_deviation(beams, locals) <= 1e-14);
 }

@@ -193,4 +193,6 @@ TEST_CASE("tread layer batch path: every layer of a rolled ring as evaluate() gi
   std::vector<TreadLayer> undamped(kLayers, TreadLayer({0.6, 0.8}, test_layer()));
   for (const EvaluationContext& context : testing::batch_contexts())
     CHECK(testing::batch_deviation(undamped, locals, context, true) <= 1e-14);
+  // The stored energy the energy balance books each step, summed over the block.
+  CHECK(testing::batch_energy_deviation(layers, locals) <= 1e-14);
 }

@@ -182,7 +182,9 @@ struct HasAugment<Kernel,
 //     const double* tangent() const;   // row-major entry k of element e at [k * count + e]
 //   };
 // over structure-of-arrays data, so that the compiler vectorises across elements. It gives
-// the numbers of evaluate() (to round-off); the entries of idle DOFs are never read.
+// the numbers of evaluate() (to round-off); the entries of idle DOFs are never read. It may
+// also sum the block's stored energy, the energies of energy() to round-off:
+//     ElementEnergy energy(const BlockValues& values) const;
 template <class Kernel, class = void>
 struct BatchOf : std::false_type {
   struct type {};
@@ -191,6 +193,13 @@ template <class Kernel>
 struct BatchOf<Kernel, std::void_t<typename Kernel::Batch>> : std::true_type {
   using type = typename Kernel::Batch;
 };
+
+template <class Batch, class = void>
+struct HasBatchEnergy : std::false_type {};
+template <class Batch>
+struct HasBatchEnergy<Batch,
+                      std::void_t<decltype(std::declval<const Batch&>().energy(std::declval<const BlockValues&>()))>>
+    : std::true_type {};
 
 template <class Kernel, class = void>
 struct ReadsAcceleration : std::true_type {};
@@ -300,6 +309,8 @@ class ElementBlockOf final : public ElementBlock {
   }
 
   ElementEnergy energy(const State& state) const override {
+    if constexpr (detail::HasBatchEnergy<Batch>::value)
+      if (batch_) return batch_->energy(gather_batch(state));
     ElementEnergy total;
     LocalState<kDofs> local;
     local.acceleration.setZero();
@@ -393,18 +404,9 @@ class ElementBlockOf final : public ElementBlock {
   /// the block in one call, scatter from the batch's arrays.
   void assemble_batch(const EvaluationContext& context, const State& state, AssemblyTarget& target) {
     if (!batch_) prepare_batch();
+    const BlockValues values = gather_batch(state);
     const int count = size();
-    double* displacement = gathered_.data();
-    double* velocity = displacement + kDofs * count;
-    double* acceleration = velocity + kDofs * count;
-    constexpr bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value;
     const int* dofs = batch_dofs_.data();
-    for (int k = 0; k < kDofs * count; ++k) {
-      displacement[k] = state.displacement[dofs[k]];
-      velocity[k] = state.velocity[dofs[k]];
-      if constexpr (reads_acceleration) acceleration[k] = state.acceleration[dofs[k]];
-    }
-    const BlockValues values{count, displacement, velocity, reads_acceleration ? acceleration : nullptr};
     const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
     batch_->evaluate(values, context, with_tangent);
 
@@ -418,6 +420,22 @@ class ElementBlockOf final : public ElementBlock {
     if (!with_tangent) return;
     const double* tangent = batch_->tangent();
     for (const TangentEntry& t : batch_entries_) target.tangent_values[t.slot] += tangent[t.entry];
+  }
+
+  /// Every element's nodal values as structure of arrays, in the batch's buffers.
+  BlockValues gather_batch(const State& state) const {
+    const int count = size();
+    double* displacement = gathered_.data();
+    double* velocity = displacement + kDofs * count;
+    double* acceleration = velocity + kDofs * count;
+    constexpr bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value;
+    const int* dofs = batch_dofs_.data();
+    for (int k = 0; k < kDofs * count; ++k) {
+      displacement[k] = state.displacement[dofs[k]];
+      velocity[k] = state.velocity[dofs[k]];
+      if constexpr (reads_acceleration) acceleration[k] = state.acceleration[dofs[k]];
+    }
+    return BlockValues{count, displacement, velocity, reads_acceleration ? acceleration : nullptr};
   }
 
   void gather(int e, const State& state, LocalState<kDofs>& local) const {
@@ -481,7 +499,7 @@ class ElementBlockOf final : public ElementBlock {
   std::vector<TangentEntry> batch_entries_;  // entry: the place in the batch's tangent
   std::vector<int> batch_dofs_;              // the global DOF of the batch's value [k * size + e]
   std::unique_ptr<Batch> batch_;             // kernels with a batch path only
-  std::vector<double> gathered_;             // the batch's displacement, velocity and acceleration
+  mutable std::vector<double> gathered_;     // the batch's displacement, velocity and acceleration
 };
 
 }  // namespace tirefe

@@ -145,6 +145,29 @@ TreadLayer::Batch::Batch(const std::vector<TreadLayer>& layers) : count_(static_
   }
 }
 
+TIREFE_SIMD_CLONES ElementEnergy TreadLayer::Batch::energy(const BlockValues& values) const {
+  const int n = count_;
+  const double* u = values.displacement;
+  const double* v = values.velocity;
+  double strain = 0.0, kinetic = 0.0;
+#pragma omp simd reduction(+ : strain, kinetic)
+  for (int e = 0; e < n; ++e) {
+    const double d[2] = {u[e] - u[3 * n + e], u[n + e] - u[4 * n + e]};
+    const SineCosine turn = sine_cosine(u[5 * n + e]);
+    const double radial[2] = {turn.cos * radial_x_[e] - turn.sin * radial_y_[e],
+                              turn.sin * radial_x_[e] + turn.cos * radial_y_[e]};
+    // d.B d with B = k_t I + (k_r - k_t) e e^T.
+    const double along = radial[0] * d[0] + radial[1] * d[1];
+    const double k_r = radial_stiffness_[e], k_t = circumferential_stiffness_[e];
+    strain += 0.5 * (k_t * (d[0] * d[0] + d[1] * d[1]) + (k_r - k_t) * along * along);
+    kinetic += 0.5 * mass_[e] * (v[e] * v[e] + v[n + e] * v[n + e]);
+  }
+  ElementEnergy total;
+  total.strain = strain;
+  total.kinetic = kinetic;
+  return total;
+}
+
 template <bool Tangent, bool Damped>
 TIREFE_SIMD_CLONES void TreadLayer::Batch::evaluate_layers(const BlockValues& values, const IntegratorFactors& f) {
   const int n = count_;

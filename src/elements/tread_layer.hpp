@@ -80,6 +80,8 @@ class TreadLayer::Batch {
   void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
   const double* residual() const { return residual_.data(); }
   const double* tangent() const { return tangent_.data(); }
+  /// The layers' strain and kinetic energy, summed: energy()'s terms.
+  ElementEnergy energy(const BlockValues& values) const;
 
  private:
   template <bool Tangent, bool Damped>
