@@ -174,8 +174,8 @@ class Hdf5File {
   ExtendibleDataset& create_extendible(const std::string& dataset_path, const std::vector<hsize_t>& row_shape,
                                        const std::string& unit = "");
   // The same with its rows compressed (byte shuffle, then deflate) in chunks of whole rows,
-  // about 4 KiB or one row: for field rows, which are flushed one at a time (a flushed
-  // chunk is not rewritten).
+  // about 4 KiB or one row: for rows that compress (a contact's per-node rows, mostly
+  // zeros), flushed one at a time (a flushed chunk is not rewritten).
   ExtendibleDataset& create_compressed_extendible(const std::string& dataset_path,
                                                   const std::vector<hsize_t>& row_shape, const std::string& unit = "");
   // A virtual dataset at 'view_path' that shows row 'row' of 'source' (rows x n x c) without

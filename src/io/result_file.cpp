@@ -161,10 +161,12 @@ void ResultFile::write_mesh(const Model& model) {
   const std::vector<hsize_t> node_field{static_cast<hsize_t>(mesh.node_count()), 3};
   field_time_ = &file_.create_extendible("/fields/time", {}, "s");
   field_step_ = &file_.create_extendible("/fields/step", {});
-  field_displacement_ = &file_.create_compressed_extendible("/fields/displacement", node_field, "m, m, rad");
-  field_velocity_ = &file_.create_compressed_extendible("/fields/velocity", node_field, "m/s, m/s, rad/s");
+  // Not compressed: a moving tire's doubles shrink by a fifth at most, for half of what a
+  // flush costs (docs/output.md).
+  field_displacement_ = &file_.create_extendible("/fields/displacement", node_field, "m, m, rad");
+  field_velocity_ = &file_.create_extendible("/fields/velocity", node_field, "m/s, m/s, rad/s");
   if (!rims_.empty()) {
-    field_deformation_ = &file_.create_compressed_extendible("/fields/deformation", node_field, "m, m, rad");
+    field_deformation_ = &file_.create_extendible("/fields/deformation", node_field, "m, m, rad");
     file_.write_attribute("/fields/deformation", "meaning",
                           std::string("displacement less the rigid motion of the tire's rim, fixed axes"));
   }
@@ -263,9 +265,8 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   const long long count = static_cast<long long>(points.size());
   if (count < 2) throw IoError("surface '" + name + "' has fewer than two points to draw");
   const std::string group = "/surfaces/" + name;
-  Surface& surface = surfaces_.emplace_back(
-      Surface{name, std::move(outline),
-              &file_.create_compressed_extendible(group + "/outline", {static_cast<hsize_t>(count), 2}, "m")});
+  Surface& surface = surfaces_.emplace_back(Surface{
+      name, std::move(outline), &file_.create_extendible(group + "/outline", {static_cast<hsize_t>(count), 2}, "m")});
   // Segments from each point to the next (and from the last back to the first).
   std::vector<long long> segments;
   for (long long i = 0; i + 1 < count + (closed ? 1 : 0); ++i) {

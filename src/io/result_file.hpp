@@ -20,7 +20,7 @@
 //   /surfaces/<name>/outline      frames x points x 2: a rigid surface where it is at the frame
 //   /fields/frames/<k>/..., /surfaces/<name>/frames/<k>   frame k of the above as whole
 //                                 datasets (virtual: no copies), for the XDMF index
-// Field rows are compressed. <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
+// Contact rows are compressed, field rows not (docs/output.md). <stem>.xmf beside the file indexes the frames (io/xdmf.hpp).
 // The file is published (Hdf5File::create_published): whole at every instant. Rows wait
 // in memory and are flushed every quarter second of wall time (less often for a file so
 // big that its flush, which copies it whole, takes over 12 ms; sooner when the waiting rows
