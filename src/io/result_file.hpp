@@ -20,15 +20,17 @@
 //   /surfaces/<name>/outline      frames x points x 2: a rigid surface where it is at the frame
 //   /fields/frames/<k>/..., /surfaces/<name>/frames/<k>   frame k of the above as whole
 //                                 datasets (virtual: no copies), for the XDMF index
-// Contact rows are compressed, field rows not (docs/output.md). <stem>.xmf beside the file indexes the frames
-// (io/xdmf.hpp). The file is published (Hdf5File::create_published): whole at every instant. Rows wait in memory and
-// are flushed every quarter second of wall time (less often for a file so big that its flush, which copies it whole,
-// takes over 12 ms; sooner when the waiting rows reach half of what the file holds) and when the file closes, so a run
-// that fails leaves a file readable up to its last step and a killed run one readable up to its last flush, some
-// quarter second before the kill. A flush is written by a thread of its own while the run goes on (its rows were taken
-// between two steps); the next flush, and anything else that writes to the file, waits for it. The index is rewritten
-// (whole, by a rename) after a flush that brought frames: at every such flush while it is small, at most once a second
-// beyond 1 MB, and at the close.
+// Contact rows are compressed, field rows not (docs/output.md). <stem>.xmf beside the file
+// indexes the frames (io/xdmf.hpp). The file is published (Hdf5File::create_published):
+// whole at every instant. Rows wait in memory and are flushed every quarter second of wall
+// time (less often for a file so big that its flush, which copies it whole, takes over 12
+// ms; sooner when the waiting rows reach half of what the file holds) and when the file
+// closes, so a run that fails leaves a file readable up to its last step and a killed run
+// one readable up to its last flush, some quarter second before the kill. A flush is
+// written by a thread of its own while the run goes on (its rows were taken between two
+// steps); the next flush, and anything else that writes to the file, waits for it. The
+// index is rewritten (whole, by a rename) after a flush that brought frames: at every such
+// flush while it is small, at most once a second beyond 1 MB, and at the close.
 //
 // Deformation: a tire's displacement with the rigid motion of its rim taken out. With X
 // the reference position of a node, x = X + u, s the spindle and R = R(theta_s),
