@@ -106,6 +106,23 @@ struct BlockValues {
   const double* acceleration = nullptr;
 };
 
+/// The stored energy of a batch's elements, summed: 'element(e)' gives element e's, and
+/// the loop over them vectorises (a batch's energy(), element.hpp's batch path).
+template <class ElementEnergyOf>
+ElementEnergy sum_energies(int count, ElementEnergyOf element) {
+  double strain = 0.0, kinetic = 0.0;
+#pragma omp simd reduction(+ : strain, kinetic)
+  for (int e = 0; e < count; ++e) {
+    const ElementEnergy one = element(e);
+    strain += one.strain;
+    kinetic += one.kinetic;
+  }
+  ElementEnergy total;
+  total.strain = strain;
+  total.kinetic = kinetic;
+  return total;
+}
+
 template <int Dofs>
 struct LocalState {
   Eigen::Matrix<double, Dofs, 1> displacement, velocity, acceleration;

@@ -157,9 +157,7 @@ TIREFE_SIMD_CLONES ElementEnergy TreadBeam::Batch::energy(const BlockValues& val
   const int n = count_;
   const double* u = values.displacement;
   const double* v = values.velocity;
-  double strain = 0.0, kinetic = 0.0;
-#pragma omp simd reduction(+ : strain, kinetic)
-  for (int e = 0; e < n; ++e) {
+  return sum_energies(n, [&](int e) {
     const double length = length_[e];
     const double stretch_x = direction_x_[e] + (u[3 * n + e] - u[e]) / length;
     const double stretch_y = direction_y_[e] + (u[4 * n + e] - u[n + e]) / length;
@@ -167,19 +165,18 @@ TIREFE_SIMD_CLONES ElementEnergy TreadBeam::Batch::energy(const BlockValues& val
     const double axial = stretch_x * turn.cos + stretch_y * turn.sin - 1.0;
     const double shear = -stretch_x * turn.sin + stretch_y * turn.cos;
     const double curvature = (u[5 * n + e] - u[2 * n + e]) / length;
-    strain +=
+    ElementEnergy energy;
+    energy.strain =
         0.5 * length * (axial_[e] * axial * axial + shear_[e] * shear * shear + bending_[e] * curvature * curvature);
+    // v.M v with the consistent mass L0/6 [2 1; 1 2] per component (rho A, rho A, rho I).
     const double per_length[3] = {mass_[e], mass_[e], rotary_inertia_[e]};
     for (int c = 0; c < 3; ++c) {
       const double first = v[c * n + e], second = v[(c + 3) * n + e];
-      kinetic +=
+      energy.kinetic +=
           0.5 * (per_length[c] * length / 6.0) * (first * (2.0 * first + second) + second * (first + 2.0 * second));
     }
-  }
-  ElementEnergy total;
-  total.strain = strain;
-  total.kinetic = kinetic;
-  return total;
+    return energy;
+  });
 }
 
 template <bool Tangent>

@@ -149,9 +149,7 @@ TIREFE_SIMD_CLONES ElementEnergy TreadLayer::Batch::energy(const BlockValues& va
   const int n = count_;
   const double* u = values.displacement;
   const double* v = values.velocity;
-  double strain = 0.0, kinetic = 0.0;
-#pragma omp simd reduction(+ : strain, kinetic)
-  for (int e = 0; e < n; ++e) {
+  return sum_energies(n, [&](int e) {
     const double d[2] = {u[e] - u[3 * n + e], u[n + e] - u[4 * n + e]};
     const SineCosine turn = sine_cosine(u[5 * n + e]);
     const double radial[2] = {turn.cos * radial_x_[e] - turn.sin * radial_y_[e],
@@ -159,13 +157,11 @@ TIREFE_SIMD_CLONES ElementEnergy TreadLayer::Batch::energy(const BlockValues& va
     // d.B d with B = k_t I + (k_r - k_t) e e^T.
     const double along = radial[0] * d[0] + radial[1] * d[1];
     const double k_r = radial_stiffness_[e], k_t = circumferential_stiffness_[e];
-    strain += 0.5 * (k_t * (d[0] * d[0] + d[1] * d[1]) + (k_r - k_t) * along * along);
-    kinetic += 0.5 * mass_[e] * (v[e] * v[e] + v[n + e] * v[n + e]);
-  }
-  ElementEnergy total;
-  total.strain = strain;
-  total.kinetic = kinetic;
-  return total;
+    ElementEnergy energy;
+    energy.strain = 0.5 * (k_t * (d[0] * d[0] + d[1] * d[1]) + (k_r - k_t) * along * along);
+    energy.kinetic = 0.5 * mass_[e] * (v[e] * v[e] + v[n + e] * v[n + e]);
+    return energy;
+  });
 }
 
 template <bool Tangent, bool Damped>
