@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "core/model.hpp"
 #include "elements/tread_beam.hpp"
@@ -99,4 +100,23 @@ TEST_CASE("a NaN in a batched block's residual names its element, node and DOF t
     CHECK(message.find("element 2 of block 'beams' (nodes 2, 3) produced a non-finite residual at node 2") !=
           std::string::npos);
   }
+}
+
+TEST_CASE("all_finite finds a NaN or an infinity anywhere, and passes every finite value", "[reliability][nan]") {
+  constexpr double kMax = std::numeric_limits<double>::max();
+  std::vector<double> values(37);
+  for (size_t k = 0; k < values.size(); ++k) values[k] = (k % 2 ? -1.0 : 1.0) * std::pow(10.0, double(k) - 18.0);
+  values[3] = kMax;
+  values[4] = -kMax;
+  values[5] = std::numeric_limits<double>::denorm_min();
+  values[6] = -0.0;
+  CHECK(all_finite(values.data(), static_cast<int>(values.size())));
+  CHECK(all_finite(values.data(), 0));
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                     -std::numeric_limits<double>::infinity()})
+    for (size_t at : {size_t(0), size_t(17), values.size() - 1}) {
+      std::vector<double> spoiled = values;
+      spoiled[at] = bad;
+      CHECK_FALSE(all_finite(spoiled.data(), static_cast<int>(spoiled.size())));
+    }
 }

@@ -123,6 +123,15 @@ ElementEnergy sum_energies(int count, ElementEnergyOf element) {
   return total;
 }
 
+/// Whether every value is finite, in one vectorised pass without a branch per value:
+/// x * 0 is 0 for a finite x and NaN for an infinite or NaN one, and a NaN survives the sum.
+inline bool all_finite(const double* values, int count) {
+  double probe = 0.0;
+#pragma omp simd reduction(+ : probe)
+  for (int k = 0; k < count; ++k) probe += values[k] * 0.0;
+  return probe == 0.0;
+}
+
 template <int Dofs>
 struct LocalState {
   Eigen::Matrix<double, Dofs, 1> displacement, velocity, acceleration;
@@ -428,9 +437,7 @@ class ElementBlockOf final : public ElementBlock {
     batch_->evaluate(values, context, with_tangent);
 
     const double* residual = batch_->residual();
-    bool finite = true;
-    for (int k = 0; k < kDofs * count; ++k) finite &= std::isfinite(residual[k]);
-    if (!finite) throw_non_finite_batch();
+    if (!all_finite(residual, kDofs * count)) throw_non_finite_batch();
     Eigen::VectorXd& global = *target.residual;
     for (int e = 0; e < count; ++e)  // element by element, as one at a time would add them
       for (int k = 0; k < kDofs; ++k) global[dofs[k * count + e]] += residual[k * count + e];
