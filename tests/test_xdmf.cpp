@@ -323,9 +323,14 @@ TEST_CASE("result file: flushes written while the run goes on hold every frame, 
       run.write(file, frame);
       if (frame == kFrames / 2) {
         file.file();  // waits for a flush being written: the file on disk then holds its frames
-        const size_t flushed = Hdf5File::open_read_only(path).read_doubles("/fields/time").size();
+        const Hdf5File on_disk = Hdf5File::open_read_only(path);
+        const size_t flushed = on_disk.read_doubles("/fields/time").size();
         CHECK(flushed >= io::ResultFile::kFlushBytes / (8 * (2 * run.dofs + 2)));
         CHECK(flushed <= static_cast<size_t>(frame + 1));
+        // Views written ahead of the flushes: every flushed frame has its own, whole.
+        const std::string last = std::to_string(flushed - 1);
+        CHECK(on_disk.read_doubles("/fields/frames/" + last + "/rotation") ==
+              std::vector<double>(run.dofs / kDofsPerNode, static_cast<double>(flushed - 1)));
       }
     }
   }

@@ -69,7 +69,7 @@ ResultFile::~ResultFile() {
   if (file_.failed()) return;  // reported; the file on disk keeps its last flush
   try {
     file_.stage();
-    write_unflushed_views();
+    write_unviewed_views();
     file_.close();
     index_flushed_frames();
     if (frames_indexed_ != index_.frames()) write_index();
@@ -280,11 +280,11 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
                 {group + "/frames/{frame}", {count, 2}}, {}};
   // clang-format on
   // The frames written before the surface existed show it where its motion put it then
-  // (the unflushed ones get their views with the others at the flush).
+  // (the frames without views yet get theirs with the others).
   const size_t earlier = frames_written();
   for (size_t frame = 0; frame < earlier; ++frame) {
     append_outline(surface, frame_time(frame));
-    if (frame < index_.frames())
+    if (frame < first_unviewed_frame())
       file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
   }
   index_.add_grid(grid);
@@ -340,8 +340,9 @@ void ResultFile::write_views(size_t frame) {
                          2);
 }
 
-void ResultFile::write_unflushed_views() {
-  for (size_t frame = index_.frames(); frame < frames_written(); ++frame) write_views(frame);
+void ResultFile::write_unviewed_views() {
+  for (size_t frame = first_unviewed_frame(); frame < frames_written(); ++frame) write_views(frame);
+  frames_viewed_ = frames_written();
 }
 
 void ResultFile::index_restored_frames() {
@@ -475,8 +476,24 @@ void ResultFile::flush_if_due() {
   if (!grown && flush_job_.running()) return;
   flush_job_.wait();  // a finished flush's failure fails the step that finds it
   const auto since = std::chrono::steady_clock::now() - last_flush_;
-  if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) return;
+  if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) {
+    start_views_if_due();
+    return;
+  }
   start_flush();
+}
+
+void ResultFile::start_views_if_due() {
+  // The views are most of a flush's work: made while the writer would idle, a few dozen at
+  // a time, they do not pile up for the flushes, whose spacing grows with the file, nor for
+  // the end of the run, which waits for them.
+  const size_t from = first_unviewed_frame(), to = frames_written();
+  if (to - from < kViewBatch) return;
+  frames_viewed_ = to;
+  flush_job_.start([this, from, to] {
+    silence_hdf5_errors();
+    for (size_t frame = from; frame < to; ++frame) write_views(frame);
+  });
 }
 
 void ResultFile::flush() {
@@ -488,19 +505,21 @@ void ResultFile::start_flush() {
   flush_job_.wait();
   // Taken between steps: the rows appended so far and the frames among them. The run goes
   // on appending to buffers of its own while the flush writes these.
+  const size_t first_view = first_unviewed_frame();
+  frames_viewed_ = frames_written();
   std::vector<double> frames;
   frames.swap(unflushed_frames_);
-  const size_t first_frame = index_.frames();
   flushed_bytes_ += pending_bytes();
   file_.stage();
-  flush_job_.start([this, first_frame, frames = std::move(frames)] { write_flush(first_frame, frames); });
+  flush_job_.start([this, first_view, last_view = frames_viewed_, frames = std::move(frames)] {
+    write_flush(first_view, last_view, frames);
+  });
 }
 
-void ResultFile::write_flush(size_t first_frame, const std::vector<double>& frames) {
+void ResultFile::write_flush(size_t first_view, size_t last_view, const std::vector<double>& frames) {
   silence_hdf5_errors();  // the writer's own thread: failures are thrown, not printed
-  // The views are the frames' own cost, made here together: not the flush's time, which
-  // spaces the flushes.
-  for (size_t k = 0; k < frames.size(); ++k) write_views(first_frame + k);
+  // The views are the frames' own cost: not the flush's time, which spaces the flushes.
+  for (size_t frame = first_view; frame < last_view; ++frame) write_views(frame);
   const auto start = std::chrono::steady_clock::now();
   file_.flush_staged();
   last_flush_ = std::chrono::steady_clock::now();

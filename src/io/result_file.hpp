@@ -41,6 +41,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <limits>
@@ -140,15 +141,20 @@ class ResultFile {
   static constexpr std::chrono::milliseconds kFlushInterval{250};
   /// The least bytes of waiting rows that call for a flush before its time.
   static constexpr size_t kFlushBytes = 256 * 1024;
+  /// The least frames whose views are written between flushes, together.
+  static constexpr size_t kViewBatch = 16;
 
  private:
   /// Bytes of the rows waiting in memory for the next flush.
   size_t pending_bytes() const;
   /// Takes the rows and frames waiting and starts writing them (after the last flush).
   void start_flush();
-  /// The flush's writing, on the writer's thread: the views of the frames from
-  /// 'first_frame' on, the rows, the file's copy, then the frames in the index.
-  void write_flush(size_t first_frame, const std::vector<double>& frames);
+  /// The flush's writing, on the writer's thread: the views of the frames first_view ..
+  /// last_view - 1, the rows, the file's copy, then 'frames' (their times) in the index.
+  void write_flush(size_t first_view, size_t last_view, const std::vector<double>& frames);
+  /// Starts writing the views of the frames without them, if kViewBatch or more wait and
+  /// no flush is due: the file's copy and the index wait for the next flush.
+  void start_views_if_due();
   struct HistoryChannel {
     ExtendibleDataset* dataset;
     Channel value;
@@ -169,9 +175,11 @@ class ResultFile {
   void append_deformation(const Model& model, const State& state);
   void append_outline(Surface& surface, double time);
   void write_views(size_t frame);
-  /// The views of the frames written since the last flush: made at the flush, together (some
-  /// hundred at a time, HDF5's code and its metadata stay in the processor's caches).
-  void write_unflushed_views();
+  /// The views of the frames that have none yet (made together: HDF5's code and its
+  /// metadata stay in the processor's caches).
+  void write_unviewed_views();
+  /// The first frame without views: every frame in the index has them, and the frames_viewed_ first.
+  size_t first_unviewed_frame() const { return std::max(frames_viewed_, index_.frames()); }
   void write_index();
   void write_index_if_due();
   /// Adds the frames the last flush put in the file to the index.
@@ -215,6 +223,7 @@ class ResultFile {
   XdmfIndex index_;                       // the frames the file on disk holds
   std::vector<double> unflushed_frames_;  // the times of frames written since the last flush
   size_t frames_indexed_ = 0;             // in the index file
+  size_t frames_viewed_ = 0;              // the frames whose views are written or being written
   std::chrono::steady_clock::time_point last_index_write_ = std::chrono::steady_clock::now();
   // Last, so that it is destroyed first: the flush it writes uses the members above.
   BackgroundJob flush_job_{kHdf5Threadsafe};
