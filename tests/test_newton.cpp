@@ -42,17 +42,19 @@ class ArctanEquation : public StepEquations {
 };
 
 /// R(u) = u - root with a tangent 'stiffer' times too stiff: each increment takes 1/stiffer
-/// of the error away, a linear convergence whose reduction does not grow.
+/// of the error away, a linear convergence whose reduction does not grow. Without the
+/// tangent, one that no solve may use (as above).
 class StiffTangentEquation : public StepEquations {
  public:
-  StiffTangentEquation(double start, double root, double stiffer) : u_(start), root_(root) {
+  StiffTangentEquation(double start, double root, double stiffer) : u_(start), root_(root), stiffer_(stiffer) {
     tangent_.resize(1, 1);
     tangent_.insert(0, 0) = stiffer;
     tangent_.makeCompressed();
   }
-  void evaluate(bool, Eigen::VectorXd& residual, double& force_level) override {
+  void evaluate(bool with_tangent, Eigen::VectorXd& residual, double& force_level) override {
     residual.resize(1);
     residual[0] = u_ - root_;
+    tangent_.coeffRef(0, 0) = with_tangent ? stiffer_ : std::nan("");
     force_level = 1.0;
   }
   const SparseMatrix& tangent() const override { return tangent_; }
@@ -63,7 +65,7 @@ class StiffTangentEquation : public StepEquations {
   double u() const { return u_; }
 
  private:
-  double u_, root_;
+  double u_, root_, stiffer_;
   SparseMatrix tangent_;
 };
 
@@ -118,19 +120,33 @@ TEST_CASE("Newton skips the tangent of the evaluation it expects to converge, on
     CHECK(equation.tangents() == reference.tangents() - 1);
     CHECK(reference.residuals_alone() == 0);
   }
-  SECTION("a reduction that does not grow: the tangent is evaluated again at the same state") {
+  // The constant tangent makes the chord increment plain Newton's: the same iterations
+  // and the same solution, with and without the residual-only evaluation.
+  auto solve_halving = [&](double tolerance) {
     StiffTangentEquation reference(1.0, 0.0, 2.0), equation(1.0, 0.0, 2.0);
     solver.analyze(reference.tangent());
-    plain.residual_tolerance = 1e-3;  // halving from 1: 2^-9 < 3e-3 is expected, 2^-10 < 1e-3 comes
+    plain.residual_tolerance = tolerance;
     const NewtonReport plain_report = NewtonSolver(plain).solve(reference, solver);
     NewtonSettings settings = plain;
     settings.residual_only_when_converging = true;
-    NewtonSolver newton(settings);
-    const NewtonReport& report = newton.solve(equation, solver);
+    const NewtonReport report = NewtonSolver(settings).solve(equation, solver);
     CHECK(report.iterations == plain_report.iterations);
-    CHECK(report.iterations == 10);
     CHECK(equation.u() == reference.u());
-    CHECK(report.residual_only == 2);  // at 2^-9 (retaken) and 2^-10 (converged)
+    return report;
+  };
+  SECTION("a reduction that does not grow: one chord increment with the last factors") {
+    // Halving from 1: 2^-9 < 3e-3 is expected to converge, 2^-10 < 1e-3 does.
+    const NewtonReport report = solve_halving(1e-3);
+    CHECK(report.iterations == 10);
+    CHECK(report.residual_only == 2);  // at 2^-9 (a chord follows) and 2^-10 (converged)
+    CHECK(report.chords == 1);
+    CHECK(report.retaken == 0);
+  }
+  SECTION("a chord that does not converge either: the tangent is evaluated again at the same state") {
+    const NewtonReport report = solve_halving(3e-3);  // 2^-7 expected to converge: a chord; 2^-8 retaken
+    CHECK(report.iterations == 9);
+    CHECK(report.residual_only == 3);  // at 2^-7 (a chord follows), 2^-8 (retaken), 2^-9
+    CHECK(report.chords == 1);
     CHECK(report.retaken == 1);
   }
   SECTION("a caller that reads the converged tangent gets it") {

@@ -28,6 +28,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
   report_.backtracks = 0;
   report_.residual_only = 0;
   report_.retaken = 0;
+  report_.chords = 0;
   report_.residual_norms.clear();
   report_.residual_norms.reserve(settings_.max_iterations * (settings_.max_backtracks + 1) + 1);
   double relative_increment = 0.0;
@@ -36,6 +37,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
   double step_fraction = 1.0;  // of the current increment applied so far
   int halvings = 0;
   bool with_tangent = true;
+  bool chord_taken = false;  // in this solve
   const bool may_skip_tangent = settings_.residual_only_when_converging && !equations.wants_converged_tangent();
   for (;;) {
     double force_level = 0.0;
@@ -73,14 +75,19 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
       throw ConvergenceFailure("no convergence in " + std::to_string(settings_.max_iterations) +
                                " Newton iterations (|R|/Rref = " + std::to_string(relative) + ")");
 
-    if (!with_tangent) {  // not converged after all: the tangent of this same state
+    // Not converged after all, but closer: once per solve, a chord increment with the
+    // last factors; otherwise the tangent of this same state.
+    const bool chord = !with_tangent && !chord_taken && norm < previous_norm;
+    if (!with_tangent && !chord) {
       equations.evaluate(true, residual_, force_level);
       ++report_.retaken;
     }
-    try {
-      linear_solver.factorize(equations.tangent());
-    } catch (const SingularMatrix& singular) {
-      throw ConvergenceFailure(singular.what());
+    if (!chord) {
+      try {
+        linear_solver.factorize(equations.tangent());
+      } catch (const SingularMatrix& singular) {
+        throw ConvergenceFailure(singular.what());
+      }
     }
     increment_ = -residual_;
     linear_solver.solve(increment_);
@@ -92,6 +99,12 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     halvings = 0;
     relative_increment = equations.apply_increment(increment_);
     ++report_.iterations;
+    if (chord) {
+      ++report_.chords;
+      chord_taken = true;
+      with_tangent = false;
+      continue;
+    }
     // The reduction of this increment's start over the last one's, repeated.
     with_tangent =
         !(may_skip_tangent && report_.iterations >= 2 && norm < norm_two_back &&

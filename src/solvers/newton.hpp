@@ -15,10 +15,12 @@
 //
 // The last evaluation: the tangent is only needed when another increment follows. When
 // the last increment cut the residual so far that the same cut again would meet the
-// tolerance (with a margin), the next evaluation is of the residual alone; if that one
-// does not converge after all, it is evaluated again at the same state with its tangent.
-// The iterates and the converged state are those of plain Newton; only the converged
-// step's tangent assembly is saved (StepEquations::wants_converged_tangent() keeps it).
+// tolerance (with a margin), the next evaluation is of the residual alone. If that one
+// does not converge after all but the residual fell, one chord increment follows with the
+// factors already made (once per solve: a factorisation saved, a cheap iteration spent);
+// otherwise the same state is evaluated again with its tangent. The converged state meets
+// the same tolerances as plain Newton's; StepEquations::wants_converged_tangent() keeps
+// the tangent of the converged evaluation and plain Newton's iterates.
 #pragma once
 
 #include <Eigen/Dense>
@@ -52,6 +54,7 @@ struct NewtonReport {
   int backtracks = 0;     // halvings of an increment
   int residual_only = 0;  // evaluations of the residual alone (expected to converge)
   int retaken = 0;        // of those, the ones that did not converge: evaluated again with the tangent
+  int chords = 0;         // increments with the last factors (after a residual-only evaluation)
   double reference_force = 0.0;
   std::vector<double> residual_norms;  // |R| at each evaluation, the last one converged
 };
