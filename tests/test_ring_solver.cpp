@@ -116,6 +116,24 @@ void check_border_against_dense(const RingSolver& ring, const SparseMatrix& matr
   CHECK(relative_difference(condensed, rhs.tail(border) - k_bu * k_uu.solve(rhs.head(interior))) <= 1e-9);
 }
 
+/// solve_condensed() after condense(), its border right-hand side moved: the solution of the
+/// right-hand side moved alike in its border rows (f_b = R_b - K_bu K_uu^-1 R_u).
+void check_solve_condensed(const RingSolver& ring, const SparseMatrix& matrix) {
+  const int n = static_cast<int>(matrix.rows());
+  const Eigen::VectorXd rhs = random_columns(n, 1, 13);
+  Eigen::VectorXd condensed, x(n), expected = rhs;
+  ring.condense(rhs, condensed);
+  for (int i = 0; i < ring.border_size(); ++i) {
+    const double move = 0.25 * (i + 1);
+    condensed[i] += move;
+    expected[ring.border_equations()[i]] += move;
+  }
+  ring.solve_condensed(condensed, x);
+  ring.solve(expected);
+  CHECK(relative_difference(x, expected) <= 1e-12);
+  CHECK_THROWS_AS(ring.solve_condensed(condensed, x), std::logic_error);  // one per condense()
+}
+
 }  // namespace
 
 TEST_CASE("ring solver: solutions, spindle Schur complement and condensed rhs of the inflated tire", "[ring_solver]") {
@@ -131,6 +149,7 @@ TEST_CASE("ring solver: solutions, spindle Schur complement and condensed rhs of
         // The condensed spindle is numbered last: H's rows are the last 'border' equations.
         REQUIRE(ring.border_size() == border);
         check_border_against_dense(ring, tangent);
+        check_solve_condensed(ring, tangent);
 
         // The partial factorisation alone gives the same H and f_b.
         RingSolver partial(inflated.model.dof_map(), inflated.tire.tread_nodes, {inflated.tire.spindle});
@@ -139,6 +158,9 @@ TEST_CASE("ring solver: solutions, spindle Schur complement and condensed rhs of
         check_border_against_dense(partial, tangent);
         Eigen::VectorXd unsolvable = Eigen::VectorXd::Ones(tangent.rows());
         CHECK_THROWS_AS(partial.solve(unsolvable), std::logic_error);  // H is not factored
+        Eigen::VectorXd condensed;
+        partial.condense(unsolvable, condensed);
+        CHECK_THROWS_AS(partial.solve_condensed(condensed, unsolvable), std::logic_error);
 
         // The static tangent where it is regular (hub fixed); any ring start and direction.
         if (fixed == 3) {

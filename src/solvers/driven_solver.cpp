@@ -85,11 +85,9 @@ void DrivenDofSolver::solve_on_ring(Eigen::VectorXd& right_hand_side) const {
   ring_->condense(right_hand_side, border_rhs_);
   for (size_t i = 0; i < free_in_border_.size(); ++i)
     free_rhs_[static_cast<Eigen::Index>(i)] = border_rhs_[free_in_border_[i]];
-  for (size_t i = 0; i < driven_.size(); ++i) {
-    const Eigen::Index row = static_cast<Eigen::Index>(i);
-    right_hand_side[driven_[i]] += driven_from_free_.row(row).dot(free_rhs_) - border_rhs_[driven_in_border_[i]];
-  }
-  inner_.solve(right_hand_side);
+  for (size_t i = 0; i < driven_.size(); ++i)  // y_s + delta
+    border_rhs_[driven_in_border_[i]] = driven_from_free_.row(static_cast<Eigen::Index>(i)).dot(free_rhs_);
+  ring_->solve_condensed(border_rhs_, right_hand_side);
 }
 
 void DrivenDofSolver::solve(Eigen::VectorXd& right_hand_side) const {

@@ -17,7 +17,9 @@
 //     H   = H_ss - H_sf H_ff^-1 H_fs,
 //     x_u = A^-1 [b_u; b_s + delta]  with  delta = H_sf H_ff^-1 y_f - y_s,
 // y_b = the condensed border right-hand side of [b_u; 0] (one forward sweep): the delta
-// makes the border solution [0; H_ff^-1 y_f], i.e. x_s = 0, and the rest follows.
+// makes the border solution [0; H_ff^-1 y_f], i.e. x_s = 0, and the rest follows. The
+// delta changes y_b alone, so the solve goes on from that sweep with y_s + delta =
+// H_sf H_ff^-1 y_f (RingSolver::solve_condensed) rather than sweeping [b_u; delta] again.
 // A must be regular (a dynamic tangent is: the driven node has mass).
 #pragma once
 

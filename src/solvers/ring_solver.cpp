@@ -129,7 +129,7 @@ std::string RingSolver::describe_node(int position) const {
 }
 
 void RingSolver::analyze(const Matrix& pattern) {
-  interior_factored_ = border_factored_ = false;
+  interior_factored_ = border_factored_ = condensed_ = false;
   const int equations = dofs_.equation_count();
   if (!pattern.isCompressed() || pattern.rows() != equations || pattern.cols() != equations)
     throw ModelError("ring solver: the matrix is " + std::to_string(pattern.rows()) + " x " +
@@ -283,7 +283,7 @@ void RingSolver::with_width(Work&& work) const {
 void RingSolver::factorize_interior(const Matrix& matrix) {
   if (pattern_starts_.empty()) analyze(matrix);
   check_same_pattern(matrix);
-  interior_factored_ = border_factored_ = false;
+  interior_factored_ = border_factored_ = condensed_ = false;
 
   // Scatter the values into the padded blocks and note each row's largest entry.
   std::fill(blocks_.begin(), blocks_.end(), 0.0);
@@ -441,9 +441,15 @@ void RingSolver::back(double* x) const {
 
 void RingSolver::solve_in_place(double* values) const {
   if (!border_factored_) throw std::logic_error("ring solver: solve() needs a successful factorize() first");
+  condensed_ = false;
   gather(values);
   double* y = work_.data();
   with_width([this, y](auto width) { forward<decltype(width)::value>(y); });
+  solve_border_and_back(values);
+}
+
+void RingSolver::solve_border_and_back(double* values) const {
+  double* y = work_.data();
   const int first = 3 * chain_ + 3, border = width_ - 3;
   Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
   lu_solve(s.bottomRightCorner(border, border), &pivots_[first], Eigen::Map<Eigen::VectorXd>(y + first, border));
@@ -472,6 +478,20 @@ void RingSolver::condense(const Eigen::VectorXd& right_hand_side, Eigen::VectorX
   with_width([this, y](auto width) { forward<decltype(width)::value>(y); });
   condensed_border_rhs.resize(border_size());
   for (int i = 0; i < border_size(); ++i) condensed_border_rhs[i] = y[3 * chain_ + 3 + i];
+  condensed_ = true;
+}
+
+void RingSolver::solve_condensed(const Eigen::VectorXd& condensed_border_rhs, Eigen::VectorXd& solution) const {
+  if (!border_factored_ || !condensed_)
+    throw std::logic_error("ring solver: solve_condensed() needs factorize() and then condense()");
+  check_size(solution.size());
+  if (condensed_border_rhs.size() != border_size())
+    throw std::invalid_argument("ring solver: the condensed border right-hand side has " +
+                                std::to_string(condensed_border_rhs.size()) + " entries, the border " +
+                                std::to_string(border_size()));
+  condensed_ = false;
+  for (int i = 0; i < border_size(); ++i) work_[3 * chain_ + 3 + i] = condensed_border_rhs[i];
+  solve_border_and_back(solution.data());
 }
 
 }  // namespace tirefe

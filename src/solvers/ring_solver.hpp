@@ -125,6 +125,13 @@ class RingSolver final : public LinearSolver {
   /// right-hand side R over all equations: one forward sweep with the factors.
   void condense(const Eigen::VectorXd& right_hand_side, Eigen::VectorXd& condensed_border_rhs) const;
 
+  /// Finishes the solve of the right-hand side last given to condense(), with its condensed
+  /// border right-hand side as the caller changed it (border_equations() order): the border
+  /// solve and the back substitution into 'solution' (all equations), no second forward
+  /// sweep. A host that holds border equations (DrivenDofSolver) changes f_b so. Needs
+  /// factorize(); a solve() in between is refused.
+  void solve_condensed(const Eigen::VectorXd& condensed_border_rhs, Eigen::VectorXd& solution) const;
+
   /// Equation numbers of H's rows and columns and of f_b's entries: the border nodes in
   /// the given order, their free components ux, uy, rz in order (prescribed ones skipped).
   /// With the spindle condensed these are the last equations (DofMap numbers condensed nodes last).
@@ -144,6 +151,7 @@ class RingSolver final : public LinearSolver {
   template <int Width>
   void back(double* padded) const;
   void solve_in_place(double* values) const;
+  void solve_border_and_back(double* values) const;
   void check_size(Eigen::Index size) const;
   void gather(const double* values) const;
   template <class Work>
@@ -191,7 +199,8 @@ class RingSolver final : public LinearSolver {
   std::vector<double> row_scale_;  // largest |entry| of each padded row (permuted with the pivots)
   std::vector<Pivot> pivots_;      // 3 per chain node, 3 for r_0, H's, 3 per satellite
   Eigen::MatrixXd border_schur_;
-  mutable Eigen::VectorXd work_;  // a padded right-hand side
+  mutable Eigen::VectorXd work_;    // a padded right-hand side
+  mutable bool condensed_ = false;  // work_ holds condense()'s forward sweep
   bool interior_factored_ = false;
   bool border_factored_ = false;
 };
