@@ -91,12 +91,12 @@ void DrivenDofSolver::solve_on_ring(Eigen::VectorXd& right_hand_side) const {
 }
 
 void DrivenDofSolver::solve(Eigen::VectorXd& right_hand_side) const {
-  for (int equation : driven_) right_hand_side[equation] = 0.0;
-  if (ring_) {
+  if (ring_) {  // the driven rows' right-hand side is replaced in the condensed border
     solve_on_ring(right_hand_side);
     for (int equation : driven_) right_hand_side[equation] = 0.0;  // round-off of the border solve
     return;
   }
+  for (int equation : driven_) right_hand_side[equation] = 0.0;
   inner_.solve(right_hand_side);
   for (size_t i = 0; i < driven_.size(); ++i) driven_part_[static_cast<Eigen::Index>(i)] = right_hand_side[driven_[i]];
   right_hand_side.noalias() -= coupling_ * driven_part_;

@@ -78,11 +78,11 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     // Not converged after all, but closer: once per solve, a chord increment with the
     // last factors; otherwise the tangent of this same state.
     const bool chord = !with_tangent && !chord_taken && norm < previous_norm;
-    if (!with_tangent && !chord) {
-      equations.evaluate(true, residual_, force_level);
-      ++report_.retaken;
-    }
     if (!chord) {
+      if (!with_tangent) {
+        equations.evaluate(true, residual_, force_level);
+        ++report_.retaken;
+      }
       try {
         linear_solver.factorize(equations.tangent());
       } catch (const SingularMatrix& singular) {
