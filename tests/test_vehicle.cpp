@@ -1,7 +1,8 @@
 // The vehicle module on FE tires: the quarter car's static ride height and tire load
 // against weight / stiffness, its wheel-hop frequency against the linearised two-mass
 // system, the direct spindle Jacobian against the finite-difference one (same answer,
-// fewer tire solves), and four concurrent tires against sequential ones, bit for bit.
+// fewer tire solves), a Jacobian fetched after a solve without it against one solved with
+// it, and four concurrent tires against sequential ones, bit for bit.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -79,6 +80,52 @@ TEST_CASE("a corrector's trial from the tire's last trial moved by its linear re
   const Eigen::Vector3d fallback = force_of(from_commit);
   tire.spindle->revert();
   CHECK((fallback - force_of(solve(0.0, -2e-4, SpindleStart::Predictor))).norm() == 0.0);
+}
+
+TEST_CASE("a Jacobian asked after a solve without it: the solve's own, and a corrector's trial after it the same",
+          "[vehicle][spindle]") {
+  PressedTire tire;
+  tire.press(0.015);
+  tire.drive(-0.05);
+  const Eigen::Vector3d design = tire.spindle->committed_position();
+  constexpr double h = 1e-3;
+  auto solve = [&](double dy, SpindleStart start, bool jacobian) {
+    SpindleInput input{h, design.x(), design.y() + dy, 0.0, start};
+    input.jacobian = jacobian;
+    return tire.spindle->solve_step(input);
+  };
+  auto ask_jacobian = [&] {
+    SpindleRequest request;
+    request.command = SpindleCommand::Jacobian;
+    return tire.spindle->serve(request);
+  };
+  const SpindleReply with = solve(-1e-4, SpindleStart::Predictor, true);
+  const SpindleReply warm_with = solve(-1.03e-4, SpindleStart::LastTrial, true);
+  const SpindleReply without = solve(-1e-4, SpindleStart::Predictor, false);
+  CHECK(jacobian_of(without).isZero());
+  CHECK((force_of(without) - force_of(with)).norm() == 0.0);
+  const SpindleReply later = ask_jacobian();
+  REQUIRE(later.status == SpindleStatus::Ok);
+  CHECK(jacobian_of(later).diagonal().head<2>().minCoeff() > 1e5);  // a loaded tire's H_ss, N/m
+  CHECK((jacobian_of(later) - jacobian_of(with)).norm() == 0.0);    // bit for bit
+  CHECK((force_of(later) - force_of(with)).norm() == 0.0);
+  // The corrector's next trial moves from the last one as after a solve with the Jacobian.
+  const SpindleReply warm_without = solve(-1.03e-4, SpindleStart::LastTrial, true);
+  CHECK((force_of(warm_without) - force_of(warm_with)).norm() == 0.0);
+  CHECK(warm_without.newton_iterations == warm_with.newton_iterations);
+  // Never asked for, the last trial's factors are not kept: the next trial starts from
+  // the predictor, the cold answer bit for bit.
+  solve(-1e-4, SpindleStart::Predictor, false);
+  const SpindleReply unfactored = solve(-1.03e-4, SpindleStart::LastTrial, true);
+  const SpindleReply cold = solve(-1.03e-4, SpindleStart::Predictor, true);
+  CHECK((force_of(unfactored) - force_of(cold)).norm() == 0.0);
+  CHECK(unfactored.newton_iterations == cold.newton_iterations);
+  CHECK(unfactored.newton_iterations > warm_with.newton_iterations);
+  // No trial, no Jacobian.
+  tire.spindle->revert();
+  const SpindleReply refused = ask_jacobian();
+  CHECK(refused.status == SpindleStatus::Failed);
+  CHECK(std::string(refused.message).find("trial") != std::string::npos);
 }
 
 TEST_CASE("quarter car: static ride height is weight over stiffness, the tire carries the whole weight",

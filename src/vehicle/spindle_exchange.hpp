@@ -2,7 +2,9 @@
 // trivially copyable values with named fields, so that a request and its reply can be
 // passed to a thread, written to a pipe or sent as bytes to an MPI rank unchanged.
 // The host sends SpindleRequest{Solve} as often as its corrector needs, then one
-// Commit (step accepted) or Revert (step rejected); the tire answers every request.
+// Commit (step accepted) or Revert (step rejected); the tire answers every request. A
+// Solve may leave the Jacobian out (its factorisation is a large part of a solve); a
+// Jacobian request then adds it, should the host's corrector need it after all.
 #pragma once
 
 #include <Eigen/Dense>
@@ -27,9 +29,14 @@ struct SpindleInput {
   double y = 0.0;          // (y up)
   double spin = 0.0;       // rotation from the reference [rad], counter-clockwise; ignored when free
   SpindleStart start = SpindleStart::Predictor;
+  bool jacobian = true;  // false: the reply's Jacobian stays zero until a Jacobian request
 };
 
-enum class SpindleCommand { Solve, Commit, Revert };
+/// Solve: the step to the spindle input. Jacobian: the reply to the last Solve, with the
+/// Jacobian of its converged trial (asked for after a Solve without it; a LastTrial start
+/// after it then moves from that trial as it would after a Solve with it). Commit, Revert:
+/// accept or forget the last trial.
+enum class SpindleCommand { Solve, Commit, Revert, Jacobian };
 
 struct SpindleRequest {
   SpindleCommand command = SpindleCommand::Solve;

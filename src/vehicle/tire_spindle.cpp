@@ -31,6 +31,7 @@ Eigen::Vector3d TireSpindle::committed_force() const {
 }
 
 const SpindleReply& TireSpindle::solve_step(const SpindleInput& input) {
+  reply_has_jacobian_ = false;  // until this trial's (a failed solve leaves no trial)
   const Eigen::Vector2d& reference = analysis_.model().mesh().position(spindle_);
   const Eigen::Vector3d target(input.x - reference.x(), input.y - reference.y(), input.spin);
   analysis_.set_driven_displacements(target.head(driven_count_));
@@ -43,11 +44,19 @@ const SpindleReply& TireSpindle::solve_step(const SpindleInput& input) {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
   analysis_.driven_forces(force.head(driven_count_));
   force_of(reply_) = force;
-  jacobian_of(reply_).topLeftCorner(driven_count_, driven_count_) = analysis_.driven_tangent();
+  return input.jacobian ? jacobian() : reply_;
+}
+
+const SpindleReply& TireSpindle::jacobian() {
+  if (!reply_has_jacobian_) {
+    jacobian_of(reply_).topLeftCorner(driven_count_, driven_count_) = analysis_.driven_tangent();
+    reply_has_jacobian_ = true;
+  }
   return reply_;
 }
 
 void TireSpindle::commit() {
+  reply_has_jacobian_ = false;
   if (!commit_failure_.empty()) {
     const std::string failure = std::move(commit_failure_);
     commit_failure_.clear();
@@ -57,6 +66,7 @@ void TireSpindle::commit() {
 }
 
 void TireSpindle::prepare_commit() {
+  reply_has_jacobian_ = false;
   try {
     analysis_.record_trial_step();
   } catch (const std::exception& failure) {
@@ -64,12 +74,16 @@ void TireSpindle::prepare_commit() {
   }
 }
 
-void TireSpindle::revert() { analysis_.discard_trial_step(); }
+void TireSpindle::revert() {
+  reply_has_jacobian_ = false;
+  analysis_.discard_trial_step();
+}
 
 SpindleReply TireSpindle::serve(const SpindleRequest& request) {
   try {
     switch (request.command) {
       case SpindleCommand::Solve: return solve_step(request.input);
+      case SpindleCommand::Jacobian: return jacobian();
       case SpindleCommand::Commit: commit(); break;
       case SpindleCommand::Revert: revert(); break;
     }

@@ -27,6 +27,9 @@ class TireSpindle {
 
   /// Solves the trial step to the requested spindle position; throws StepFailure.
   const SpindleReply& solve_step(const SpindleInput& input);
+  /// The last solve_step()'s reply with the Jacobian of its trial, computed now if that
+  /// solve left it out; throws ModelError when no trial is pending.
+  const SpindleReply& jacobian();
   /// Accepts the last trial step: the tire's state and history advance.
   void commit();
   /// The computing part of commit() (Analysis::record_trial_step), which may run in a
@@ -35,7 +38,7 @@ class TireSpindle {
   void prepare_commit();
   /// Forgets the last trial step.
   void revert();
-  /// Dispatches one request (solve, commit or revert); never throws: failures come
+  /// Dispatches one request (solve, Jacobian, commit or revert); never throws: failures come
   /// back as status Failed with the message. Commit and Revert answer with the committed
   /// time and spindle force (committed_force()).
   SpindleReply serve(const SpindleRequest& request);
@@ -54,6 +57,7 @@ class TireSpindle {
   SpinMode spin_;
   int driven_count_;  // 2 with free spin, else 3
   SpindleReply reply_;
+  bool reply_has_jacobian_ = false;
   std::string commit_failure_;  // of prepare_commit()
 };
 

@@ -100,12 +100,13 @@ void Vehicle::suspension_tangent(const State& state, double stiffness_factor, do
   }
 }
 
-void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement, SpindleStart start) {
+void Vehicle::request_positions(double h, const Eigen::VectorXd& displacement, SpindleStart start, bool jacobian) {
   for (size_t i = 0; i < corners_.size(); ++i) {
     SpindleRequest& request = requests_[i];
     request.command = SpindleCommand::Solve;
     request.input.time_step = h;
     request.input.start = start;
+    request.input.jacobian = jacobian;
     request.input.x = design_spindle_[i].x() + displacement[wheel_fore_aft_dof(static_cast<int>(i))];
     request.input.y = design_spindle_[i].y() + displacement[wheel_vertical_dof(static_cast<int>(i))];
   }
@@ -140,12 +141,35 @@ void Vehicle::solve_tires(double h, bool correcting) {
       for (int column = 0; column < 2; ++column)
         spindle_jacobians_[i].col(column) = (perturbed_forces_[2 * i + column] - base) / settings_.difference_step;
     }
+    jacobians_current_ = true;
     return;
   }
   // A corrector's trial starts every tire from its last, moved by its linear response.
-  request_positions(h, trial_.displacement, correcting ? SpindleStart::LastTrial : SpindleStart::Predictor);
+  // The predictor's Jacobians are nearly always used; a corrector's, rarely (the step
+  // has mostly converged with it), so those are fetched when needed.
+  request_positions(h, trial_.displacement, correcting ? SpindleStart::LastTrial : SpindleStart::Predictor,
+                    !correcting);
   serve();
-  for (size_t i = 0; i < count; ++i) spindle_jacobians_[i] = jacobian_of(replies_[i]).topLeftCorner<2, 2>();
+  jacobians_current_ = false;
+  if (!correcting) {
+    for (size_t i = 0; i < count; ++i) spindle_jacobians_[i] = jacobian_of(replies_[i]).topLeftCorner<2, 2>();
+    jacobians_current_ = true;
+  }
+}
+
+bool Vehicle::fetch_jacobians() {
+  if (jacobians_current_) return true;
+  for (auto& request : requests_) request.command = SpindleCommand::Jacobian;
+  tires_.serve(requests_, replies_);
+  for (size_t i = 0; i < replies_.size(); ++i) {
+    if (replies_[i].status == SpindleStatus::Failed) {
+      last_failure_ = tire_of(i) + " failed: " + replies_[i].message;
+      return false;
+    }
+    spindle_jacobians_[i] = jacobian_of(replies_[i]).topLeftCorner<2, 2>();
+  }
+  jacobians_current_ = true;
+  return true;
 }
 
 void Vehicle::initialize_acceleration() {
@@ -203,6 +227,7 @@ bool Vehicle::solve_step(double h) {
       last_failure_ = message.str();
       return false;
     }
+    if (!fetch_jacobians()) return false;
     jacobian_ = (factors.tangent_mass * mass_).asDiagonal();
     suspension_tangent(trial_, factors.tangent_stiffness, factors.tangent_damping, jacobian_);
     for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {

@@ -124,14 +124,19 @@ class Vehicle : private SteppedSystem {
   std::string failure_message(int cuts, double h) const override;
   /// The corrector of one step: true when it converged, with the tires at the trial state.
   bool solve_step(double h);
-  /// The tires at the trial state; 'correcting': a corrector's trial, after the first of the step.
+  /// The tires at the trial state; 'correcting': a corrector's trial, after the first of
+  /// the step, solved without the Jacobians (the corrector mostly stops there).
   void solve_tires(double h, bool correcting);
+  /// The Jacobians of the tires' last trials, if solve_tires() left them out; false, with
+  /// last_failure_, when a tire fails.
+  bool fetch_jacobians();
   void suspension_forces(const State& state, Eigen::VectorXd& forces) const;
   void suspension_tangent(const State& state, double stiffness_factor, double damping_factor,
                           Eigen::MatrixXd& tangent) const;
   const Eigen::VectorXd& attachment(int corner) const { return attachments_[corner]; }  // b_i: d = b_i . q
   void initialize_acceleration();
-  void request_positions(double h, const Eigen::VectorXd& displacement, SpindleStart start = SpindleStart::Predictor);
+  void request_positions(double h, const Eigen::VectorXd& displacement, SpindleStart start = SpindleStart::Predictor,
+                         bool jacobian = false);
 
   Body body_;
   /// "the tire of corner 'LF'", for messages.
@@ -150,6 +155,7 @@ class Vehicle : private SteppedSystem {
   std::vector<SpindleRequest> requests_;
   std::vector<SpindleReply> replies_;
   std::vector<Eigen::Matrix2d> spindle_jacobians_;  // d f_s / d (x, y) of each tire, this iteration
+  bool jacobians_current_ = false;                  // spindle_jacobians_ are of the tires' last trials
   std::vector<Eigen::Vector2d> perturbed_forces_;   // finite differences: f_s at q + delta e_j
   std::vector<Eigen::VectorXd> attachments_;
   std::string last_failure_;
