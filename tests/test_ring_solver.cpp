@@ -175,6 +175,50 @@ TEST_CASE("ring solver: solutions, spindle Schur complement and condensed rhs of
     }
 }
 
+TEST_CASE("ring solver: held border equations are taken out of the system; a held ring equation is refused",
+          "[ring_solver]") {
+  for (const char* tire_set : kTires) {
+    INFO(tire_set);
+    InflatedTire inflated(0, false, tire_set);  // spindle free: ux, uy, rz in the border
+    const SparseMatrix& tangent = inflated.tangent(1e-4);
+    const DofMap& dofs = inflated.model.dof_map();
+    const int spindle = inflated.tire.spindle;
+    const std::vector<int> held = {dofs.equation(dof_index(spindle, kUx)), dofs.equation(dof_index(spindle, kUy))};
+    const RingSolver whole(dofs, inflated.tire.tread_nodes, {spindle});
+    std::unique_ptr<RingSolver> holding = whole.holding(held);
+    holding->analyze(tangent);
+    holding->factorize(tangent);
+    REQUIRE(holding->border_size() == 1);
+    CHECK(holding->border_equations()[0] == dofs.equation(dof_index(spindle, kRz)));
+
+    // Against dense linear algebra on the matrix without the held rows and columns.
+    const int n = static_cast<int>(tangent.rows());
+    std::vector<int> kept;
+    for (int i = 0; i < n; ++i)
+      if (std::find(held.begin(), held.end(), i) == held.end()) kept.push_back(i);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(tangent);
+    const Eigen::MatrixXd reduced = dense(kept, kept);
+    const Eigen::VectorXd rhs = random_columns(n, 1, 17);
+    Eigen::VectorXd x = rhs;
+    holding->solve(x);
+    const Eigen::VectorXd expected = reduced.partialPivLu().solve(Eigen::VectorXd(rhs(kept)));
+    CHECK(relative_difference(x(kept), expected) <= 1e-10);
+    for (int equation : held) CHECK(x[equation] == 0.0);
+
+    // H onto rz alone: K_rr - K_ru K_uu^-1 K_ur with ux, uy held.
+    const int rz = static_cast<int>(kept.size()) - 1;
+    const Eigen::MatrixXd interior = reduced.topLeftCorner(rz, rz);
+    const double schur =
+        reduced(rz, rz) - reduced.row(rz).head(rz).dot(interior.partialPivLu().solve(reduced.col(rz).head(rz)));
+    CHECK(holding->border_schur_complement()(0, 0) == Approx(schur).epsilon(1e-9));
+
+    // Only border equations can be held.
+    const int belt = dofs.equation(dof_index(inflated.tire.tread_nodes[5], kUy));
+    std::unique_ptr<RingSolver> wrong = whole.holding({belt});
+    CHECK_THROWS_WITH(wrong->analyze(tangent), Catch::Contains("is held but is no border equation"));
+  }
+}
+
 TEST_CASE("ring solver: the calibrated tire pressed on a road with friction, its contact nodes satellites",
           "[ring_solver]") {
   // A rigid road couples each contact node to itself only, so the pressed tire keeps the

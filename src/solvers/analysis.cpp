@@ -101,7 +101,7 @@ void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const { driven_
 const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
   DrivenDofSolver* driven = solvers_.driven();
   if (!trial_pending_ || !driven) throw ModelError("the driven tangent needs a solved trial step");
-  driven->factorize(assembler_.tangent());
+  driven->factorize_with_schur(assembler_.tangent());
   response_pattern_ = assembler_.pattern_version();
   return driven->schur_complement();
 }

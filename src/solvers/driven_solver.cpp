@@ -17,13 +17,18 @@ DrivenDofSolver::DrivenDofSolver(LinearSolver& inner, std::vector<int> driven)
 void DrivenDofSolver::analyze(const Matrix& pattern) {
   inner_.analyze(pattern);
   ring_ = dynamic_cast<RingSolver*>(&inner_);
+  held_.reset();
+  held_factors_ = schur_current_ = false;
   driven_in_border_.clear();
   free_in_border_.clear();
   if (!ring_ || !analyze_ring_route()) {  // the general route: the columns Z
     ring_ = nullptr;
     columns_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
     coupling_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
+    return;
   }
+  held_ = ring_->holding(driven_);
+  held_->analyze(pattern);
 }
 
 bool DrivenDofSolver::analyze_ring_route() {
@@ -43,8 +48,27 @@ bool DrivenDofSolver::analyze_ring_route() {
 }
 
 void DrivenDofSolver::factorize(const Matrix& matrix) {
+  if (!held_) {
+    factorize_with_schur(matrix);
+    return;
+  }
+  schur_current_ = held_factors_ = false;
+  held_->factorize(matrix);
+  held_factors_ = true;
+  fresh_factorizations_ = inner_.factorization_count() + held_->factorization_count();
+}
+
+const DrivenDofSolver::SmallMatrix& DrivenDofSolver::schur_complement() const {
+  if (!schur_current_)
+    throw std::logic_error("DrivenDofSolver: schur_complement() needs factorize_with_schur() of the matrix first");
+  return schur_;
+}
+
+void DrivenDofSolver::factorize_with_schur(const Matrix& matrix) {
+  schur_current_ = held_factors_ = false;
   if (ring_) {
     factorize_on_ring(matrix);
+    schur_current_ = true;
     return;
   }
   inner_.factorize(matrix);
@@ -59,6 +83,7 @@ void DrivenDofSolver::factorize(const Matrix& matrix) {
   for (int i = 0; i < count; ++i) coupling_.row(driven_[i]).setZero();
   fresh_factorizations_ = inner_.factorization_count();
   refactorizations_ = inner_.refactorization_count();
+  schur_current_ = true;
 }
 
 void DrivenDofSolver::factorize_on_ring(const Matrix& matrix) {
@@ -77,7 +102,7 @@ void DrivenDofSolver::factorize_on_ring(const Matrix& matrix) {
   free_inverse_ = free ? SmallMatrix(free_block.inverse()) : SmallMatrix(0, 0);  // the spindle's free rz, if any
   driven_from_free_ = driven_free * free_inverse_;
   if (free) schur_ -= driven_from_free_ * free_driven;
-  fresh_factorizations_ = inner_.factorization_count();
+  fresh_factorizations_ = inner_.factorization_count() + held_->factorization_count();
   refactorizations_ = inner_.refactorization_count();
 }
 
@@ -91,6 +116,10 @@ void DrivenDofSolver::solve_on_ring(Eigen::VectorXd& right_hand_side) const {
 }
 
 void DrivenDofSolver::solve(Eigen::VectorXd& right_hand_side) const {
+  if (held_factors_) {
+    held_->solve(right_hand_side);  // x_s = 0 by the hold
+    return;
+  }
   if (ring_) {  // the driven rows' right-hand side is replaced in the condensed border
     solve_on_ring(right_hand_side);
     for (int equation : driven_) right_hand_side[equation] = 0.0;  // round-off of the border solve

@@ -20,10 +20,15 @@
 // makes the border solution [0; H_ff^-1 y_f], i.e. x_s = 0, and the rest follows. The
 // delta changes y_b alone, so the solve goes on from that sweep with y_s + delta =
 // H_sf H_ff^-1 y_f (RingSolver::solve_condensed) rather than sweeping [b_u; delta] again.
+// Newton's own factorisations need no H: on the ring route they factor A_uu alone, with
+// a RingSolver that holds the driven equations (RingSolver::holding), whose chain carries
+// the free border equations only (a free spin: 4 columns instead of 6); H and the
+// solves after it come from factorize_with_schur().
 // A must be regular (a dynamic tangent is: the driven node has mass).
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <vector>
 
 #include "solvers/linear_solver.hpp"
@@ -43,15 +48,19 @@ class DrivenDofSolver final : public LinearSolver {
   DrivenDofSolver(LinearSolver& inner, std::vector<int> driven);
 
   void analyze(const Matrix& pattern) override;
+  /// Newton's factorisation: enough for solve(), not for schur_complement().
   void factorize(const Matrix& matrix) override;
-  /// x_u = A_uu^-1 b_u, x_s = 0.
+  /// The factorisation for solve() and schur_complement().
+  void factorize_with_schur(const Matrix& matrix);
+  /// x_u = A_uu^-1 b_u, x_s = 0, with the last factorisation of either kind.
   void solve(Eigen::VectorXd& right_hand_side) const override;
   void solve(Eigen::MatrixXd& right_hand_sides) const override;
   const char* name() const override { return inner_.name(); }
 
-  /// H = A_ss - A_su A_uu^-1 A_us over the driven equations, in their given order,
-  /// of the last factorized matrix.
-  const SmallMatrix& schur_complement() const { return schur_; }
+  /// H = A_ss - A_su A_uu^-1 A_us over the driven equations, in their given order, of the
+  /// last factorized matrix; std::logic_error when that factorisation did not compute it
+  /// (factorize() on the ring route).
+  const SmallMatrix& schur_complement() const;
 
  private:
   /// Maps the driven equations into the RingSolver's border; false if they do not all lie there.
@@ -64,6 +73,9 @@ class DrivenDofSolver final : public LinearSolver {
   // The ring route: inner_ as a RingSolver whose border holds every driven equation; the
   // driven and free equations' places in its border Schur complement H_b.
   RingSolver* ring_ = nullptr;
+  std::unique_ptr<RingSolver> held_;  // the same ring holding the driven equations: Newton's
+  bool held_factors_ = false;         // the last factorisation is held_'s
+  bool schur_current_ = false;        // schur_ is of the last factorisation
   std::vector<int> driven_in_border_, free_in_border_;
   SmallMatrix free_inverse_;      // H_ff^-1
   SmallMatrix driven_from_free_;  // H_sf H_ff^-1

@@ -78,6 +78,14 @@ RingSolver::RingSolver(const DofMap& dofs, std::vector<int> ring_nodes, std::vec
                      " is listed twice (each node belongs to the ring or to the border, once)");
 }
 
+std::unique_ptr<RingSolver> RingSolver::holding(std::vector<int> held_equations) const {
+  auto solver = std::make_unique<RingSolver>(dofs_, ring_nodes_, border_nodes_);
+  std::sort(held_equations.begin(), held_equations.end());
+  held_equations.erase(std::unique(held_equations.begin(), held_equations.end()), held_equations.end());
+  solver->held_ = std::move(held_equations);
+  return solver;
+}
+
 int RingSolver::entry_offset(int row, int column) const {
   // Blocks are stored column-major: D, U, L 3x3; W 3 x e; V e x 3; S e x e; a satellite's 3x3.
   if (row >= satellite_start_ || column >= satellite_start_) {
@@ -139,7 +147,13 @@ void RingSolver::analyze(const Matrix& pattern) {
 
   // Equations -> padded positions; ring and satellite DOFs without an equation become
   // identity padding, the border's are left out.
-  position_of_equation_.assign(equations, -1);
+  constexpr int kUnplaced = -1, kHeld = -2;
+  position_of_equation_.assign(equations, kUnplaced);
+  for (int equation : held_) {
+    if (equation < 0 || equation >= equations)
+      throw ModelError("ring solver: held equation " + std::to_string(equation) + " does not exist");
+    position_of_equation_[equation] = kHeld;
+  }
   padding_.clear();
   border_equations_.clear();
   auto check_node = [&](int node) {
@@ -153,6 +167,9 @@ void RingSolver::analyze(const Matrix& pattern) {
       const int equation = dofs_.equation(dof_index(node, c)), position = first_position + c;
       if (equation == DofMap::kPrescribed)
         padding_.push_back(position);
+      else if (position_of_equation_[equation] == kHeld)
+        throw ModelError("ring solver: equation " + std::to_string(equation) + " of node " + std::to_string(node) +
+                         " is held but is no border equation (only the border's equations can be held)");
       else
         position_of_equation_[equation] = position;
     }
@@ -163,7 +180,7 @@ void RingSolver::analyze(const Matrix& pattern) {
     check_node(node);
     for (int c = 0; c < kDofsPerNode; ++c) {
       const int equation = dofs_.equation(dof_index(node, c));
-      if (equation == DofMap::kPrescribed) continue;
+      if (equation == DofMap::kPrescribed || position_of_equation_[equation] == kHeld) continue;
       position_of_equation_[equation] = 3 * chain_ + 3 + static_cast<int>(border_equations_.size());
       border_equations_.push_back(equation);
     }
@@ -174,13 +191,14 @@ void RingSolver::analyze(const Matrix& pattern) {
   satellite_nodes_.clear();
   satellite_hosts_.clear();
   for (int equation = 0; equation < equations; ++equation)
-    if (position_of_equation_[equation] < 0) {
+    if (position_of_equation_[equation] == kUnplaced) {
       satellite_nodes_.push_back(dofs_.dof(equation) / kDofsPerNode);
       satellite_hosts_.push_back(-1);
       place(satellite_nodes_.back(), satellite_position(static_cast<int>(satellite_nodes_.size()) - 1));
     }
   const int satellites = static_cast<int>(satellite_nodes_.size());
   padded_size_ = satellite_start_ + 3 * satellites;
+  for (int equation : held_) position_of_equation_[equation] = padded_size_;  // the sink
   find_hosts(pattern);
 
   // Every stored entry must land in a block of the structure.
@@ -188,10 +206,16 @@ void RingSolver::analyze(const Matrix& pattern) {
   row_position_.resize(pattern.nonZeros());
   const int* starts = pattern.outerIndexPtr();
   const int* rows = pattern.innerIndexPtr();
+  const int sink = satellite_offset(satellites);
   for (int column = 0; column < equations; ++column)
     for (int entry = starts[column]; entry < starts[column + 1]; ++entry) {
       const int row_position = position_of_equation_[rows[entry]];
       const int column_position = position_of_equation_[column];
+      if (row_position == padded_size_ || column_position == padded_size_) {  // a held row or column
+        destination_[entry] = sink;
+        row_position_[entry] = padded_size_;
+        continue;
+      }
       destination_[entry] = entry_offset(row_position, column_position);
       row_position_[entry] = row_position;
       if (destination_[entry] < 0)
@@ -206,11 +230,11 @@ void RingSolver::analyze(const Matrix& pattern) {
   pattern_starts_.assign(starts, starts + equations + 1);
   pattern_rows_.assign(rows, rows + pattern.nonZeros());
 
-  blocks_.assign(satellite_offset(satellites), 0.0);
-  row_scale_.assign(padded_size_, 0.0);
+  blocks_.assign(sink + 1, 0.0);
+  row_scale_.assign(padded_size_ + 1, 0.0);
   pivots_.assign(padded_size_, Pivot{});
   border_schur_.setZero(border_size(), border_size());
-  work_.setZero(padded_size_);
+  work_.setZero(padded_size_ + 1);
 }
 
 void RingSolver::find_hosts(const Matrix& pattern) {
@@ -234,6 +258,7 @@ void RingSolver::find_hosts(const Matrix& pattern) {
   for (int column = 0; column < pattern.cols(); ++column)
     for (int entry = starts[column]; entry < starts[column + 1]; ++entry) {
       const int row_position = position_of_equation_[rows[entry]], column_position = position_of_equation_[column];
+      if (row_position == padded_size_ || column_position == padded_size_) continue;  // held
       if (row_position >= satellite_start_) couple(row_position, column_position);
       if (column_position >= satellite_start_) couple(column_position, row_position);
     }
@@ -454,6 +479,7 @@ void RingSolver::solve_border_and_back(double* values) const {
   Eigen::Map<const Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
   lu_solve(s.bottomRightCorner(border, border), &pivots_[first], Eigen::Map<Eigen::VectorXd>(y + first, border));
   with_width([this, y](auto width) { back<decltype(width)::value>(y); });
+  y[padded_size_] = 0.0;  // the held equations' solution
   for (size_t equation = 0; equation < position_of_equation_.size(); ++equation)
     values[equation] = y[position_of_equation_[equation]];
 }

@@ -69,11 +69,18 @@
 // tangent with a rigid-body mode is refused here, where KLU returns a solution with an
 // arbitrary rigid-body part.
 //
+// Held equations. holding() gives a solver that takes some border equations out of the system (a driven spindle
+// in a DrivenDofSolver's Newton iterations): their rows and columns are skipped, their
+// solution is zero, and the border and its width shrink by them, so the chain carries
+// fewer border columns (a free spin's rz alone: 4 instead of 6). H is then the Schur
+// complement onto the free border equations only.
+//
 // factorize() and solve() allocate nothing: every buffer is sized by analyze(). solve()
 // uses one internal work vector, so one solver must not solve from two threads at once.
 #pragma once
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -97,6 +104,10 @@ class RingSolver final : public LinearSolver {
   /// a satellite of one ring node (found by analyze()). The DofMap is read by analyze(), so
   /// the equations may be renumbered after construction; it must outlive the solver.
   RingSolver(const DofMap& dofs, std::vector<int> ring_nodes, std::vector<int> border_nodes);
+
+  /// A solver of the same ring and border that holds these border equations (above);
+  /// analyze() throws ModelError for one that is not a border equation.
+  std::unique_ptr<RingSolver> holding(std::vector<int> held_equations) const;
 
   /// Maps the equations to the ring, border and satellite blocks and verifies that every
   /// nonzero of the pattern lies within a node's block, between ring neighbours, between a
@@ -133,7 +144,7 @@ class RingSolver final : public LinearSolver {
   void solve_condensed(const Eigen::VectorXd& condensed_border_rhs, Eigen::VectorXd& solution) const;
 
   /// Equation numbers of H's rows and columns and of f_b's entries: the border nodes in
-  /// the given order, their free components ux, uy, rz in order (prescribed ones skipped).
+  /// the given order, their free components ux, uy, rz in order (prescribed and held ones skipped).
   /// With the spindle condensed these are the last equations (DofMap numbers condensed nodes last).
   const std::vector<int>& border_equations() const { return border_equations_; }
   int border_size() const { return static_cast<int>(border_equations_.size()); }
@@ -177,9 +188,12 @@ class RingSolver final : public LinearSolver {
 
   const DofMap& dofs_;
   std::vector<int> ring_nodes_, border_nodes_;
+  std::vector<int> held_;  // equations taken out (hold())
 
   // From analyze(). Padded positions: chain node k at 3k + c, r_0 at 3m + c, border
-  // equation j at 3m + 3 + j, satellite i at 3m + 3 ceil(e / 3) + 3i + c.
+  // equation j at 3m + 3 + j, satellite i at 3m + 3 ceil(e / 3) + 3i + c; held equations
+  // at padded_size_, a sink that the arithmetic never reads (its entries land in the
+  // last element of blocks_).
   int chain_ = 0;            // m = ring nodes - 1
   int width_ = 0;            // e = 3 + border equations
   int satellite_start_ = 0;  // 3m + e rounded up to a multiple of 3
