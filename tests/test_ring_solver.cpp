@@ -219,6 +219,31 @@ TEST_CASE("ring solver: held border equations are taken out of the system; a hel
   }
 }
 
+TEST_CASE("ring solver: pivots of rows far smaller than the rest are judged against their own rows", "[ring_solver]") {
+  // Rows of a ring node and of a satellite scaled by 1e-12: their pivots fall far below
+  // kPivotTolerance times the matrix's largest entry, but not below their own rows', so
+  // the matrix is as regular as before and solves as KLU solves it (and with a residual
+  // as small).
+  InflatedTire inflated(1, false, kTires[1]);
+  SparseMatrix scaled = inflated.tangent(1e-4);
+  const DofMap& dofs = inflated.model.dof_map();
+  std::vector<int> small_rows;
+  for (int node : {inflated.tire.tread_nodes[10], inflated.tire.contact_nodes[30]})
+    for (int c = 0; c < kDofsPerNode; ++c) small_rows.push_back(dofs.equation(dof_index(node, c)));
+  REQUIRE(inflated.tire.contact_nodes[30] != inflated.tire.tread_nodes[30]);  // a satellite
+  double largest = 0.0, largest_small = 0.0;
+  for (int column = 0; column < scaled.outerSize(); ++column)
+    for (SparseMatrix::InnerIterator entry(scaled, column); entry; ++entry) {
+      const bool small = std::find(small_rows.begin(), small_rows.end(), entry.row()) != small_rows.end();
+      if (small) entry.valueRef() *= 1e-12;
+      double& bound = small ? largest_small : largest;
+      bound = std::max(bound, std::abs(entry.value()));
+    }
+  CHECK(largest_small < 1e-11 * largest);  // every pivot of these rows is below the matrix's bound
+  RingSolver ring(dofs, inflated.tire.tread_nodes, {inflated.tire.spindle});
+  check_against_klu(ring, scaled, 1e-8);  // the scaling costs digits (KLU equilibrates rows first)
+}
+
 TEST_CASE("ring solver: the calibrated tire pressed on a road with friction, its contact nodes satellites",
           "[ring_solver]") {
   // A rigid road couples each contact node to itself only, so the pressed tire keeps the
