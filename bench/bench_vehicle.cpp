@@ -1,7 +1,9 @@
 // Cost of the vehicle on FE tires (docs/model.md sections 6-7): a quarter car crossing a
 // 760 mm long pothole, with the direct spindle Jacobian H_ss and with forward finite
 // differences of the spindle force (the paper's comparison): steps, corrector
-// iterations per step, tire solves, tire Newton iterations per solve, wall time. Then a
+// iterations per step, tire solves, tire Newton iterations per solve, wall time, and the
+// process's CPU time per tire Newton iteration (every lane's work, the vehicle's, and the
+// waits a lane spins through, over all the tires' iterations). Then a
 // full car (left wheels over the pothole, right wheels on a flat road) with its four
 // tires solved in one thread, in two lanes and in four (TireGroup). The road starts 0.1 s
 // after the tires are pressed and reaches its speed in 0.5 s; the pothole arrives 0.4 s
@@ -11,6 +13,7 @@
 // Environment: SPEED [km/h, default 36], DEPTH [m, default 0.05], STEP [s, default 5e-4].
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -78,8 +81,15 @@ Corner corner(double x, double y) {
 struct Run {
   VehicleStatistics statistics;
   double seconds = 0.0;
-  double peak_force = 0.0;  // largest |Fy| on the (first) tire
+  double cpu_seconds = 0.0;  // of the process: every lane
+  double peak_force = 0.0;   // largest |Fy| on the (first) tire
 };
+
+double process_cpu_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
 
 Run run(std::vector<std::unique_ptr<TireOnRoad>>& tires, std::vector<Corner> corners, const Body& body,
         SpindleJacobianSource source, int lanes, double duration) {
@@ -96,8 +106,10 @@ Run run(std::vector<std::unique_ptr<TireOnRoad>>& tires, std::vector<Corner> cor
     result.peak_force = std::max(result.peak_force, std::abs(v.spindle_force(0).y()));
   });
   const auto start = Clock::now();
+  const double cpu_start = process_cpu_seconds();
   car.advance(duration, kStep);
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.cpu_seconds = process_cpu_seconds() - cpu_start;
   result.statistics = car.statistics();
   return result;
 }
@@ -106,9 +118,10 @@ void print(const char* label, const Run& r, double duration) {
   const VehicleStatistics& s = r.statistics;
   std::printf(
       "%-34s steps %5d  corrector/step %5.2f  tire solves %6d  tire Newton/solve %5.2f  cuts %d  "
-      "wall %7.2f s (%.2f x real time)  peak |Fy| %.0f N\n",
+      "wall %7.2f s (%.2f x real time)  CPU %6.2f s (%5.1f us per tire iteration)  peak |Fy| %.0f N\n",
       label, s.steps, double(s.corrector_iterations) / s.steps, s.tire_solves,
-      double(s.tire_newton_iterations) / s.tire_solves, s.cuts, r.seconds, r.seconds / duration, r.peak_force);
+      double(s.tire_newton_iterations) / s.tire_solves, s.cuts, r.seconds, r.seconds / duration, r.cpu_seconds,
+      1e6 * r.cpu_seconds / double(s.tire_newton_iterations), r.peak_force);
 }
 
 }  // namespace
