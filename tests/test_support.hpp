@@ -99,9 +99,10 @@ double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDo
 }
 
 /// The largest magnitude among what a kernel's block-loop declarations (element.hpp) say
-/// is zero: the residual entries and tangent rows and columns of its kIdleDofs, and, if it
-/// declares kReadsAcceleration = false, the change of its residual when the acceleration
-/// is dropped. The block loop skips these, so anything but 0 is a wrong declaration.
+/// is zero: the residual entries and tangent rows and columns of its kIdleDofs, its
+/// zero_tangent_entry() entries, and, if it declares kReadsAcceleration = false, the change
+/// of its residual when the acceleration is dropped. The block loop skips these, so
+/// anything but 0 is a wrong declaration.
 template <class Kernel>
 double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kDofs>& local,
                                const EvaluationContext& context) {
@@ -115,6 +116,9 @@ double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kD
     if (idle[i])
       largest = std::max(
           {largest, std::abs(residual[i]), tangent.row(i).cwiseAbs().maxCoeff(), tangent.col(i).cwiseAbs().maxCoeff()});
+  constexpr auto zero = detail::ZeroTangentEntries<Kernel>::mask();
+  for (int k = 0; k < Kernel::kDofs * Kernel::kDofs; ++k)
+    if (zero[k]) largest = std::max(largest, std::abs(tangent(k / Kernel::kDofs, k % Kernel::kDofs)));
   if constexpr (!detail::ReadsAcceleration<Kernel>::value) {
     LocalState<Kernel::kDofs> at_rest = local;
     at_rest.acceleration.setZero();

@@ -194,6 +194,8 @@ struct HasAugment<Kernel,
 //   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
 //   static constexpr std::array<int, N> kIdleDofs = {...};  // local DOFs whose residual
 //       row and tangent row and column are always zero (neither read nor loaded)
+//   static constexpr bool zero_tangent_entry(int row, int column);  // true for local
+//       tangent entries that are always zero (not scattered): a follower load's, say
 //   Vector mass_times(const Vector& x) const;  // M x: the inertia forces M a of a kernel
 //       that reads the acceleration, without evaluating the rest (its mass is constant,
 //       as the contract's tangent cM M has it)
@@ -258,6 +260,22 @@ struct IdleDofs<Kernel, std::void_t<decltype(Kernel::kIdleDofs)>> {
     return idle;
   }
 };
+
+/// Which local tangent entries a kernel declares always zero, row-major (none unless it
+/// has zero_tangent_entry()).
+template <class Kernel, class = void>
+struct ZeroTangentEntries {
+  static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> mask() { return {}; }
+};
+template <class Kernel>
+struct ZeroTangentEntries<Kernel, std::void_t<decltype(Kernel::zero_tangent_entry(0, 0))>> {
+  static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> mask() {
+    std::array<bool, Kernel::kDofs * Kernel::kDofs> zero{};
+    for (int k = 0; k < Kernel::kDofs * Kernel::kDofs; ++k)
+      zero[k] = Kernel::zero_tangent_entry(k / Kernel::kDofs, k % Kernel::kDofs);
+    return zero;
+  }
+};
 }  // namespace detail
 
 template <class Kernel>
@@ -300,15 +318,17 @@ class ElementBlockOf final : public ElementBlock {
   }
 
   /// Keeps, per element, the entries that land in the sparse values: neither a prescribed
-  /// DOF's (slot -1) nor an idle DOF's row or column, so the scatter has no branch.
+  /// DOF's (slot -1), nor an idle DOF's row or column, nor a declared zero, so the scatter
+  /// has no branch.
   void bind_tangent_slots(std::vector<int> slots) override {
     constexpr std::array<bool, kDofs> idle = detail::IdleDofs<Kernel>::mask();
+    constexpr std::array<bool, kDofs* kDofs> zero = detail::ZeroTangentEntries<Kernel>::mask();
     tangent_entries_.clear();
     element_entries_.assign(1, 0);
     for (int e = 0; e < size(); ++e) {
       const int* slot = slots.data() + static_cast<size_t>(e) * kDofs * kDofs;
       for (int k = 0; k < kDofs * kDofs; ++k)
-        if (slot[k] >= 0 && !idle[k / kDofs] && !idle[k % kDofs]) tangent_entries_.push_back({k, slot[k]});
+        if (slot[k] >= 0 && !idle[k / kDofs] && !idle[k % kDofs] && !zero[k]) tangent_entries_.push_back({k, slot[k]});
       element_entries_.push_back(static_cast<int>(tangent_entries_.size()));
     }
     if constexpr (kBatched) prepare_batch();

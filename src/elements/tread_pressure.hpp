@@ -26,6 +26,8 @@ class TreadPressure : public KernelShape<2> {
  public:
   static constexpr bool kReadsAcceleration = false;
   static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
+  /// [k x] couples x with y only: no component's load moves with the same component.
+  static constexpr bool zero_tangent_entry(int row, int column) { return row % 3 == column % 3; }
 
   /// Reference positions of the two tread nodes (counter-clockwise), tread width w [m].
   TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,
