@@ -33,6 +33,21 @@ struct PressedTire {
   void drive(double alpha) { spindle = &tire.drive(Integrator::hht(alpha)); }
 };
 
+/// Pressed 15 mm and driven (HHT -0.05); solve() takes 1 ms steps to its design position moved by (dx, dy).
+struct PressedAndDriven : PressedTire {
+  Eigen::Vector3d design;
+  PressedAndDriven() {
+    press(0.015);
+    drive(-0.05);
+    design = spindle->committed_position();
+  }
+  SpindleReply solve(double dx, double dy, SpindleStart start, bool jacobian = true) {
+    SpindleInput input{1e-3, design.x() + dx, design.y() + dy, 0.0, start};
+    input.jacobian = jacobian;
+    return spindle->solve_step(input);
+  }
+};
+
 Corner quarter_corner(double preload, double damping) {
   Corner corner;
   corner.name = "quarter";
@@ -50,14 +65,8 @@ Corner quarter_corner(double preload, double damping) {
 
 TEST_CASE("a corrector's trial from the tire's last trial moved by its linear response: the cold answer, less Newton",
           "[vehicle][spindle]") {
-  PressedTire tire;
-  tire.press(0.015);
-  tire.drive(-0.05);
-  const Eigen::Vector3d design = tire.spindle->committed_position();
-  constexpr double h = 1e-3;
-  auto solve = [&](double dx, double dy, SpindleStart start) {
-    return tire.spindle->solve_step({h, design.x() + dx, design.y() + dy, 0.0, start});
-  };
+  PressedAndDriven tire;
+  auto solve = [&](double dx, double dy, SpindleStart start) { return tire.solve(dx, dy, start); };
   const SpindleReply first = solve(0.0, -1e-4, SpindleStart::Predictor);  // a predicted trial
   const Eigen::Vector2d move(2e-6, -3e-6);                                // a corrector's increment
   const SpindleReply warm = solve(move.x(), -1e-4 + move.y(), SpindleStart::LastTrial);
@@ -84,16 +93,8 @@ TEST_CASE("a corrector's trial from the tire's last trial moved by its linear re
 
 TEST_CASE("a Jacobian asked after a solve without it: the solve's own, and a corrector's trial after it the same",
           "[vehicle][spindle]") {
-  PressedTire tire;
-  tire.press(0.015);
-  tire.drive(-0.05);
-  const Eigen::Vector3d design = tire.spindle->committed_position();
-  constexpr double h = 1e-3;
-  auto solve = [&](double dy, SpindleStart start, bool jacobian) {
-    SpindleInput input{h, design.x(), design.y() + dy, 0.0, start};
-    input.jacobian = jacobian;
-    return tire.spindle->solve_step(input);
-  };
+  PressedAndDriven tire;
+  auto solve = [&](double dy, SpindleStart start, bool jacobian) { return tire.solve(0.0, dy, start, jacobian); };
   auto ask_jacobian = [&] {
     SpindleRequest request;
     request.command = SpindleCommand::Jacobian;
