@@ -64,6 +64,21 @@ struct InflatedTire {
   }
 };
 
+/// A cantilever of kCantileverElements tread beams along x, clamped at node 0, its tip loaded down (ramped).
+constexpr int kCantileverElements = 10;
+void build_cantilever(Model& model) {
+  BeamSection section;
+  section.axial_stiffness = 1e6;
+  section.shear_stiffness = 1e6;
+  section.bending_stiffness = 10.0;
+  for (int i = 0; i <= kCantileverElements; ++i) model.mesh().add_node({0.1 * i, 0.0});
+  auto& beams = model.add_block<TreadBeam>("beam");
+  for (int i = 0; i < kCantileverElements; ++i)
+    beams.add({i, i + 1}, TreadBeam(model.mesh().position(i), model.mesh().position(i + 1), section));
+  for (int c = 0; c < kDofsPerNode; ++c) model.fix(0, c);
+  model.add_nodal_load(kCantileverElements, kUy, -50.0, Model::kRampLoadFunction);
+}
+
 double relative_difference(const Eigen::MatrixXd& value, const Eigen::MatrixXd& reference) {
   return (value - reference).norm() / reference.norm();
 }
@@ -315,19 +330,9 @@ TEST_CASE("ring solver: an uncondensed spindle and a two-node border give the sa
 
 TEST_CASE("ring solver: a cantilever is an open ring; in the wrong node order it is refused", "[ring_solver]") {
   auto build = [](Model& model) {
-    BeamSection section;
-    section.axial_stiffness = 1e6;
-    section.shear_stiffness = 1e6;
-    section.bending_stiffness = 10.0;
-    const int elements = 10;
-    for (int i = 0; i <= elements; ++i) model.mesh().add_node({0.1 * i, 0.0});
-    auto& beams = model.add_block<TreadBeam>("beam");
-    for (int i = 0; i < elements; ++i)
-      beams.add({i, i + 1}, TreadBeam(model.mesh().position(i), model.mesh().position(i + 1), section));
-    for (int c = 0; c < kDofsPerNode; ++c) model.fix(0, c);
-    model.add_nodal_load(elements, kUy, -50.0, Model::kRampLoadFunction);
+    build_cantilever(model);
     std::vector<int> nodes;
-    for (int i = 0; i <= elements; ++i) nodes.push_back(i);
+    for (int i = 0; i <= kCantileverElements; ++i) nodes.push_back(i);
     return nodes;
   };
   Model scrambled_model;
@@ -402,6 +407,31 @@ TEST_CASE("ring solver: analyze() refuses tires that do not fit and misuse of th
     other.insert(0, model.dof_map().equation_count() - 2) = 1.0;  // a new entry: another pattern
     other.makeCompressed();
     CHECK_THROWS_AS(ring.factorize(other), std::logic_error);
+  }
+}
+
+TEST_CASE("ring solver: a satellite with its rotation free, or held, solves as KLU does", "[ring_solver]") {
+  // The cantilever's tip node left out of the ring: a satellite of the node before it,
+  // with all three DOFs (a beam end), or with its rotation held (as a contact node's is).
+  for (bool rotation_held : {false, true}) {
+    INFO("tip rotation held: " << rotation_held);
+    Model klu_model, ring_model;
+    for (Model* model : {&klu_model, &ring_model}) {
+      build_cantilever(*model);
+      if (rotation_held) model->fix(kCantileverElements, kRz);
+    }
+    std::vector<int> ring;
+    for (int i = 0; i < kCantileverElements; ++i) ring.push_back(i);
+    Analysis klu_analysis(klu_model), ring_analysis(ring_model);
+    ring_analysis.use_ring_solver(ring, {});
+    for (Analysis* analysis : {&klu_analysis, &ring_analysis}) {
+      analysis->set_time_step(0.25);
+      analysis->advance(1.0);
+    }
+    const Eigen::VectorXd& reference = klu_analysis.state().displacement;
+    CHECK(reference.norm() > 0.01);
+    CHECK(relative_difference(ring_analysis.state().displacement, reference) <= 1e-9);
+    CHECK(ring_analysis.linear_solver().factorization_count() >= 4);
   }
 }
 

@@ -198,6 +198,11 @@ void RingSolver::analyze(const Matrix& pattern) {
     }
   const int satellites = static_cast<int>(satellite_nodes_.size());
   padded_size_ = satellite_start_ + 3 * satellites;
+  planar_satellites_.assign(satellites, false);
+  for (int i = 0; i < satellites; ++i) {
+    auto prescribed = [&](int c) { return dofs_.equation(dof_index(satellite_nodes_[i], c)) == DofMap::kPrescribed; };
+    planar_satellites_[i] = prescribed(kRz) && !prescribed(kUx) && !prescribed(kUy);
+  }
   for (int equation : held_) position_of_equation_[equation] = padded_size_;  // the sink
   find_hosts(pattern);
 
@@ -345,10 +350,20 @@ void RingSolver::eliminate_satellites() {
   for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
     const int position = satellite_position(i);
     Block d(base + satellite_offset(i)), to_host(base + satellite_offset(i) + 9);
+    const ConstBlock from_host(base + satellite_offset(i) + 18);
+    if (planar_satellites_[i]) {  // the rotation's padding row and column: identity, no coupling
+      auto translation = d.topLeftCorner<2, 2>();
+      const int failed = lu_factor(translation, &pivots_[position], &row_scale_[position]);
+      if (failed >= 0) throw_singular(position + failed, d(failed, failed), row_scale_[position + failed]);
+      pivots_[position + 2] = Pivot{2, 1.0};  // the padding's, as the whole block's factorisation has it
+      lu_solve(translation, &pivots_[position], to_host.topRows<2>());
+      host_block(i) -= from_host.leftCols<2>().lazyProduct(to_host.topRows<2>());
+      continue;
+    }
     const int failed = lu_factor(d, &pivots_[position], &row_scale_[position]);
     if (failed >= 0) throw_singular(position + failed, d(failed, failed), row_scale_[position + failed]);
     lu_solve(d, &pivots_[position], to_host);
-    host_block(i) -= ConstBlock(base + satellite_offset(i) + 18).lazyProduct(to_host);
+    host_block(i) -= from_host.lazyProduct(to_host);
   }
 }
 
@@ -356,16 +371,28 @@ void RingSolver::forward_satellites(double* y) const {
   const double* base = blocks_.data();
   for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
     Vector3 z(y + satellite_position(i));
-    lu_solve(ConstBlock(base + satellite_offset(i)), &pivots_[satellite_position(i)], z);
-    Vector3(y + satellite_hosts_[i]) -= ConstBlock(base + satellite_offset(i) + 18).lazyProduct(z);
+    const ConstBlock d(base + satellite_offset(i)), from_host(base + satellite_offset(i) + 18);
+    if (planar_satellites_[i]) {  // the padding's entry moves nothing
+      auto translation = z.head<2>();
+      lu_solve(d.topLeftCorner<2, 2>(), &pivots_[satellite_position(i)], translation);
+      Vector3(y + satellite_hosts_[i]) -= from_host.leftCols<2>().lazyProduct(translation);
+      continue;
+    }
+    lu_solve(d, &pivots_[satellite_position(i)], z);
+    Vector3(y + satellite_hosts_[i]) -= from_host.lazyProduct(z);
   }
 }
 
 void RingSolver::back_satellites(double* x) const {
   const double* base = blocks_.data();
-  for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i)
-    Vector3(x + satellite_position(i)) -=
-        ConstBlock(base + satellite_offset(i) + 9).lazyProduct(ConstVector3(x + satellite_hosts_[i]));
+  for (int i = 0; i < static_cast<int>(satellite_nodes_.size()); ++i) {
+    const ConstBlock to_host(base + satellite_offset(i) + 9);
+    const ConstVector3 host(x + satellite_hosts_[i]);
+    if (planar_satellites_[i])
+      Vector3(x + satellite_position(i)).head<2>() -= to_host.topRows<2>().lazyProduct(host);
+    else
+      Vector3(x + satellite_position(i)) -= to_host.lazyProduct(host);
+  }
 }
 
 template <int Width>

@@ -20,7 +20,9 @@
 // a 1 on the diagonal and zeros elsewhere (right-hand side 0), an exact decoupled identity,
 // so all ring arithmetic runs on fixed-size 3x3 blocks whatever the boundary conditions.
 // The border holds its free equations only (a dead axle's spindle: rz alone), so the
-// products along the chain skip the columns that padding would keep at zero.
+// products along the chain skip the columns that padding would keep at zero; a satellite
+// whose rotation alone is padding (a contact node) is condensed through its 2x2
+// translation block, the same numbers as through the padded 3x3.
 
 // Ordering. The chain c_k = r_{k+1}, k = 0..m-1 (m = n-1), comes first; the first ring
 // node r_0 joins the border in the "extended border" E = [r_0, border] (width
@@ -54,9 +56,9 @@
 //     back      x_0 = z_0 - (S_00^-1 S_0b) x_b,   x_k = z_k - X_k x_{k+1} - Y_k x_E  (k = m-1..0)
 //
 // Cost: about 350 multiply-adds per ring node with a spindle free (6 border columns), 250
-// on a dead axle (4), and about 80 per satellite, no sparse bookkeeping: 12-13 us to
-// factor the 100-element tire with its tread layer on a dead axle, 3 us to solve
-// (bench_tire_iteration).
+// on a dead axle (4), and about 80 per satellite (45 for a contact node's translations),
+// no sparse bookkeeping: 11-12 us to factor the 100-element tire with its tread layer on a
+// dead axle, 3 us to solve (bench_tire_iteration).
 //
 // A pivot not above kPivotTolerance times the largest entry of its row in the assembled
 // matrix throws SingularMatrix, which Newton turns into a step cut. Rows are compared
@@ -199,7 +201,8 @@ class RingSolver final : public LinearSolver {
   int satellite_start_ = 0;  // 3m + e rounded up to a multiple of 3
   int padded_size_ = 0;
   std::vector<int> satellite_nodes_;
-  std::vector<int> satellite_hosts_;  // padded position of each satellite's host (3k or 3m)
+  std::vector<int> satellite_hosts_;     // padded position of each satellite's host (3k or 3m)
+  std::vector<bool> planar_satellites_;  // its rotation padding, its translations free (a contact node)
   std::vector<int> position_of_equation_;
   std::vector<int> padding_;                        // padded positions without an equation: identity rows
   std::vector<int> padding_offsets_;                // their diagonal entries' offsets in blocks_
