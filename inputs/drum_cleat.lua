@@ -6,8 +6,9 @@
 -- friction makes the tire roll; then the speed is held to 8 s. The cleat comes round every
 -- pi D / v (0.375 s at full speed). The spindle forces, spin rate, drum angle, contact
 -- totals and energies are written every step, the deformed tire every fields_interval.
--- The deck ends with a summary of the last cleat passage at full speed: peak-to-peak
--- spindle forces and the ringing frequencies of Fx and Fz on top of the cleat and after it.
+-- The deck ends with a summary of the last two cleat passages at full speed (their readings
+-- alternate from passage to passage): peak-to-peak spindle forces and the ringing
+-- frequencies of Fx and Fz on top of the cleat and after it.
 --
 --   tirefe inputs/drum_cleat.lua [speed_kmh=51.3] [cleat_height=0.025] [integrator=newmark] ...
 --
@@ -124,8 +125,9 @@ local record, totals = stepping.run(model, { to = p.end_time, time_step = time_s
   spin = function() return model:value{ node = tire.spindle, quantity = "spin_rate" } end } })
 stepping.report(model, totals, "dynamic")
 
--- Summary of the last passage at full speed with its ringing recorded (lua/cleat_summary.lua):
--- peak-to-peak forces, ringing frequencies, the impacts' period, the rolling radius before it.
+-- Summary of the last two passages at full speed with their ringing recorded
+-- (lua/cleat_summary.lua): peak-to-peak forces, ringing frequencies, the impacts' period,
+-- the rolling radius before the last.
 local cleat_ringing = require("cleat_ringing")
 local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
   ring_time = p.ring_time, end_time = p.end_time, speed_kmh = p.speed_kmh, measured = cleat_ringing.measured(p),
@@ -138,6 +140,7 @@ if p.check then
                 expected = summary.belt_radius, tolerance = 2e-3 * summary.belt_radius }
   if p.tire == "tires.145SR12_tread_layer" and summary.measured then
     cleat_ringing.check_calibrated(summary.ringing, summary.measured)  -- against the measured ringing
+    if summary.before then cleat_ringing.check_calibrated(summary.before.ringing, summary.measured, "passage before") end
   end
 end
 

@@ -82,8 +82,9 @@ end
 
 -- Prints the readings as a table and records them in the model's /results:
 -- <window>_Hz, <window>_uncertainty_Hz, <window>_spectrum_Hz, <window>_pencil_Hz,
--- <window>_damping_ratio, <window>_from_s, <window>_to_s. 'measured': M.measured(...).
-function M.report(model, readings, measured)
+-- <window>_damping_ratio, <window>_from_s, <window>_to_s, each with 'prefix' (default
+-- none) in front. 'measured': M.measured(...).
+function M.report(model, readings, measured, prefix)
   for _, line in ipairs(M.table_lines(readings, measured)) do print(line) end
   for _, window in ipairs(M.windows) do
     local r = readings[window.name]
@@ -91,7 +92,7 @@ function M.report(model, readings, measured)
                       pencil_Hz = r.pencil_frequency, damping_ratio = r.damping_ratio, from_s = r.from, to_s = r.to }
     for suffix, value in pairs(results) do
       local unit = suffix:match("_s$") and "s" or (suffix:match("Hz$") and "Hz" or nil)
-      model:result{ name = window.name .. "_" .. suffix, value = value, unit = unit }
+      model:result{ name = (prefix or "") .. window.name .. "_" .. suffix, value = value, unit = unit }
     end
   end
 end
@@ -100,18 +101,20 @@ end
 -- each window's reading within 5 % of the measured frequency, and its two estimators within
 -- 5 % of each other. Fx from the first hit is not one mode's ringing (the passage's own
 -- content and the restart of the ringing as the tire leaves the cleat, docs/drum_cleat.md):
--- it is checked against the model's documented reading instead.
-function M.check_calibrated(readings, measured)
+-- it is checked against the model's documented reading instead. 'label' (optional) names
+-- the passage in the checks' names.
+function M.check_calibrated(readings, measured, label)
+  local of = label and (" (" .. label .. ")") or ""
   for _, window in ipairs(M.windows) do
     local reading = readings[window.name]
     if window.name ~= "fx_from_hit" then
-      tirefe.check{ name = window.what .. " vs measured " .. measured[window.name] .. " Hz",
+      tirefe.check{ name = window.what .. of .. " vs measured " .. measured[window.name] .. " Hz",
                     value = reading.frequency, expected = measured[window.name], relative = 0.05 }
-      tirefe.check{ name = window.what .. ": matrix pencil vs spectrum", value = reading.pencil_frequency,
+      tirefe.check{ name = window.what .. of .. ": matrix pencil vs spectrum", value = reading.pencil_frequency,
                     expected = reading.spectrum_frequency, relative = 0.05 }
     end
   end
-  tirefe.check{ name = "Fx from the first hit, the model's documented reading [Hz]",
+  tirefe.check{ name = "Fx from the first hit" .. of .. ", the model's documented reading [Hz]",
                 value = readings.fx_from_hit.frequency, expected = 31.5, relative = 0.05 }
 end
 

@@ -1,6 +1,7 @@
--- The summary of a drum-cleat run (docs/drum_cleat.md): the last passage at full speed whose
--- ringing was recorded, read for its peak-to-peak spindle forces and ringing frequencies
--- (lua/cleat_ringing.lua), the impacts' period, and the rolling radius just before it.
+-- The summary of a drum-cleat run (docs/drum_cleat.md): the last two passages at full speed
+-- whose ringing was recorded (the rig's read_passages: their readings alternate from passage
+-- to passage), each read for its peak-to-peak spindle forces and ringing frequencies
+-- (lua/cleat_ringing.lua), the impacts' period, and the rolling radius just before the last.
 -- Printed, and written to the model's /results.
 --
 --   local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages,
@@ -9,28 +10,50 @@
 local series, cleat_ringing, rolling = require("series"), require("cleat_ringing"), require("rolling")
 local cleat_summary = {}
 
+-- One passage read: its peak-to-peak forces over the passage and its ringing.
+local function read_passage(args, passage)
+  local record = args.record
+  local fx_low, fx_high = series.range(record.time, record.fx, passage.on - 0.01, passage.off + args.ring_time)
+  local fz_low, fz_high = series.range(record.time, record.fz, passage.on - 0.01, passage.off + args.ring_time)
+  return { passage = passage, fx_peak_to_peak = fx_high - fx_low, fz_peak_to_peak = fz_high - fz_low,
+           ringing = cleat_ringing.read{ time = record.time, fx = record.fx, fz = record.fz, on = passage.on,
+                                         off = passage.off, speed = args.rig.speed } }
+end
+
+-- Prints a passage's peaks and ringing table and records them in /results, each name
+-- with 'prefix' before it.
+local function report_passage(args, reading, prefix)
+  local model = args.model
+  print(string.format("  peak to peak: Fx %.0f N, Fz %.0f N", reading.fx_peak_to_peak, reading.fz_peak_to_peak))
+  cleat_ringing.report(model, reading.ringing, args.measured, prefix)
+  model:result{ name = prefix .. "cleat_on_s", value = reading.passage.on, unit = "s" }
+  model:result{ name = prefix .. "cleat_off_s", value = reading.passage.off, unit = "s" }
+  model:result{ name = prefix .. "fx_peak_to_peak", value = reading.fx_peak_to_peak, unit = "N" }
+  model:result{ name = prefix .. "fz_peak_to_peak", value = reading.fz_peak_to_peak, unit = "N" }
+end
+
 -- args.record: the run's time, fx, fz and spin series; args.measured: cleat_ringing.measured
--- of the run's conditions (or nil). Returns the summary: the passage, fx_peak_to_peak,
--- fz_peak_to_peak [N], ringing, measured, impact_period [s], rolling_radius and
--- belt_radius [m] (the contact nodes' ring circumference / 2 pi); empty without a passage.
+-- of the run's conditions (or nil). Returns the summary: the last passage, fx_peak_to_peak,
+-- fz_peak_to_peak [N] and ringing of it, 'before' (the same for the passage before it, or
+-- nil), measured, impact_period [s], rolling_radius and belt_radius [m] (the contact nodes'
+-- ring circumference / 2 pi); empty without a passage. /results holds the last passage's
+-- under their names, the one before's with "before_" in front.
 function cleat_summary.report(args)
   local model, rig, record = args.model, args.rig, args.record
-  local last = rig:last_full_speed_passage(args.passages, args.ring_time, args.end_time)
-  if not last then return {} end
-  local summary = { passage = last, measured = args.measured }
-  local fx_low, fx_high = series.range(record.time, record.fx, last.on - 0.01, last.off + args.ring_time)
-  local fz_low, fz_high = series.range(record.time, record.fz, last.on - 0.01, last.off + args.ring_time)
-  summary.fx_peak_to_peak, summary.fz_peak_to_peak = fx_high - fx_low, fz_high - fz_low
+  local read = rig:read_passages(args.passages, args.ring_time, args.end_time)
+  if #read == 0 then return {} end
+  local last = read[#read]
+  local summary = read_passage(args, last)
+  summary.measured = args.measured
+  if #read == 2 then
+    summary.before = read_passage(args, read[1])
+    print(string.format("cleat passage at %.3f-%.3f s (%.1f km/h), the one before the last", read[1].on, read[1].off,
+                        args.speed_kmh))
+    report_passage(args, summary.before, "before_")
+  end
   print(string.format("cleat passage at %.3f-%.3f s (%.1f km/h), every %.3f s at full speed", last.on, last.off,
                       args.speed_kmh, rig:turn_time()))
-  print(string.format("  peak to peak: Fx %.0f N, Fz %.0f N", summary.fx_peak_to_peak, summary.fz_peak_to_peak))
-  summary.ringing = cleat_ringing.read{ time = record.time, fx = record.fx, fz = record.fz, on = last.on,
-                                        off = last.off, speed = rig.speed }
-  cleat_ringing.report(model, summary.ringing, summary.measured)
-  model:result{ name = "cleat_on_s", value = last.on, unit = "s" }
-  model:result{ name = "cleat_off_s", value = last.off, unit = "s" }
-  model:result{ name = "fx_peak_to_peak", value = summary.fx_peak_to_peak, unit = "N" }
-  model:result{ name = "fz_peak_to_peak", value = summary.fz_peak_to_peak, unit = "N" }
+  report_passage(args, summary, "")
   local passed
   summary.impact_period, passed = rig:impact_period(args.passages, record.time, record.fz, args.end_time)
   if summary.impact_period then

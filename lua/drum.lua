@@ -85,14 +85,31 @@ function Rig:turn_time()
   return 2 * math.pi * self.radius / self.speed
 end
 
+-- The passages a summary reads: the last two at full speed (from start + spin_up_time on)
+-- that have rung for ring_time by end_time, in time order; one or none if there are fewer.
+-- Two, because at full speed the readings of successive passages alternate between two
+-- sets (docs/drum_cleat.md, "Two passages"): one passage gives one of them.
+function Rig:read_passages(passages, ring_time, end_time)
+  local rung = {}
+  for _, passage in ipairs(passages) do
+    if passage.on >= self.start + self.spin_up_time and passage.off + ring_time <= end_time then
+      rung[#rung + 1] = passage
+    end
+  end
+  local read = {}
+  for i = math.max(1, #rung - 1), #rung do read[#read + 1] = rung[i] end
+  return read
+end
+
 -- The time step at time t: dt_cleat through the passages at full speed and the one before
 -- them, from 10 ms before each until ring_time after it; elsewhere the step in which a point
 -- of the drum surface travels as far as in dt at full speed, up to dt_max. The earlier
 -- passages of the spin-up, which nothing reads, take those travel steps too: slower, they
--- are resolved as finely along the drum. A passage's ringing carries over to the next
--- passage a turn later: with the ringing on travel steps, the next passage's readings move
--- by up to 5 % and its peaks by up to 7 %, hence fine steps through every passage before a
--- read one. Returns the schedule as a function of t.
+-- are resolved as finely along the drum. A passage carries over to the next ones: with the
+-- ringing of the passages before a read one on travel steps, its readings move by up to 5 %
+-- and its Fx peak to peak by up to 8 %, and still by 6 % with the one passage before it on
+-- fine steps, hence fine steps through every passage at full speed and the one before them.
+-- Returns the schedule as a function of t.
 function Rig:time_step(args)
   local fine = {}
   for i, passage in ipairs(args.passages) do
@@ -107,16 +124,6 @@ function Rig:time_step(args)
     end
     return math.min(args.dt_max, args.dt * self.speed / math.max(self:surface_speed(t), 1e-9))
   end
-end
-
--- The last passage at full speed (from start + spin_up_time on) whose ring_time after it
--- ends by end_time, or nil.
-function Rig:last_full_speed_passage(passages, ring_time, end_time)
-  local last
-  for _, passage in ipairs(passages) do
-    if passage.on >= self.start + self.spin_up_time and passage.off + ring_time <= end_time then last = passage end
-  end
-  return last
 end
 
 -- The period of the impacts at full speed: the mean spacing of the times of the largest

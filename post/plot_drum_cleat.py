@@ -198,25 +198,54 @@ def spectrum(step, samples, padding=64):
     return np.fft.rfftfreq(padded, step), magnitude
 
 
+def window_spectrum(run, force, band, start, end):
+    """A window's spectrum (frequency, amplitude) and its peak within the band read."""
+    step, samples = window_samples(run.time, run.fx if force == "fx" else run.fz, start, end)
+    frequency, magnitude = spectrum(step, samples)
+    in_band = (frequency >= band[0]) & (frequency <= band[1])
+    return frequency, magnitude, frequency[in_band][np.argmax(magnitude[in_band])]
+
+
+def disagreement(run, name, title, fft_peak, bin_width):
+    """A line if the FFT peak and the deck's spectrum reading of window 'name' differ by
+    more than one FFT bin, else None."""
+    deck_spectrum = float(run.results[name + "_spectrum_Hz"])
+    if abs(fft_peak - deck_spectrum) > bin_width:
+        return f"{title}: numpy FFT peak {fft_peak:.2f} Hz, deck {deck_spectrum:.2f} Hz"
+    return None
+
+
+def earlier_passage_disagreements(run):
+    """The FFT check of the windows the deck read in the passage before the last
+    (results with "before_" in front): they are printed, so they are checked too."""
+    found = []
+    for name, force, title, _, band in WINDOWS:
+        key = "before_" + name
+        if key + "_from_s" in run.results:
+            frequency, _, fft_peak = window_spectrum(run, force, band, float(run.results[key + "_from_s"]),
+                                                     float(run.results[key + "_to_s"]))
+            found.append(disagreement(run, key, title + " (the passage before)", fft_peak, frequency[1]))
+    return [line for line in found if line]
+
+
 def plot_spectrum(run, stem):
-    """One panel per ringing window; returns the path and the windows whose FFT peak
-    disagrees with the deck's spectrum reading by more than one FFT bin."""
+    """One panel per ringing window of the last passage; returns the path and the windows,
+    of both passages read, whose FFT peak disagrees with the deck's spectrum reading by more
+    than one FFT bin."""
     windows = recorded_windows(run)
     if not windows:
         return None, []
     figure, axes = plt.subplots(2, 2, figsize=(11, 7.5))
-    disagreements = []
+    disagreements = earlier_passage_disagreements(run)
     for axis, (name, force, title, measured, band, start, end) in zip(axes.ravel(), windows):
-        step, samples = window_samples(run.time, run.fx if force == "fx" else run.fz, start, end)
-        frequency, magnitude = spectrum(step, samples)
+        frequency, magnitude, fft_peak = window_spectrum(run, force, band, start, end)
         keep = frequency <= 200
         axis.plot(frequency[keep], magnitude[keep], color="tab:red" if force == "fx" else "tab:blue")
-        in_band = (frequency >= band[0]) & (frequency <= band[1])
-        fft_peak = frequency[in_band][np.argmax(magnitude[in_band])]
         deck_spectrum = float(run.results[name + "_spectrum_Hz"])
         deck_pencil = float(run.results[name + "_pencil_Hz"])
-        if abs(fft_peak - deck_spectrum) > frequency[1]:
-            disagreements.append(f"{title}: numpy FFT peak {fft_peak:.2f} Hz, deck {deck_spectrum:.2f} Hz")
+        line = disagreement(run, name, title, fft_peak, frequency[1])
+        if line:
+            disagreements.append(line)
         axis.axvline(deck_spectrum, color="k", linewidth=0.9, label=f"spectrum peak {deck_spectrum:.1f} Hz")
         axis.axvline(deck_pencil, color="tab:orange", linestyle="--", linewidth=1.2,
                      label=f"matrix pencil {deck_pencil:.1f} Hz "

@@ -59,9 +59,14 @@ tirefe.check{ name = "the passage before full speed: dt_cleat [s]", value = slow
 tirefe.check{ name = "its ringing: dt_cleat [s]", value = slow_step(5.84), expected = 2.5e-4, tolerance = 0 }
 tirefe.check{ name = "ring_time after a passage: dt_cleat [s]", value = step(2.98), expected = 2.5e-4, tolerance = 0 }
 tirefe.check{ name = "full speed between passages: dt [s]", value = step(3.1), expected = 5e-4, relative = 1e-14 }
-local last = rig:last_full_speed_passage(passages, 0.15, 3.2)
-tirefe.check{ name = "last full-speed passage rung out by 3.2 s [s]", value = last.on, expected = passages[2].on,
-              tolerance = 0 }
+local read = rig:read_passages(passages, 0.15, 3.2)
+tirefe.check{ name = "one full-speed passage rung out by 3.2 s", value = #read, expected = 1, tolerance = 0 }
+tirefe.check{ name = "it is the second passage [s]", value = read[1].on, expected = passages[2].on, tolerance = 0 }
+read = rig:read_passages(passages, 0.15, 3.5)
+tirefe.check{ name = "by 3.5 s: the last two, in time order [s]", value = read[2].on - read[1].on,
+              expected = passages[3].on - passages[2].on, tolerance = 0 }
+tirefe.check{ name = "none before the first has rung out", value = #rig:read_passages(passages, 0.15, 2.9),
+              expected = 0, tolerance = 0 }
 -- Made-up Fz: a spike 20 ms into each passage.
 local time, fz = {}, {}
 for k = 0, 1500 do
@@ -76,7 +81,7 @@ tirefe.check{ name = "impact period from the Fz peaks [s]", value = period, expe
               tolerance = 1e-3 }
 tirefe.check{ name = "full-speed passages read", value = count, expected = 2, tolerance = 0 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 27);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 30);
 }
 
 TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, means, rolling radius", "[lua][modules]") {
@@ -249,7 +254,7 @@ tirefe.check{ name = "another name is an error naming it", value = refused and 1
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 5);
 }
 
-TEST_CASE("lua/cleat_summary.lua reads the last full-speed passage of made-up forces", "[lua][modules][drum]") {
+TEST_CASE("lua/cleat_summary.lua reads the last two full-speed passages of made-up forces", "[lua][modules][drum]") {
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("cleat_summary_deck.lua", R"(
 -- Made-up spindle forces of a 0.5 s spin-up rig: from each passage's first touch Fx rings at
@@ -306,6 +311,21 @@ tirefe.check{ name = "Fz ringing after the cleat [Hz]", value = summary.ringing.
               expected = 85, relative = 0.01 }
 tirefe.check{ name = "no measured column given", value = summary.measured == nil and 1 or 0, expected = 1,
               tolerance = 0 }
+-- The passage before the last: the same made-up ringing, read alike and written with "before_".
+tirefe.check{ name = "the passage before [s]", value = summary.before.passage.on, expected = passages[2].on,
+              tolerance = 0 }
+tirefe.check{ name = "its Fx peak to peak [N]", value = summary.before.fx_peak_to_peak,
+              expected = peak_to_peak(35, 0.1, 2000), relative = 2e-3 }
+tirefe.check{ name = "its Fz ringing after the cleat [Hz]", value = summary.before.ringing.fz_leaving.pencil_frequency,
+              expected = 85, relative = 0.01 }
+tirefe.check{ name = "written to the results as before_ [N]", value = results.before_fx_peak_to_peak,
+              expected = summary.before.fx_peak_to_peak, tolerance = 0 }
+tirefe.check{ name = "its window written as before_ [s]", value = results.before_fx_leaving_from_s,
+              expected = summary.before.ringing.fx_leaving.from, tolerance = 0 }
+local one = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
+  ring_time = 0.15, end_time = 3.2, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+tirefe.check{ name = "one passage rung out by 3.2 s: no passage before", value = one.before == nil and 1 or 0,
+              expected = 1, tolerance = 0 }
 tirefe.check{ name = "impacts a turn apart [s]", value = summary.impact_period, expected = rig:turn_time(),
               tolerance = 2.5e-4 }
 tirefe.check{ name = "a turn = pi D / v [s]", value = rig:turn_time(), expected = math.pi * 1.7 / (51.3 / 3.6),
@@ -327,7 +347,7 @@ cleat.end_time = 3.0
 tirefe.check{ name = "a run long enough is taken",
               value = pcall(rig.require_full_speed_passage, rig, cleat, 0.15) and 1 or 0, expected = 1, tolerance = 0 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 14);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 20);
 }
 
 TEST_CASE("lua/guard.lua refuses a parameter out of its range, by name", "[lua][modules]") {
