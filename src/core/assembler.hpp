@@ -31,6 +31,19 @@ class Assembler {
   /// next step.
   void query(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual);
 
+  /// Binds the blocks' tangent entries to a linear solver's own storage too: the stored
+  /// entry s of the pattern (in tangent()'s value order) lands at destination[s] there
+  /// (RingSolver::entry_destinations()). Valid until the pattern changes.
+  void bind_solver_layout(const std::vector<int>& destination);
+  /// True while every block holds the layout bound last (another assembler of the same
+  /// model binding its own slots, or a new pattern, takes it away).
+  bool solver_layout_bound() const;
+  /// assemble() with the tangent added into 'storage', in the bound solver layout and
+  /// cleared by the caller, instead of into tangent(): the solver factors it where it
+  /// lies, and tangent()'s values are left as they were.
+  void assemble_into_solver(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual,
+                            double* storage);
+
   /// The inertia forces M a at 'state', one entry per DOF, from the kernels' constant
   /// masses without evaluating them; false when a block cannot give them.
   bool inertia_forces(const State& state, Eigen::VectorXd& forces) const;
@@ -45,6 +58,7 @@ class Assembler {
   Model& model_;
   SparseMatrix tangent_;
   long signature_ = -1;
+  long solver_layout_ = 0;  // the id of the solver layout bound last, 0 for none
   int pattern_version_ = 0;
 };
 

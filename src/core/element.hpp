@@ -95,6 +95,7 @@ class TangentSlots;
 struct AssemblyTarget {
   Eigen::VectorXd* residual = nullptr;  // one entry per DOF (prescribed DOFs give reactions)
   double* tangent_values = nullptr;     // sparse values of the free-equation tangent, or null
+  long solver_layout = 0;               // not 0: tangent_values is the storage of the solver layout bound with this id
 };
 
 /// The nodal values of a whole block, gathered as structure of arrays for a kernel's batch
@@ -148,6 +149,12 @@ class ElementBlock {
   /// Positions of element-matrix entries in the sparse value array, row-major per
   /// element, -1 where a row or column is a prescribed DOF.
   virtual void bind_tangent_slots(std::vector<int> slots) = 0;
+  /// The same entries in a linear solver's own storage as well: the sparse value at slot s
+  /// lands at destination[s] there (an assembly with AssemblyTarget::solver_layout = id).
+  /// Binding the sparse slots anew forgets it.
+  virtual void bind_solver_slots(const std::vector<int>& destination, long id) = 0;
+  /// The id of the solver layout bound, 0 for none.
+  virtual long solver_layout() const = 0;
 
   virtual void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) = 0;
   virtual ElementEnergy energy(const State& state) const = 0;
@@ -331,8 +338,19 @@ class ElementBlockOf final : public ElementBlock {
         if (slot[k] >= 0 && !idle[k / kDofs] && !idle[k % kDofs] && !zero[k]) tangent_entries_.push_back({k, slot[k]});
       element_entries_.push_back(static_cast<int>(tangent_entries_.size()));
     }
+    solver_destination_.clear();  // a new pattern: a solver's layout is bound anew
+    solver_layout_ = 0;
+    solver_entries_.clear();
     if constexpr (kBatched) prepare_batch();
   }
+
+  void bind_solver_slots(const std::vector<int>& destination, long id) override {
+    solver_layout_ = id;
+    solver_destination_ = destination;
+    solver_entries_ = in_solver_layout(tangent_entries_);
+    if constexpr (kBatched) solver_batch_entries_ = in_solver_layout(batch_entries_);
+  }
+  long solver_layout() const override { return solver_layout_; }
 
   void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) override {
     if constexpr (kBatched) {
@@ -344,13 +362,14 @@ class ElementBlockOf final : public ElementBlock {
     Vector residual;
     Matrix tangent;
     const bool with_tangent = context.want_tangent && target.tangent_values != nullptr;
+    const TangentEntry* entries = tangent_entries(target);
     for (int e = 0; e < size(); ++e) {
       gather(e, state, local);
       if constexpr (!detail::ReadsLastTrial<Kernel>::value) trial_[e] = base_[e];
       kernels_[e].evaluate(local, context, base_[e], trial_[e], residual, with_tangent ? &tangent : nullptr);
       if (!residual.allFinite()) throw_non_finite(e, "residual", residual);
       scatter_residual(e, residual, *target.residual);
-      if (with_tangent) scatter_tangent(e, tangent, target.tangent_values);
+      if (with_tangent) scatter_tangent(e, tangent, entries, target.tangent_values);
     }
   }
 
@@ -426,6 +445,10 @@ class ElementBlockOf final : public ElementBlock {
  private:
   static constexpr bool kBatched = detail::BatchOf<Kernel>::value;
   using Batch = typename detail::BatchOf<Kernel>::type;
+  struct TangentEntry {
+    int entry;  // row-major index into the element matrix
+    int slot;   // position in the sparse values
+  };
 
   /// (Re)builds the batch and its gather buffers: once per structure, outside the Newton loop.
   void prepare_batch() {
@@ -444,6 +467,7 @@ class ElementBlockOf final : public ElementBlock {
     for (int e = 0; e < size(); ++e)
       for (int t = element_entries_[e]; t < element_entries_[e + 1]; ++t)
         batch_entries_.push_back({tangent_entries_[t].entry * size() + e, tangent_entries_[t].slot});
+    solver_batch_entries_ = in_solver_layout(batch_entries_);
   }
 
   /// The batch path: gather every element's nodal values as structure of arrays, evaluate
@@ -463,7 +487,9 @@ class ElementBlockOf final : public ElementBlock {
       for (int k = 0; k < kDofs; ++k) global[dofs[k * count + e]] += residual[k * count + e];
     if (!with_tangent) return;
     const double* tangent = batch_->tangent();
-    for (const TangentEntry& t : batch_entries_) target.tangent_values[t.slot] += tangent[t.entry];
+    if (target.solver_layout != 0 && target.solver_layout != solver_layout_) throw_unbound_layout();
+    const std::vector<TangentEntry>& entries = target.solver_layout != 0 ? solver_batch_entries_ : batch_entries_;
+    for (const TangentEntry& t : entries) target.tangent_values[t.slot] += tangent[t.entry];
   }
 
   /// Every element's nodal values as structure of arrays, in the batch's buffers.
@@ -499,11 +525,25 @@ class ElementBlockOf final : public ElementBlock {
       global.template segment<kDofsPerNode>(dof_index(nodes_[e][n], 0)) +=
           residual.template segment<kDofsPerNode>(kDofsPerNode * n);
   }
-  void scatter_tangent(int e, const Matrix& tangent, double* values) const {
+  void scatter_tangent(int e, const Matrix& tangent, const TangentEntry* entries, double* values) const {
     const double* entry = tangent.data();
-    const TangentEntry* end = tangent_entries_.data() + element_entries_[e + 1];
-    for (const TangentEntry* t = tangent_entries_.data() + element_entries_[e]; t != end; ++t)
-      values[t->slot] += entry[t->entry];
+    const TangentEntry* end = entries + element_entries_[e + 1];
+    for (const TangentEntry* t = entries + element_entries_[e]; t != end; ++t) values[t->slot] += entry[t->entry];
+  }
+  /// The element entries of the layout the target asks for, slot by slot.
+  const TangentEntry* tangent_entries(const AssemblyTarget& target) const {
+    if (target.solver_layout == 0) return tangent_entries_.data();
+    if (target.solver_layout != solver_layout_) throw_unbound_layout();
+    return solver_entries_.data();
+  }
+  /// Entries with their slots moved to the solver's layout (none before it is bound).
+  std::vector<TangentEntry> in_solver_layout(std::vector<TangentEntry> entries) const {
+    if (solver_destination_.empty()) return {};
+    for (TangentEntry& t : entries) t.slot = solver_destination_[t.slot];
+    return entries;
+  }
+  [[noreturn]] void throw_unbound_layout() const {
+    throw std::logic_error("block '" + name_ + "': a tangent assembled in a solver's layout that is not bound to it");
   }
   /// The batch's first element with a non-finite residual entry, named.
   [[noreturn]] void throw_non_finite_batch() const {
@@ -534,16 +574,15 @@ class ElementBlockOf final : public ElementBlock {
   std::vector<std::array<int, kNodes>> nodes_;
   std::vector<Kernel> kernels_;
   std::vector<History> committed_, base_, trial_;
-  struct TangentEntry {
-    int entry;  // row-major index into the element matrix
-    int slot;   // position in the sparse values
-  };
   std::vector<TangentEntry> tangent_entries_;
   std::vector<int> element_entries_;         // element e's entries: [element_entries_[e], element_entries_[e + 1])
   std::vector<TangentEntry> batch_entries_;  // entry: the place in the batch's tangent
-  std::vector<int> batch_dofs_;              // the global DOF of the batch's value [k * size + e]
-  std::unique_ptr<Batch> batch_;             // kernels with a batch path only
-  mutable std::vector<double> gathered_;     // the batch's displacement, velocity and acceleration
+  std::vector<int> solver_destination_;      // bind_solver_slots(): where each slot lands in the solver
+  long solver_layout_ = 0;                   // and that layout's id
+  std::vector<TangentEntry> solver_entries_, solver_batch_entries_;  // the two above in that layout
+  std::vector<int> batch_dofs_;           // the global DOF of the batch's value [k * size + e]
+  std::unique_ptr<Batch> batch_;          // kernels with a batch path only
+  mutable std::vector<double> gathered_;  // the batch's displacement, velocity and acceleration
 };
 
 }  // namespace tirefe

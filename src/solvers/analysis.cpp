@@ -131,7 +131,15 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
   context.want_tangent = with_tangent;
   context.first_evaluation = first_evaluation_;
   first_evaluation_ = false;
-  assembler_.assemble(context, trial_, residual_all_);
+  RingSolver* solver = with_tangent ? solver_taking_tangent() : nullptr;
+  tangent_in_solver_ = false;
+  if (solver) {
+    // Straight into the solver's blocks: no sparse values to clear and copy (docs/kernel.md).
+    assembler_.assemble_into_solver(context, trial_, residual_all_, solver->begin_assembly());
+    tangent_in_solver_ = true;
+  } else {
+    assembler_.assemble(context, trial_, residual_all_);
+  }
 
   integrator_.add_load_terms(external_new_, carried_.old_internal_forces, carried_.external_old, residual_all_);
 
@@ -147,6 +155,27 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
     free_residual[dofs.equation(dof)] = 0.0;
   }
   force_level = std::max({external_new_.norm(), std::sqrt(reaction_squared), resolve_reference_});
+}
+
+RingSolver* Analysis::solver_taking_tangent() {
+  RingSolver* ring = solvers_.driving() ? nullptr : solvers_.ring_solver();
+  if (!ring || !solvers_.analyzed(assembler_.pattern_version())) return nullptr;
+  if (ring != layout_solver_ || layout_pattern_ != assembler_.pattern_version() || !assembler_.solver_layout_bound()) {
+    assembler_.bind_solver_layout(ring->entry_destinations());
+    layout_solver_ = ring;
+    layout_pattern_ = assembler_.pattern_version();
+  }
+  return ring;
+}
+
+void Analysis::factorize_tangent(LinearSolver& solver) {
+  if (!tangent_in_solver_) {
+    solver.factorize(assembler_.tangent());
+    return;
+  }
+  if (&solver != layout_solver_)
+    throw std::logic_error("analysis: the tangent lies in one solver's storage and another was asked to factor it");
+  layout_solver_->factorize_assembled();
 }
 
 double Analysis::apply_increment(const Eigen::VectorXd& increment) {

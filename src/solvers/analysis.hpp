@@ -167,7 +167,11 @@ class Analysis : private StepEquations, private SteppedSystem {
   // StepEquations
   void evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) override;
   const SparseMatrix& tangent() const override { return assembler_.tangent(); }
+  void factorize_tangent(LinearSolver& solver) override;
   double apply_increment(const Eigen::VectorXd& increment) override;
+  /// The RingSolver that Newton's tangent is assembled into (its own storage, bound to the
+  /// assembler for this pattern), or null: the RingSolver solving alone, not driven.
+  RingSolver* solver_taking_tangent();
   /// A host's driven_tangent() and resolve_trial_step() read the converged step's tangent.
   bool wants_converged_tangent() const override { return !driven_.empty(); }
 
@@ -191,10 +195,13 @@ class Analysis : private StepEquations, private SteppedSystem {
   StepRecord trial_record_;
   int response_pattern_ = -1;  // pattern of the trial's factors from driven_tangent(); -1: none
   Eigen::VectorXd driven_move_, response_;
-  double trial_reference_ = 0.0;    // Newton's reference force of the step's trial from the predictor
-  double resolve_reference_ = 0.0;  // that force, a floor of the force level while resolving
-  Eigen::VectorXd inertia_forces_;  // M a of the step being finished
-  bool first_evaluation_ = false;   // the next evaluate() is the first of a Newton solve
+  double trial_reference_ = 0.0;         // Newton's reference force of the step's trial from the predictor
+  double resolve_reference_ = 0.0;       // that force, a floor of the force level while resolving
+  Eigen::VectorXd inertia_forces_;       // M a of the step being finished
+  bool first_evaluation_ = false;        // the next evaluate() is the first of a Newton solve
+  RingSolver* layout_solver_ = nullptr;  // the solver whose layout the assembler holds bound,
+  int layout_pattern_ = -1;              // for this pattern version
+  bool tangent_in_solver_ = false;       // the last evaluation's tangent lies in layout_solver_
 };
 
 }  // namespace tirefe

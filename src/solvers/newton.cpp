@@ -84,7 +84,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
         ++report_.retaken;
       }
       try {
-        linear_solver.factorize(equations.tangent());
+        equations.factorize_tangent(linear_solver);
       } catch (const SingularMatrix& singular) {
         throw ConvergenceFailure(singular.what());
       }

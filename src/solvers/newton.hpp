@@ -67,6 +67,9 @@ class StepEquations {
   /// left in tangent(), when with_tangent); also returns the step's force level.
   virtual void evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) = 0;
   virtual const SparseMatrix& tangent() const = 0;
+  /// Factors the last evaluation's tangent with 'solver' (throws SingularMatrix); equations
+  /// that assembled it into the solver's own storage factor it there.
+  virtual void factorize_tangent(LinearSolver& solver) { solver.factorize(tangent()); }
   /// Adds the increment of the free equations to the trial state; returns the
   /// relative increment size |du|_inf / (1 + |u|_inf).
   virtual double apply_increment(const Eigen::VectorXd& increment) = 0;

@@ -230,6 +230,14 @@ void RingSolver::analyze(const Matrix& pattern) {
                          "), which are not ring neighbours; give the ring nodes in ring order, the nodes "
                          "coupled to everything as border nodes, or use the KLU solver");
     }
+  // The same destinations row by row (held ones in the sink's row, padded_size_), for
+  // factorize_assembled()'s row scales.
+  row_starts_.assign(padded_size_ + 3, 0);
+  for (int row : row_position_) ++row_starts_[row + 2];
+  for (int position = 0; position <= padded_size_ + 1; ++position) row_starts_[position + 1] += row_starts_[position];
+  row_offsets_.resize(destination_.size());
+  for (size_t entry = 0; entry < destination_.size(); ++entry)
+    row_offsets_[row_starts_[row_position_[entry] + 1]++] = destination_[entry];
   padding_offsets_.clear();
   for (int position : padding_) padding_offsets_.push_back(entry_offset(position, position));
   pattern_starts_.assign(starts, starts + equations + 1);
@@ -313,10 +321,10 @@ void RingSolver::with_width(Work&& work) const {
 void RingSolver::factorize_interior(const Matrix& matrix) {
   if (pattern_starts_.empty()) analyze(matrix);
   check_same_pattern(matrix);
-  interior_factored_ = border_factored_ = condensed_ = false;
+  begin_assembly();
+  assembly_open_ = false;
 
   // Scatter the values into the padded blocks and note each row's largest entry.
-  std::fill(blocks_.begin(), blocks_.end(), 0.0);
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
   const double* values = matrix.valuePtr();
   const int stored = static_cast<int>(matrix.nonZeros());
@@ -325,11 +333,38 @@ void RingSolver::factorize_interior(const Matrix& matrix) {
     double& scale = row_scale_[row_position_[entry]];
     scale = std::max(scale, std::abs(values[entry]));
   }
+  eliminate_interior();
+}
+
+double* RingSolver::begin_assembly() {
+  if (pattern_starts_.empty()) throw std::logic_error("ring solver: begin_assembly() needs analyze() first");
+  interior_factored_ = border_factored_ = condensed_ = false;
+  std::fill(blocks_.begin(), blocks_.end(), 0.0);
+  assembly_open_ = true;
+  return blocks_.data();
+}
+
+void RingSolver::factorize_assembled() {
+  if (!assembly_open_)
+    throw std::logic_error("ring solver: factorize_assembled() needs begin_assembly() and an assembly first");
+  assembly_open_ = false;  // the elimination works in place: one factorization per assembly
+  // Each row's largest entry, as factorize_interior() notes it while it scatters.
+  const double* base = blocks_.data();
+  for (int position = 0; position < padded_size_; ++position) {
+    double scale = 0.0;
+    for (int k = row_starts_[position]; k < row_starts_[position + 1]; ++k)
+      scale = std::max(scale, std::abs(base[row_offsets_[k]]));
+    row_scale_[position] = scale;
+  }
+  eliminate_interior();
+  factor_border();
+}
+
+void RingSolver::eliminate_interior() {
   for (size_t i = 0; i < padding_.size(); ++i) {
     blocks_[padding_offsets_[i]] = 1.0;
     row_scale_[padding_[i]] = 1.0;
   }
-
   eliminate_satellites();
   with_width([this](auto width) { eliminate_chain<decltype(width)::value>(); });
   eliminate_first_ring_node();
@@ -434,6 +469,10 @@ void RingSolver::eliminate_first_ring_node() {
 
 void RingSolver::factorize(const Matrix& matrix) {
   factorize_interior(matrix);
+  factor_border();
+}
+
+void RingSolver::factor_border() {
   const int first = 3 * chain_ + 3, border = width_ - 3;
   Eigen::Map<Eigen::MatrixXd> s(blocks_.data() + border_block_offset(), width_, width_);
   const int failed = lu_factor(s.bottomRightCorner(border, border), &pivots_[first], &row_scale_[first]);

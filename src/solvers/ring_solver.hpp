@@ -129,6 +129,15 @@ class RingSolver final : public LinearSolver {
   /// when K_uu (the ring with the border held) is singular.
   void factorize_interior(const Matrix& matrix);
 
+  /// The tangent assembled straight into the solver's own storage, skipping the sparse
+  /// matrix's values (Assembler::bind_solver_layout, docs/kernel.md): where each stored
+  /// entry of the analysed pattern, in the pattern's order, lands in that storage.
+  const std::vector<int>& entry_destinations() const { return destination_; }
+  /// The storage, cleared for an assembly into it; the factors it held are gone.
+  double* begin_assembly();
+  /// factorize() of the matrix assembled into begin_assembly()'s storage, the same numbers.
+  void factorize_assembled();
+
   /// H = K_bb - K_bu K_uu^-1 K_ub (eq. 27) over the border equations, in the order of
   /// border_equations(); for the effective tangent cK K + cC C + cM M it is the spindle
   /// force Jacobian of eq. 24. Valid after factorize() or factorize_interior().
@@ -152,6 +161,8 @@ class RingSolver final : public LinearSolver {
   int border_size() const { return static_cast<int>(border_equations_.size()); }
 
  private:
+  void eliminate_interior();
+  void factor_border();
   void eliminate_satellites();
   void forward_satellites(double* padded) const;
   void back_satellites(double* padded) const;
@@ -208,6 +219,7 @@ class RingSolver final : public LinearSolver {
   std::vector<int> padding_offsets_;                // their diagonal entries' offsets in blocks_
   std::vector<int> destination_;                    // offset in blocks_ of each stored entry of the pattern
   std::vector<int> row_position_;                   // and the padded position of its row
+  std::vector<int> row_starts_, row_offsets_;       // the destinations of each padded row's entries
   std::vector<int> pattern_starts_, pattern_rows_;  // the analysed pattern, to check factorize()'s
   std::vector<int> border_equations_;
 
@@ -218,6 +230,7 @@ class RingSolver final : public LinearSolver {
   Eigen::MatrixXd border_schur_;
   mutable Eigen::VectorXd work_;    // a padded right-hand side
   mutable bool condensed_ = false;  // work_ holds condense()'s forward sweep
+  bool assembly_open_ = false;      // begin_assembly() gave the storage to an assembly not yet factored
   bool interior_factored_ = false;
   bool border_factored_ = false;
 };
