@@ -321,8 +321,7 @@ void RingSolver::with_width(Work&& work) const {
 void RingSolver::factorize_interior(const Matrix& matrix) {
   if (pattern_starts_.empty()) analyze(matrix);
   check_same_pattern(matrix);
-  begin_assembly();
-  assembly_open_ = false;
+  clear_blocks();
 
   // Scatter the values into the padded blocks and note each row's largest entry.
   std::fill(row_scale_.begin(), row_scale_.end(), 0.0);
@@ -336,10 +335,14 @@ void RingSolver::factorize_interior(const Matrix& matrix) {
   eliminate_interior();
 }
 
+void RingSolver::clear_blocks() {
+  interior_factored_ = border_factored_ = condensed_ = assembly_open_ = false;
+  std::fill(blocks_.begin(), blocks_.end(), 0.0);
+}
+
 double* RingSolver::begin_assembly() {
   if (pattern_starts_.empty()) throw std::logic_error("ring solver: begin_assembly() needs analyze() first");
-  interior_factored_ = border_factored_ = condensed_ = false;
-  std::fill(blocks_.begin(), blocks_.end(), 0.0);
+  clear_blocks();
   assembly_open_ = true;
   return blocks_.data();
 }

@@ -161,6 +161,7 @@ class RingSolver final : public LinearSolver {
   int border_size() const { return static_cast<int>(border_equations_.size()); }
 
  private:
+  void clear_blocks();  // the factors gone, every block zero
   void eliminate_interior();
   void factor_border();
   void eliminate_satellites();
