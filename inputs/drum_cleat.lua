@@ -6,9 +6,9 @@
 -- friction makes the tire roll; then the speed is held to 8 s. The cleat comes round every
 -- pi D / v (0.375 s at full speed). The spindle forces, spin rate, drum angle, contact
 -- totals and energies are written every step, the deformed tire every fields_interval.
--- The deck ends with a summary of the last two cleat passages at full speed (their readings
--- alternate from passage to passage): peak-to-peak spindle forces and the ringing
--- frequencies of Fx and Fz on top of the cleat and after it.
+-- The deck ends with a summary of the last two cleat passages at full speed (their peaks
+-- depend on where the tread nodes meet the cleat): peak-to-peak spindle forces and the
+-- ringing frequencies of Fx and Fz on top of the cleat and after it, each and together.
 --
 --   tirefe inputs/drum_cleat.lua [speed_kmh=51.3] [cleat_height=0.025] [integrator=newmark] ...
 --
@@ -122,7 +122,8 @@ stepping.integrator(model, { type = p.integrator, alpha = p.alpha, gamma = p.new
 local record, totals = stepping.run(model, { to = p.end_time, time_step = time_step, channels = {
   fx = function() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fx" } end,
   fz = function() return press:load() end,
-  spin = function() return model:value{ node = tire.spindle, quantity = "spin_rate" } end } })
+  spin = function() return model:value{ node = tire.spindle, quantity = "spin_rate" } end,
+  turn = function() return model:value{ node = tire.spindle, dof = "rz" } end } })
 stepping.report(model, totals, "dynamic")
 
 -- Summary of the last two passages at full speed with their ringing recorded
@@ -131,7 +132,8 @@ stepping.report(model, totals, "dynamic")
 local cleat_ringing = require("cleat_ringing")
 local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
   ring_time = p.ring_time, end_time = p.end_time, speed_kmh = p.speed_kmh, measured = cleat_ringing.measured(p),
-  contact = tire.contact, unloaded_radius = tire_parameters.outer_diameter / 2, deflection = loaded_deflection }
+  contact = tire.contact, unloaded_radius = tire_parameters.outer_diameter / 2, deflection = loaded_deflection,
+  elements = p.elements }
 if p.check then
   tirefe.check{ name = "pressed to the load [N]", value = spindle_fz_at_start, expected = p.load, tolerance = 1e-3 * p.load }
   tirefe.check{ name = "a full-speed cleat passage was run", value = summary.passage and 1 or 0, expected = 1,

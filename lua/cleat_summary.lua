@@ -1,12 +1,13 @@
 -- The summary of a drum-cleat run (docs/drum_cleat.md): the last two passages at full speed
--- whose ringing was recorded (the rig's read_passages: their readings alternate from passage
--- to passage), each read for its peak-to-peak spindle forces and ringing frequencies
--- (lua/cleat_ringing.lua), the impacts' period, and the rolling radius just before the last.
+-- whose ringing was recorded (the rig's read_passages: their readings differ with where the
+-- tread nodes meet the cleat), each read for its peak-to-peak spindle forces and ringing
+-- frequencies (lua/cleat_ringing.lua), both together, the impacts' period, and the rolling
+-- radius just before the last.
 -- Printed, and written to the model's /results.
 --
 --   local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages,
 --     record = record, ring_time = 0.15, end_time = 8.0, speed_kmh = 51.3, measured = ...,
---     contact = tire.contact, unloaded_radius = 0.2715, deflection = 0.0251 }
+--     contact = tire.contact, unloaded_radius = 0.2715, deflection = 0.0251, elements = 100 }
 local series, cleat_ringing, rolling = require("series"), require("cleat_ringing"), require("rolling")
 local cleat_summary = {}
 
@@ -32,11 +33,39 @@ local function report_passage(args, reading, prefix)
   model:result{ name = prefix .. "fz_peak_to_peak", value = reading.fz_peak_to_peak, unit = "N" }
 end
 
--- args.record: the run's time, fx, fz and spin series; args.measured: cleat_ringing.measured
+-- The two passages together: their peak-to-peak forces' mean +- half their difference, and
+-- the tire's turn from one cleat's arrival to the next in node spacings (from the spindle's
+-- rotation, record.turn, and args.elements): how far apart its tread nodes met the two
+-- cleats, which sets the difference (docs/drum_cleat.md, "Two passages"). Returns the turn.
+local function report_both(args, before, last)
+  local model = args.model
+  local fx, fz = (before.fx_peak_to_peak + last.fx_peak_to_peak) / 2, (before.fz_peak_to_peak + last.fz_peak_to_peak) / 2
+  local text = string.format("both passages: Fx peak to peak %.0f +- %.0f N, Fz %.0f +- %.0f N (mean +- half the "
+                             .. "difference)", fx, math.abs(last.fx_peak_to_peak - fx), fz,
+                             math.abs(last.fz_peak_to_peak - fz))
+  model:result{ name = "mean_fx_peak_to_peak", value = fx, unit = "N" }
+  model:result{ name = "mean_fz_peak_to_peak", value = fz, unit = "N" }
+  local turn
+  if args.record.turn and args.elements then
+    local record, spacing = args.record, 2 * math.pi / args.elements
+    turn = math.abs(series.at(record.time, record.turn, last.passage.on)
+                    - series.at(record.time, record.turn, before.passage.on)) / spacing
+    local offset = turn - math.floor(turn)
+    text = text .. string.format("\n  the tire turned %.2f node spacings from the one cleat to the other: its tread "
+                                 .. "nodes met them %.2f of a spacing apart", turn, math.min(offset, 1 - offset))
+    model:result{ name = "node_spacings_between_passages", value = turn }
+  end
+  print(text)
+  return turn
+end
+
+-- args.record: the run's time, fx, fz and spin series (and turn, the spindle's rotation [rad],
+-- with args.elements, the tire's wedges: the node spacings between the passages); args.measured: cleat_ringing.measured
 -- of the run's conditions (or nil). Returns the summary: the last passage, fx_peak_to_peak,
 -- fz_peak_to_peak [N] and ringing of it, 'before' (the same for the passage before it, or
 -- nil), measured, impact_period [s], rolling_radius and belt_radius [m] (the contact nodes'
--- ring circumference / 2 pi); empty without a passage. /results holds the last passage's
+-- ring circumference / 2 pi), node_spacings_between (the tire's turn from the one passage
+-- to the other, or nil); empty without a passage. /results holds the last passage's
 -- under their names, the one before's with "before_" in front.
 function cleat_summary.report(args)
   local model, rig, record = args.model, args.rig, args.record
@@ -61,6 +90,7 @@ function cleat_summary.report(args)
                         rig:turn_time()))
     model:result{ name = "impact_period", value = summary.impact_period, unit = "s" }
   end
+  if summary.before then summary.node_spacings_between = report_both(args, summary.before, summary) end
   -- Steady rolling before the passage: drum surface speed / spin rate over 20 ms, beside the
   -- contact nodes' ring at the end of the run (the belt rings little by then).
   summary.rolling_radius = rolling.radius{ time = record.time, spin = record.spin, speed = rig.speed,

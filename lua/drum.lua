@@ -87,8 +87,8 @@ end
 
 -- The passages a summary reads: the last two at full speed (from start + spin_up_time on)
 -- that have rung for ring_time by end_time, in time order; one or none if there are fewer.
--- Two, because at full speed the readings of successive passages alternate between two
--- sets (docs/drum_cleat.md, "Two passages"): one passage gives one of them.
+-- Two, because a passage's peaks depend on where the tread nodes meet the cleat, which
+-- changes from one passage to the next (docs/drum_cleat.md, "Two passages").
 function Rig:read_passages(passages, ring_time, end_time)
   local rung = {}
   for _, passage in ipairs(passages) do

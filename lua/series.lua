@@ -4,6 +4,7 @@
 --   local series = require("series")
 --   local low, high = series.range(record.time, record.fz, 2.4, 2.6)
 --   local peak_time, peak = series.peak(record.time, record.fz, 2.4, 2.6)
+--   local turn = series.at(record.time, record.turn, 7.537)
 local series = {}
 
 -- The lowest and highest value at times from <= t <= to (math.huge, -math.huge if none).
@@ -33,6 +34,17 @@ function series.mean(time, values, from, to, fn)
   end
   if count == 0 then return nil end
   return sum / count
+end
+
+-- The value at time t, linear between the samples either side (nil outside the series).
+function series.at(time, values, t)
+  for i = 2, #time do
+    if time[i] >= t and time[i - 1] <= t then
+      local w = (t - time[i - 1]) / (time[i] - time[i - 1])
+      return values[i - 1] + w * (values[i] - values[i - 1])
+    end
+  end
+  return nil
 end
 
 -- The mean spacing of the given times (nil for fewer than two).

@@ -102,11 +102,15 @@ tirefe.check{ name = "mean over from < t <= to", value = series.mean(time, fz, 1
               expected = 12.5, tolerance = 1e-15 }
 tirefe.check{ name = "mean spacing of peak times [s]", value = series.mean_spacing{ 2.0, 2.375, 2.75, 3.125 },
               expected = 0.375, tolerance = 1e-15 }
+tirefe.check{ name = "value between samples, linear", value = series.at(time, fz, 2.25), expected = 21.25, tolerance = 1e-15 }
+tirefe.check{ name = "value at a sample", value = series.at(time, fz, 5.0), expected = 20, tolerance = 0 }
+tirefe.check{ name = "no value outside the series", value = series.at(time, fz, 5.5) == nil and 1 or 0, expected = 1,
+              tolerance = 0 }
 tirefe.check{ name = "rolling radius = speed / spin, averaged [m]",
               value = rolling.radius{ time = time, spin = { 10, 20, 40, 50, 60 }, speed = 2.0, from = 1.0, to = 3.0 },
               expected = 0.075, tolerance = 1e-15 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 8);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 11);
 }
 
 TEST_CASE("lua/press.lua presses a tire onto a road to a load; rolling.lua's contact ring", "[lua][modules][press]") {
@@ -259,7 +263,7 @@ TEST_CASE("lua/cleat_summary.lua reads the last two full-speed passages of made-
   const std::string deck = folder.write("cleat_summary_deck.lua", R"(
 -- Made-up spindle forces of a 0.5 s spin-up rig: from each passage's first touch Fx rings at
 -- 35 Hz (damping ratio 0.1) and Fz at 85 Hz (0.05), each gone by the next passage; the tire
--- rolls on a radius of 0.27 m.
+-- rolls on a radius of 0.27 m, its turn recorded.
 local rig = require("drum").rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 0.5 }
 local passages = rig:passages{ cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 3.5 }
 local lag = require("cleat_ringing").reach / rig.speed
@@ -273,10 +277,11 @@ local function ring(t, f, zeta, amplitude)
   end
   return value
 end
-local record = { time = {}, fx = {}, fz = {}, spin = {} }
+local record = { time = {}, fx = {}, fz = {}, spin = {}, turn = {} }
 for k = 0, 6000 do
   local t = 2.0 + k * 2.5e-4
   record.time[#record.time + 1], record.spin[#record.spin + 1] = t, rig:surface_speed(t) / 0.27
+  record.turn[#record.turn + 1] = -rig:angle(t) * 0.85 / 0.27
   record.fx[#record.fx + 1], record.fz[#record.fz + 1] = ring(t, 35, 0.1, -2000), 3800 + ring(t, 85, 0.05, 3000)
 end
 -- A stand-in model: its results kept, its contact nodes on a regular 100-gon of radius 0.27 m.
@@ -288,7 +293,8 @@ local model = { result = function(_, args) results[args.name] = args.value end,
                   return 0.27 * (args.dof == "ux" and math.cos(angle) or math.sin(angle))
                 end }
 local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
-  ring_time = 0.15, end_time = 3.5, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+  ring_time = 0.15, end_time = 3.5, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025,
+  elements = 100 }
 tirefe.check{ name = "the last passage rung out by 3.5 s", value = summary.passage.on, expected = passages[3].on,
               tolerance = 0 }
 -- A damped sinusoid's first two extrema, at tan(omega tau) = omega / sigma, give its peak to peak.
@@ -322,6 +328,15 @@ tirefe.check{ name = "written to the results as before_ [N]", value = results.be
               expected = summary.before.fx_peak_to_peak, tolerance = 0 }
 tirefe.check{ name = "its window written as before_ [s]", value = results.before_fx_leaving_from_s,
               expected = summary.before.ringing.fx_leaving.from, tolerance = 0 }
+-- Both passages: the mean peak to peak, and a drum's turn apart, 100 * 0.85 / 0.27 node spacings.
+tirefe.check{ name = "mean Fx peak to peak of both [N]", value = results.mean_fx_peak_to_peak,
+              expected = (summary.fx_peak_to_peak + summary.before.fx_peak_to_peak) / 2, relative = 1e-15 }
+tirefe.check{ name = "mean Fz peak to peak of both [N]", value = results.mean_fz_peak_to_peak,
+              expected = (summary.fz_peak_to_peak + summary.before.fz_peak_to_peak) / 2, relative = 1e-15 }
+tirefe.check{ name = "node spacings the tire turned between the passages", value = summary.node_spacings_between,
+              expected = 100 * 0.85 / 0.27, relative = 1e-12 }
+tirefe.check{ name = "written to the results", value = results.node_spacings_between_passages,
+              expected = summary.node_spacings_between, tolerance = 0 }
 local one = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
   ring_time = 0.15, end_time = 3.2, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
 tirefe.check{ name = "one passage rung out by 3.2 s: no passage before", value = one.before == nil and 1 or 0,
@@ -347,7 +362,7 @@ cleat.end_time = 3.0
 tirefe.check{ name = "a run long enough is taken",
               value = pcall(rig.require_full_speed_passage, rig, cleat, 0.15) and 1 or 0, expected = 1, tolerance = 0 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 20);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 24);
 }
 
 TEST_CASE("lua/guard.lua refuses a parameter out of its range, by name", "[lua][modules]") {
