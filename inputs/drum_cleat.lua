@@ -91,6 +91,7 @@ model:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_for
 model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }
 model:history{ name = "spin_rate", node = tire.spindle, quantity = "spin_rate" }
 model:history{ name = "spindle_height", node = tire.spindle, dof = "uy" }
+model:history{ name = "spindle_turn", node = tire.spindle, dof = "rz" }
 
 -- 0-1 s: inflation. The drum is defined after it: automatic contact penalties are scaled
 -- from the structure's stiffness, and the uninflated tire has none to speak of.
@@ -119,12 +120,12 @@ model:newton{ tolerance = p.newton_tolerance }
 model:step_control{ min_dt = p.dt_cleat / 1024, max_cuts = 10 }
 local stepping = require("stepping")
 stepping.integrator(model, { type = p.integrator, alpha = p.alpha, gamma = p.newmark_gamma })
-local record, totals = stepping.run(model, { to = p.end_time, time_step = time_step, channels = {
-  fx = function() return model:value{ node = tire.spindle, quantity = "spindle_force", component = "fx" } end,
-  fz = function() return press:load() end,
-  spin = function() return model:value{ node = tire.spindle, quantity = "spin_rate" } end,
-  turn = function() return model:value{ node = tire.spindle, dof = "rz" } end } })
+local _, totals = stepping.run(model, { to = p.end_time, time_step = time_step })
 stepping.report(model, totals, "dynamic")
+-- The whole run's spindle channels, one value per step, as the result file holds them.
+local function history(name) return model:history_values{ name = name } end
+local record = { time = history("time"), fx = history("spindle_fx"), fz = history("spindle_fz"),
+                 spin = history("spin_rate"), turn = history("spindle_turn") }
 
 -- Summary of the last two passages at full speed with their ringing recorded
 -- (lua/cleat_summary.lua): peak-to-peak forces, ringing frequencies, the impacts' period,

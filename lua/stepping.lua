@@ -8,11 +8,13 @@
 local stepping = {}
 
 -- Steps to args.to with dt = args.time_step(t) (the last step shortened to land on it).
--- Returns the record (time and one list per channel, read after each step) and the totals:
--- steps taken (cut steps count each piece), Newton iterations, cuts and CPU time [s].
+-- Returns the record (time and one list per channel of args.channels, if any, read after
+-- each step; the result file's history channels cost less: model:history_values) and the
+-- totals: steps taken (cut steps count each piece), Newton iterations, cuts and CPU time [s].
 function stepping.run(model, args)
+  local channels = args.channels or {}
   local record = { time = {} }
-  for name in pairs(args.channels) do record[name] = {} end
+  for name in pairs(channels) do record[name] = {} end
   local totals = { steps = 0, newton = 0, cuts = 0 }
   local cpu_start = os.clock()  -- CPU time of this process
   while model:time() < args.to - 1e-9 do
@@ -21,7 +23,7 @@ function stepping.run(model, args)
     totals.steps, totals.newton, totals.cuts = totals.steps + step.steps, totals.newton + step.newton_iterations,
                                                totals.cuts + step.cuts
     record.time[#record.time + 1] = model:time()
-    for name, read in pairs(args.channels) do record[name][#record[name] + 1] = read() end
+    for name, read in pairs(channels) do record[name][#record[name] + 1] = read() end
   end
   totals.cpu_time = os.clock() - cpu_start
   return record, totals

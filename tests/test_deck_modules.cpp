@@ -238,6 +238,45 @@ tirefe.check{ name = "first step 0.1 s [s]", value = record.time[1], expected = 
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 7);
 }
 
+TEST_CASE("model:history_values returns a channel's values, one per step, as model:value read them",
+          "[lua][macros][output]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("history_values_deck.lua", R"(
+-- A cantilever under a tip load growing with time (the default ramp), quasi-static.
+local model = tirefe.model{ title = "history values" }
+local a = model:node{ x = 0, y = 0 }
+local b = model:node{ x = 1, y = 0 }
+model:section{ name = "s", EA = 1e5, GA = 1e5, EI = 1 }
+model:beam{ section = "s", nodes = { a, b } }
+model:fix{ node = a }
+model:load{ node = b, fy = -0.01 }
+model:history{ name = "tip_uy", node = b, dof = "uy" }
+tirefe.check{ name = "no values before the first step", value = #model:history_values{ name = "tip_uy" },
+              expected = 0, tolerance = 0 }
+local read = {}
+for k = 1, 5 do
+  model:step{ dt = 0.1 }
+  read[k] = model:value{ node = b, dof = "uy" }
+end
+local time, tip = model:history_values{ name = "time" }, model:history_values{ name = "tip_uy" }
+tirefe.check{ name = "one value per step", value = #tip, expected = 5, tolerance = 0 }
+tirefe.check{ name = "their times [s]", value = time[5], expected = 0.5, tolerance = 1e-12 }
+local differing = 0
+for k = 1, 5 do if tip[k] ~= read[k] then differing = differing + 1 end end
+tirefe.check{ name = "the values model:value read after each step, bit for bit", value = differing, expected = 0,
+              tolerance = 0 }
+-- One linear beam element with one-point integration: P L^3 / (4 EI) + P L / GA, with
+-- P = 0.01 N x 0.5 at t = 0.5 s (small: the linear answer).
+tirefe.check{ name = "the tip under the load, one element's [m]", value = tip[5], expected = -0.005 / 4 - 0.005 / 1e5,
+              relative = 1e-3 }
+local ok, message = pcall(model.history_values, model, { name = "tip_ux" })
+local named = not ok and message:find("no history channel 'tip_ux'", 1, true) and message:find("tip_uy", 1, true)
+tirefe.check{ name = "an unknown channel is refused, naming the channels", value = named and 1 or 0, expected = 1,
+              tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 6);
+}
+
 TEST_CASE("lua/stepping.lua sets the integrator by name", "[lua][modules]") {
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("integrator_deck.lua", R"(

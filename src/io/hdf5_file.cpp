@@ -644,6 +644,13 @@ std::vector<unsigned char> Hdf5File::read_bytes(const std::string& dataset_path)
   return read_numeric<unsigned char>(dataset_path, H5T_NATIVE_UCHAR, nullptr);
 }
 
+std::vector<double> Hdf5File::read_rows(const ExtendibleDataset& dataset) const {
+  std::vector<double> rows = read_doubles(dataset.path());
+  rows.insert(rows.end(), dataset.staged_.begin(), dataset.staged_.end());
+  rows.insert(rows.end(), dataset.pending_.begin(), dataset.pending_.end());
+  return rows;
+}
+
 ExtendibleDataset* Hdf5File::find_extendible(const std::string& dataset_path) {
   for (ExtendibleDataset& dataset : datasets_)
     if (dataset.path() == dataset_path) return &dataset;

@@ -130,6 +130,18 @@ void ResultFile::add_channel(const std::string& name, const std::string& unit, C
   channels_.push_back({&dataset, std::move(channel)});
 }
 
+std::vector<double> ResultFile::history_values(const std::string& name) {
+  if (discarded_) throw IoError("the history of '" + path() + "' is not kept by this process");
+  flush_job_.wait();
+  std::string names;
+  for (size_t i = 0; i < channel_names_.size(); ++i) {
+    if (channel_names_[i].first == name)
+      return channels_.empty() ? std::vector<double>{} : file_.read_rows(*channels_[i].dataset);
+    names += (i == 0 ? "" : ", ") + channel_names_[i].first;
+  }
+  throw IoError("no history channel '" + name + "' in '" + path() + "': its channels are " + names);
+}
+
 void ResultFile::start_history() {
   flush_job_.wait();
   for (size_t i = 0; i < channel_names_.size(); ++i) {

@@ -117,6 +117,9 @@ class ResultFile {
   /// After a restart refilled the rows: the views and the index of the frames it brought back.
   void index_restored_frames();
 
+  /// The values history channel 'name' recorded, one per accepted step (none before the
+  /// first step): what the file will hold, flushed or not.
+  std::vector<double> history_values(const std::string& name);
   /// Records one accepted step (writes the mesh first if it has not been written).
   void record(const Analysis& analysis, const StepRecord& record);
   /// Writes the result of a modal analysis under /modes/<label>.

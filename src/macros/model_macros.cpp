@@ -326,6 +326,16 @@ int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   return 0;
 }
 
+int history_values_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const std::vector<double> values = deck.output_or_default().history_values(arguments.string("name"));
+  lua_createtable(L, static_cast<int>(values.size()), 0);
+  for (size_t i = 0; i < values.size(); ++i) {
+    lua_pushnumber(L, values[i]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
 int value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const Reading reading = reading_of(deck, arguments, arguments.string("quantity"));
   deck.require_state("model:value");
@@ -620,6 +630,12 @@ void add_model_macros(MacroTable& table) {
          std::string("1")}},
        "model:history{ name = \"spindle_fz\", node = tire.spindle, quantity = \"spindle_force\", component = \"fz\" }"},
       history_macro);
+  add({"history_values",
+       "Returns the values a history channel recorded so far, one per accepted step, as a list (name = \"time\": "
+       "their times; the step channels of docs/output.md and the deck's model:history{...} channels).",
+       {{"name", VT::String, true, "", "channel name (/history/<name>)"}},
+       "local fz = model:history_values{ name = \"spindle_fz\" }"},
+      history_values_macro);
   add({"value",
        "Returns a nodal quantity at the current time (summed over a set), or a tire's spindle force or spin rate.",
        {kNodeKey, kSetKey, kQuantityDofKey, kQuantityKey, kComponentKey},
