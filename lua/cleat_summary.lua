@@ -59,9 +59,9 @@ local function report_both(args, before, last)
   return turn
 end
 
--- args.record: the run's time, fx, fz and spin series (and turn, the spindle's rotation [rad],
--- with args.elements, the tire's wedges: the node spacings between the passages); args.measured: cleat_ringing.measured
--- of the run's conditions (or nil). Returns the summary: the last passage, fx_peak_to_peak,
+-- args.record: the run's time, fx, fz and spin series (and turn, the spindle's rotation
+-- [rad], which with args.elements, the tire's wedges, gives the node spacings between the
+-- passages); args.measured: cleat_ringing.measured of the run's conditions (or nil). Returns the summary: the last passage, fx_peak_to_peak,
 -- fz_peak_to_peak [N] and ringing of it, 'before' (the same for the passage before it, or
 -- nil), measured, impact_period [s], rolling_radius and belt_radius [m] (the contact nodes'
 -- ring circumference / 2 pi), node_spacings_between (the tire's turn from the one passage

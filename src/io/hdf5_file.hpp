@@ -193,10 +193,10 @@ class Hdf5File {
   // Raw bytes, 1-D (checkpointed element histories).
   void write_bytes(const std::string& dataset_path, const std::vector<unsigned char>& bytes);
   std::vector<unsigned char> read_bytes(const std::string& dataset_path) const;
-  // The extendible datasets this object created, in creation order; null if none has the path.
   // Every row of an extendible dataset appended so far, row-major: those in the file, those
   // staged and those waiting (no flush may be written meanwhile).
   std::vector<double> read_rows(const ExtendibleDataset& dataset) const;
+  // The extendible datasets this object created, in creation order; null if none has the path.
   const std::deque<ExtendibleDataset>& extendible_datasets() const { return datasets_; }
   ExtendibleDataset* find_extendible(const std::string& dataset_path);
   bool exists(const std::string& object_path) const;
