@@ -34,74 +34,113 @@ std::string exact(double value) {
   return std::string(text, end);
 }
 
-std::string with_frame(const std::string& path, size_t frame) {
+/// A path's text with "{frame}" (its first) left as a hole of 'text'.
+void path_with_frame(FrameText& text, const std::string& path) {
   const std::string token = "{frame}";
   const size_t at = path.find(token);
-  if (at == std::string::npos) return path;
-  return path.substr(0, at) + std::to_string(frame) + path.substr(at + token.size());
+  if (at == std::string::npos) {
+    text.literal(escaped(path));
+    return;
+  }
+  text.literal(escaped(path.substr(0, at)));  // digits need no escaping: the parts escape alone
+  text.hole(FrameText::Hole::frame);
+  text.literal(escaped(path.substr(at + token.size())));
 }
 
-void data_item(std::string& out, const std::string& file, const XdmfData& data, size_t frame, const char* indent) {
-  out += indent;
-  out += "<DataItem Dimensions=\"";
-  for (size_t i = 0; i < data.dimensions.size(); ++i) out += (i ? " " : "") + std::to_string(data.dimensions[i]);
-  out += data.integer ? "\" DataType=\"Int\"" : "\" DataType=\"Float\"";
-  out += " Precision=\"8\" Format=\"HDF\">" + file + ":" + escaped(with_frame(data.path, frame)) + "</DataItem>\n";
+void data_item(FrameText& text, const std::string& file, const XdmfData& data, const char* indent) {
+  std::string head = indent;
+  head += "<DataItem Dimensions=\"";
+  for (size_t i = 0; i < data.dimensions.size(); ++i) head += (i ? " " : "") + std::to_string(data.dimensions[i]);
+  head += data.integer ? "\" DataType=\"Int\"" : "\" DataType=\"Float\"";
+  text.literal(head + " Precision=\"8\" Format=\"HDF\">" + file + ":");
+  path_with_frame(text, data.path);
+  text.literal("</DataItem>\n");
 }
 
 }  // namespace
 
+void FrameText::literal(const std::string& text) { pieces_.back() += text; }
+
+void FrameText::hole(Hole hole) {
+  holes_.push_back(hole);
+  pieces_.emplace_back();
+}
+
+void FrameText::append(std::string& out, const std::string& time, const std::string& frame) const {
+  out += pieces_[0];
+  for (size_t i = 0; i < holes_.size(); ++i) {
+    out += holes_[i] == Hole::time ? time : frame;
+    out += pieces_[i + 1];
+  }
+}
+
+size_t FrameText::length(size_t time, size_t frame) const {
+  size_t bytes = 0;
+  for (const std::string& piece : pieces_) bytes += piece.size();
+  for (Hole hole : holes_) bytes += hole == Hole::time ? time : frame;
+  return bytes;
+}
+
 XdmfIndex::XdmfIndex(std::string hdf5_file_name) : file_(escaped(hdf5_file_name)) {}
 
 void XdmfIndex::add_grid(const XdmfGrid& grid) {
-  Collection& collection = collections_.emplace_back(Collection{grid, {}});
-  for (size_t frame = 0; frame < times_.size(); ++frame) append_frame(collection, frame);
+  const Collection& collection = collections_.emplace_back(Collection{grid, frame_text(grid)});
+  for (size_t frame = 0; frame < times_.size(); ++frame) bytes_ += frame_length(collection, frame);
 }
 
 void XdmfIndex::add_frame(double time) {
   times_.push_back(time);
-  for (Collection& collection : collections_) append_frame(collection, times_.size() - 1);
+  for (const Collection& collection : collections_) bytes_ += frame_length(collection, times_.size() - 1);
 }
 
-void XdmfIndex::append_frame(Collection& collection, size_t frame) const {
-  const XdmfGrid& grid = collection.grid;
-  std::string& out = collection.frames;
-  out += "      <Grid Name=\"" + escaped(grid.name) + "\" GridType=\"Uniform\">\n";
-  out += "        <Time Value=\"" + exact(times_[frame]) + "\" />\n";
-  out += "        <Topology TopologyType=\"" + grid.topology + "\" NumberOfElements=\"" + std::to_string(grid.cells) +
-         "\"";
-  if (grid.nodes_per_cell > 0) out += " NodesPerElement=\"" + std::to_string(grid.nodes_per_cell) + "\"";
-  out += ">\n";
-  data_item(out, file_, grid.connectivity, frame, "          ");
-  out += "        </Topology>\n        <Geometry GeometryType=\"XY\">\n";
-  data_item(out, file_, grid.geometry, frame, "          ");
-  out += "        </Geometry>\n";
+FrameText XdmfIndex::frame_text(const XdmfGrid& grid) const {
+  FrameText text;
+  text.literal("      <Grid Name=\"" + escaped(grid.name) + "\" GridType=\"Uniform\">\n        <Time Value=\"");
+  text.hole(FrameText::Hole::time);
+  text.literal("\" />\n        <Topology TopologyType=\"" + grid.topology + "\" NumberOfElements=\"" +
+               std::to_string(grid.cells) + "\"");
+  if (grid.nodes_per_cell > 0) text.literal(" NodesPerElement=\"" + std::to_string(grid.nodes_per_cell) + "\"");
+  text.literal(">\n");
+  data_item(text, file_, grid.connectivity, "          ");
+  text.literal("        </Topology>\n        <Geometry GeometryType=\"XY\">\n");
+  data_item(text, file_, grid.geometry, "          ");
+  text.literal("        </Geometry>\n");
   for (const XdmfAttribute& attribute : grid.attributes) {
-    out += "        <Attribute Name=\"" + escaped(attribute.name) + "\" AttributeType=\"" + attribute.type +
-           "\" Center=\"" + attribute.centre + "\">\n";
-    data_item(out, file_, attribute.data, frame, "          ");
-    out += "        </Attribute>\n";
+    text.literal("        <Attribute Name=\"" + escaped(attribute.name) + "\" AttributeType=\"" + attribute.type +
+                 "\" Center=\"" + attribute.centre + "\">\n");
+    data_item(text, file_, attribute.data, "          ");
+    text.literal("        </Attribute>\n");
   }
-  out += "      </Grid>\n";
+  text.literal("      </Grid>\n");
+  return text;
+}
+
+size_t XdmfIndex::frame_length(const Collection& collection, size_t frame) const {
+  return collection.text.length(exact(times_[frame]).size(), std::to_string(frame).size());
 }
 
 template <class Out>
 void XdmfIndex::write_to(Out& out) const {
   out << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  // The frames' text is made as it is written, a block at a time: the index keeps only the
+  // times, and a long run's megabytes of text are never held.
+  constexpr size_t kBlock = 1 << 16;
+  std::string block;
+  block.reserve(2 * kBlock);
   // The first grid last: the one meshio reads.
   for (size_t i = 1; i <= collections_.size(); ++i) {
     const Collection& collection = collections_[i % collections_.size()];
     out << "    <Grid Name=\"" << escaped(collection.grid.name)
-        << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n"
-        << collection.frames << "    </Grid>\n";
+        << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (size_t frame = 0; frame < times_.size(); ++frame) {
+      collection.text.append(block, exact(times_[frame]), std::to_string(frame));
+      if (block.size() < kBlock && frame + 1 < times_.size()) continue;
+      out << block;
+      block.clear();
+    }
+    out << "    </Grid>\n";
   }
   out << "  </Domain>\n</Xdmf>\n";
-}
-
-size_t XdmfIndex::size() const {
-  size_t bytes = 0;
-  for (const Collection& collection : collections_) bytes += collection.frames.size();
-  return bytes;
 }
 
 std::string XdmfIndex::text() const {

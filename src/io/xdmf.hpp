@@ -44,6 +44,23 @@ struct XdmfGrid {
   std::vector<XdmfAttribute> attributes;
 };
 
+/// A grid's frame as text with holes: the frame's time and its number (in dataset paths),
+/// so that each frame costs a few appends, not a formatting.
+class FrameText {
+ public:
+  enum class Hole { time, frame };
+  void literal(const std::string& text);
+  void hole(Hole hole);
+  /// The text with 'time' and 'frame' in its holes, appended to 'out'.
+  void append(std::string& out, const std::string& time, const std::string& frame) const;
+  /// Its length with a time and a frame number of these lengths in the holes.
+  size_t length(size_t time, size_t frame) const;
+
+ private:
+  std::vector<std::string> pieces_{1};  // one more than the holes: the text around them
+  std::vector<Hole> holes_;
+};
+
 class XdmfIndex {
  public:
   /// 'hdf5_file_name': the HDF5 file as the index names it (beside the index).
@@ -57,7 +74,7 @@ class XdmfIndex {
   const std::vector<double>& times() const { return times_; }
   bool empty() const { return collections_.empty() || times_.empty(); }
   /// The bytes of the frames' text: nearly all of text().
-  size_t size() const;
+  size_t size() const { return bytes_; }
 
   std::string text() const;
   /// Writes text() beside 'path' and renames it to 'path', so the index there is always
@@ -67,15 +84,17 @@ class XdmfIndex {
  private:
   struct Collection {
     XdmfGrid grid;
-    std::string frames;  // the XML of every frame so far: each frame is formatted once
+    FrameText text;  // one frame's XML
   };
-  void append_frame(Collection& collection, size_t frame) const;
+  FrameText frame_text(const XdmfGrid& grid) const;
+  size_t frame_length(const Collection& collection, size_t frame) const;
   template <class Out>
   void write_to(Out& out) const;
 
   std::string file_;
   std::vector<Collection> collections_;
   std::vector<double> times_;
+  size_t bytes_ = 0;  // of the frames' text
 };
 
 }  // namespace tirefe::io
