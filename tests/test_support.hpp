@@ -100,9 +100,9 @@ double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDo
 
 /// The largest magnitude among what a kernel's block-loop declarations (element.hpp) say
 /// is zero: the residual entries and tangent rows and columns of its kIdleDofs, its
-/// zero_tangent_entry() entries, and, if it declares kReadsAcceleration = false, the change
-/// of its residual when the acceleration is dropped. The block loop skips these, so
-/// anything but 0 is a wrong declaration.
+/// zero_tangent_entry() entries, if it declares kReadsAcceleration = false, the change of
+/// its residual when the acceleration is dropped, and if it declares kStoresEnergy = false,
+/// its energy. The block loop skips these, so anything but 0 is a wrong declaration.
 template <class Kernel>
 double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kDofs>& local,
                                const EvaluationContext& context) {
@@ -124,6 +124,10 @@ double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kD
     at_rest.acceleration.setZero();
     kernel.evaluate(at_rest, context, history, history, without_acceleration, nullptr);
     largest = std::max(largest, (residual - without_acceleration).cwiseAbs().maxCoeff());
+  }
+  if constexpr (!detail::StoresEnergy<Kernel>::value) {
+    const ElementEnergy energy = kernel.energy(local, history);
+    largest = std::max({largest, std::abs(energy.strain), std::abs(energy.kinetic)});
   }
   return largest;
 }

@@ -206,6 +206,8 @@ struct HasAugment<Kernel,
 //   Vector mass_times(const Vector& x) const;  // M x: the inertia forces M a of a kernel
 //       that reads the acceleration, without evaluating the rest (its mass is constant,
 //       as the contract's tangent cM M has it)
+//   static constexpr bool kStoresEnergy = false;  // energy() is always zero (a follower
+//       load's): the block's energy() neither gathers nor loops
 //   static constexpr bool kReadsLastTrial = true;  // 'trial' arrives holding what the
 //       element's last evaluation left (the previous Newton iterate's history) rather than
 //       a copy of 'base'; the kernel then writes every field of it
@@ -218,7 +220,8 @@ struct HasAugment<Kernel,
 //   };
 // over structure-of-arrays data, so that the compiler vectorises across elements. It gives
 // the numbers of evaluate() (to round-off); the entries of idle DOFs are never read. It may
-// also sum the block's stored energy, the energies of energy() to round-off:
+// also sum the block's stored energy, the energies of energy() to round-off, from values
+// without accelerations:
 //     ElementEnergy energy(const BlockValues& values) const;
 template <class Kernel, class = void>
 struct BatchOf : std::false_type {
@@ -247,6 +250,12 @@ struct HasMassTimes : std::false_type {};
 template <class Kernel>
 struct HasMassTimes<Kernel, std::void_t<decltype(std::declval<const Kernel&>().mass_times(
                                 std::declval<const typename Kernel::Vector&>()))>> : std::true_type {};
+
+template <class Kernel, class = void>
+struct StoresEnergy : std::true_type {};
+template <class Kernel>
+struct StoresEnergy<Kernel, std::void_t<decltype(Kernel::kStoresEnergy)>> : std::bool_constant<Kernel::kStoresEnergy> {
+};
 
 template <class Kernel, class = void>
 struct ReadsLastTrial : std::false_type {};
@@ -374,8 +383,9 @@ class ElementBlockOf final : public ElementBlock {
   }
 
   ElementEnergy energy(const State& state) const override {
+    if constexpr (!detail::StoresEnergy<Kernel>::value) return {};
     if constexpr (detail::HasBatchEnergy<Batch>::value)
-      if (batch_) return batch_->energy(gather_batch(state));
+      if (batch_) return batch_->energy(gather_batch(state, false));
     ElementEnergy total;
     LocalState<kDofs> local;
     local.acceleration.setZero();
@@ -492,20 +502,23 @@ class ElementBlockOf final : public ElementBlock {
     for (const TangentEntry& t : entries) target.tangent_values[t.slot] += tangent[t.entry];
   }
 
-  /// Every element's nodal values as structure of arrays, in the batch's buffers.
-  BlockValues gather_batch(const State& state) const {
+  /// Every element's nodal values as structure of arrays, in the batch's buffers; the
+  /// accelerations only for a kernel that reads them and 'with_acceleration' (the stored
+  /// energy reads none).
+  BlockValues gather_batch(const State& state, bool with_acceleration = true) const {
     const int count = size();
     double* displacement = gathered_.data();
     double* velocity = displacement + kDofs * count;
     double* acceleration = velocity + kDofs * count;
-    constexpr bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value;
     const int* dofs = batch_dofs_.data();
     for (int k = 0; k < kDofs * count; ++k) {
       displacement[k] = state.displacement[dofs[k]];
       velocity[k] = state.velocity[dofs[k]];
-      if constexpr (reads_acceleration) acceleration[k] = state.acceleration[dofs[k]];
     }
-    return BlockValues{count, displacement, velocity, reads_acceleration ? acceleration : nullptr};
+    if (!detail::ReadsAcceleration<Kernel>::value || !with_acceleration)
+      return BlockValues{count, displacement, velocity, nullptr};
+    for (int k = 0; k < kDofs * count; ++k) acceleration[k] = state.acceleration[dofs[k]];
+    return BlockValues{count, displacement, velocity, acceleration};
   }
 
   void gather(int e, const State& state, LocalState<kDofs>& local) const {

@@ -123,6 +123,7 @@ class SidewallWedge : public KernelShape<3> {
  public:
   static constexpr int kQuadraturePoints = 2;
   static constexpr bool kReadsAcceleration = false;
+  static constexpr bool kStoresEnergy = false;             // energy() is zero (above)
   static constexpr std::array<int, 2> kIdleDofs = {5, 8};  // the tread rotations
 
   /// Reference positions of the spindle and of the two tread nodes (counter-clockwise).
