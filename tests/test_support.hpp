@@ -100,13 +100,14 @@ double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDo
 
 /// The largest magnitude among what a kernel's block-loop declarations (element.hpp) say
 /// is zero: the residual entries and tangent rows and columns of its kIdleDofs, its
-/// zero_tangent_entry() entries, if it declares kReadsAcceleration = false, the change of
-/// its residual when the acceleration is dropped, and if it declares kStoresEnergy = false,
-/// its energy. The block loop skips these, so anything but 0 is a wrong declaration.
+/// zero_tangent_entry() entries, if it declares kReadsAcceleration = false or kReadsVelocity
+/// = false, the change of its residual when the acceleration or the velocity is dropped,
+/// and if it declares kStoresEnergy = false, its energy. The block loop skips these, so
+/// anything but 0 is a wrong declaration.
 template <class Kernel>
 double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kDofs>& local,
                                const EvaluationContext& context) {
-  typename Kernel::Vector residual, without_acceleration;
+  typename Kernel::Vector residual, dropped;
   typename Kernel::Matrix tangent;
   typename Kernel::History history{};
   kernel.evaluate(local, context, history, history, residual, &tangent);
@@ -122,8 +123,14 @@ double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kD
   if constexpr (!detail::ReadsAcceleration<Kernel>::value) {
     LocalState<Kernel::kDofs> at_rest = local;
     at_rest.acceleration.setZero();
-    kernel.evaluate(at_rest, context, history, history, without_acceleration, nullptr);
-    largest = std::max(largest, (residual - without_acceleration).cwiseAbs().maxCoeff());
+    kernel.evaluate(at_rest, context, history, history, dropped, nullptr);
+    largest = std::max(largest, (residual - dropped).cwiseAbs().maxCoeff());
+  }
+  if constexpr (!detail::ReadsVelocity<Kernel>::value) {
+    LocalState<Kernel::kDofs> still = local;
+    still.velocity.setZero();
+    kernel.evaluate(still, context, history, history, dropped, nullptr);
+    largest = std::max(largest, (residual - dropped).cwiseAbs().maxCoeff());
   }
   if constexpr (!detail::StoresEnergy<Kernel>::value) {
     const ElementEnergy energy = kernel.energy(local, history);

@@ -99,7 +99,8 @@ struct AssemblyTarget {
 };
 
 /// The nodal values of a whole block, gathered as structure of arrays for a kernel's batch
-/// path: local DOF k of element e at [k * count + e] (acceleration null unless the kernel reads it).
+/// path: local DOF k of element e at [k * count + e] (velocity and acceleration null unless
+/// the kernel reads them; an idle DOF's values zero).
 struct BlockValues {
   int count = 0;
   const double* displacement = nullptr;
@@ -206,6 +207,8 @@ struct HasAugment<Kernel,
 //   Vector mass_times(const Vector& x) const;  // M x: the inertia forces M a of a kernel
 //       that reads the acceleration, without evaluating the rest (its mass is constant,
 //       as the contract's tangent cM M has it)
+//   static constexpr bool kReadsVelocity = false;  // the batch path gathers no velocities
+//       (its values.velocity is null)
 //   static constexpr bool kStoresEnergy = false;  // energy() is always zero (a follower
 //       load's): the block's energy() neither gathers nor loops
 //   static constexpr bool kReadsLastTrial = true;  // 'trial' arrives holding what the
@@ -250,6 +253,12 @@ struct HasMassTimes : std::false_type {};
 template <class Kernel>
 struct HasMassTimes<Kernel, std::void_t<decltype(std::declval<const Kernel&>().mass_times(
                                 std::declval<const typename Kernel::Vector&>()))>> : std::true_type {};
+
+template <class Kernel, class = void>
+struct ReadsVelocity : std::true_type {};
+template <class Kernel>
+struct ReadsVelocity<Kernel, std::void_t<decltype(Kernel::kReadsVelocity)>>
+    : std::bool_constant<Kernel::kReadsVelocity> {};
 
 template <class Kernel, class = void>
 struct StoresEnergy : std::true_type {};
@@ -454,6 +463,7 @@ class ElementBlockOf final : public ElementBlock {
 
  private:
   static constexpr bool kBatched = detail::BatchOf<Kernel>::value;
+  static constexpr std::array<bool, kDofs> kIdle = detail::IdleDofs<Kernel>::mask();
   using Batch = typename detail::BatchOf<Kernel>::type;
   struct TangentEntry {
     int entry;  // row-major index into the element matrix
@@ -494,7 +504,8 @@ class ElementBlockOf final : public ElementBlock {
     if (!all_finite(residual, kDofs * count)) throw_non_finite_batch();
     Eigen::VectorXd& global = *target.residual;
     for (int e = 0; e < count; ++e)  // element by element, as one at a time would add them
-      for (int k = 0; k < kDofs; ++k) global[dofs[k * count + e]] += residual[k * count + e];
+      for (int k = 0; k < kDofs; ++k)
+        if (!kIdle[k]) global[dofs[k * count + e]] += residual[k * count + e];
     if (!with_tangent) return;
     const double* tangent = batch_->tangent();
     if (target.solver_layout != 0 && target.solver_layout != solver_layout_) throw_unbound_layout();
@@ -502,23 +513,29 @@ class ElementBlockOf final : public ElementBlock {
     for (const TangentEntry& t : entries) target.tangent_values[t.slot] += tangent[t.entry];
   }
 
-  /// Every element's nodal values as structure of arrays, in the batch's buffers; the
-  /// accelerations only for a kernel that reads them and 'with_acceleration' (the stored
-  /// energy reads none).
+  /// Every element's nodal values as structure of arrays, in the batch's buffers: of its
+  /// DOFs that are not idle (those of the idle ones stay zero); the velocities only for a
+  /// kernel that reads them, the accelerations only for one that reads them and
+  /// 'with_acceleration' (the stored energy reads none).
   BlockValues gather_batch(const State& state, bool with_acceleration = true) const {
     const int count = size();
     double* displacement = gathered_.data();
     double* velocity = displacement + kDofs * count;
     double* acceleration = velocity + kDofs * count;
-    const int* dofs = batch_dofs_.data();
-    for (int k = 0; k < kDofs * count; ++k) {
-      displacement[k] = state.displacement[dofs[k]];
-      velocity[k] = state.velocity[dofs[k]];
+    constexpr bool reads_velocity = detail::ReadsVelocity<Kernel>::value;
+    const bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value && with_acceleration;
+    for (int k = 0; k < kDofs; ++k) {
+      if (kIdle[k]) continue;
+      const int* dofs = batch_dofs_.data() + k * count;
+      const int first = k * count;
+      for (int e = 0; e < count; ++e) displacement[first + e] = state.displacement[dofs[e]];
+      if constexpr (reads_velocity)
+        for (int e = 0; e < count; ++e) velocity[first + e] = state.velocity[dofs[e]];
+      if (reads_acceleration)
+        for (int e = 0; e < count; ++e) acceleration[first + e] = state.acceleration[dofs[e]];
     }
-    if (!detail::ReadsAcceleration<Kernel>::value || !with_acceleration)
-      return BlockValues{count, displacement, velocity, nullptr};
-    for (int k = 0; k < kDofs * count; ++k) acceleration[k] = state.acceleration[dofs[k]];
-    return BlockValues{count, displacement, velocity, acceleration};
+    return BlockValues{count, displacement, reads_velocity ? velocity : nullptr,
+                       reads_acceleration ? acceleration : nullptr};
   }
 
   void gather(int e, const State& state, LocalState<kDofs>& local) const {

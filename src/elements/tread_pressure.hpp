@@ -25,6 +25,7 @@ namespace tirefe {
 class TreadPressure : public KernelShape<2> {
  public:
   static constexpr bool kReadsAcceleration = false;
+  static constexpr bool kReadsVelocity = false;            // no damping
   static constexpr bool kStoresEnergy = false;             // energy() is zero (above)
   static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
   /// [k x] couples x with y only: no component's load moves with the same component.
