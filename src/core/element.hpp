@@ -242,35 +242,23 @@ struct HasBatchEnergy<Batch,
                       std::void_t<decltype(std::declval<const Batch&>().energy(std::declval<const BlockValues&>()))>>
     : std::true_type {};
 
-template <class Kernel, class = void>
-struct ReadsAcceleration : std::true_type {};
-template <class Kernel>
-struct ReadsAcceleration<Kernel, std::void_t<decltype(Kernel::kReadsAcceleration)>>
-    : std::bool_constant<Kernel::kReadsAcceleration> {};
+// A kernel's optional flag 'Kernel::Flag' (the declarations listed above), or 'otherwise'.
+#define TIREFE_KERNEL_FLAG(Trait, Flag, otherwise) \
+  template <class Kernel, class = void>            \
+  struct Trait : std::bool_constant<otherwise> {}; \
+  template <class Kernel>                          \
+  struct Trait<Kernel, std::void_t<decltype(Kernel::Flag)>> : std::bool_constant<Kernel::Flag> {};
+TIREFE_KERNEL_FLAG(ReadsAcceleration, kReadsAcceleration, true)
+TIREFE_KERNEL_FLAG(ReadsVelocity, kReadsVelocity, true)
+TIREFE_KERNEL_FLAG(StoresEnergy, kStoresEnergy, true)
+TIREFE_KERNEL_FLAG(ReadsLastTrial, kReadsLastTrial, false)
+#undef TIREFE_KERNEL_FLAG
 
 template <class Kernel, class = void>
 struct HasMassTimes : std::false_type {};
 template <class Kernel>
 struct HasMassTimes<Kernel, std::void_t<decltype(std::declval<const Kernel&>().mass_times(
                                 std::declval<const typename Kernel::Vector&>()))>> : std::true_type {};
-
-template <class Kernel, class = void>
-struct ReadsVelocity : std::true_type {};
-template <class Kernel>
-struct ReadsVelocity<Kernel, std::void_t<decltype(Kernel::kReadsVelocity)>>
-    : std::bool_constant<Kernel::kReadsVelocity> {};
-
-template <class Kernel, class = void>
-struct StoresEnergy : std::true_type {};
-template <class Kernel>
-struct StoresEnergy<Kernel, std::void_t<decltype(Kernel::kStoresEnergy)>> : std::bool_constant<Kernel::kStoresEnergy> {
-};
-
-template <class Kernel, class = void>
-struct ReadsLastTrial : std::false_type {};
-template <class Kernel>
-struct ReadsLastTrial<Kernel, std::void_t<decltype(Kernel::kReadsLastTrial)>>
-    : std::bool_constant<Kernel::kReadsLastTrial> {};
 
 /// Which local DOFs a kernel declares idle (all false unless it has kIdleDofs).
 template <class Kernel, class = void>
