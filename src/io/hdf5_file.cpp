@@ -294,7 +294,9 @@ void ExtendibleDataset::write_rows(const double* values, hsize_t rows) {
   start[0] = dims_[0];
   dims[0] += rows;
   count[0] = rows;
-  Hdf5Handle memory = dataspace_of({rows * row_size_});
+  // The memory the shape of the file's selection: HDF5 maps a selection of the same shape
+  // onto the chunks whole, one of another shape value by value.
+  Hdf5Handle memory = dataspace_of(count);
   const int rank = static_cast<int>(dims.size());
   latch_->check(H5Dset_extent(dataset_.get(), dims.data()), message);
   dims_ = dims;
