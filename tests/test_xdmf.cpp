@@ -116,10 +116,10 @@ using namespace tirefe;
 struct Ring {
   Model model;
   std::vector<int> ring;
-  Ring() {
+  explicit Ring(int nodes = 6) {
     const int spindle = model.mesh().add_node(Eigen::Vector2d(0.1, 0.4));
-    for (int i = 0; i < 6; ++i) {
-      const double angle = 2.0 * 3.14159265358979 * i / 6;
+    for (int i = 0; i < nodes; ++i) {
+      const double angle = 2.0 * 3.14159265358979 * i / nodes;
       ring.push_back(
           model.mesh().add_node(Eigen::Vector2d(0.1, 0.4) + 0.3 * Eigen::Vector2d(std::cos(angle), std::sin(angle))));
     }
@@ -130,8 +130,8 @@ struct Ring {
     section.bending_stiffness = 10;
     section.mass_per_length = 1;
     auto& beams = model.add_block<TreadBeam>("beams");
-    for (int i = 0; i < 6; ++i) {
-      const int a = ring[i], b = ring[(i + 1) % 6];
+    for (int i = 0; i < nodes; ++i) {
+      const int a = ring[i], b = ring[(i + 1) % nodes];
       beams.add({a, b}, TreadBeam(model.mesh().position(a), model.mesh().position(b), section));
     }
     auto& rim = model.add_block<NodalSpringMass>("rim");
@@ -307,6 +307,7 @@ TEST_CASE("result file: the views of frames written between flushes are made at 
 // A ring model whose state changes with each frame: frame k sets every displacement and
 // velocity to k at time k ms, and writes the frame.
 struct RingFrames {
+  explicit RingFrames(int nodes = 6) : ring(nodes) {}
   tirefe::testing::TempDir folder;
   Ring ring;
   Analysis analysis{ring.model};
@@ -354,6 +355,34 @@ TEST_CASE("result file: flushes written while the run goes on hold every frame, 
   const std::string text = read_text(run.folder.path("ring.xmf"));
   CHECK(count(text, "<Grid Name=\"mesh\" GridType=\"Uniform\">") == kFrames);
   CHECK(count(text, "ring.h5:/fields/frames/" + std::to_string(kFrames - 1) + "/displacement<") > 0);
+}
+
+TEST_CASE("result file: rows wait in memory for a batch at most, however large the file grows", "[io][xdmf]") {
+  // 2 000 nodes: a frame's rows are 48 kB; the 200 frames, 9.6 MB. Flushes come when the
+  // rows since the last reach half of the file (or a quarter second has passed): without
+  // the batches between them, the rows waiting would grow to megabytes.
+  RingFrames run(2000);
+  constexpr int kFrames = 200;
+  const std::string path = run.folder.path("ring.h5");
+  size_t most_waiting = 0;
+  {
+    io::ResultFile file(path, io::RunMetadata{"ring", "", "", {}});
+    for (int frame = 0; frame < kFrames; ++frame) {
+      run.write(file, frame);
+      size_t waiting = 0;
+      for (const io::ExtendibleDataset& dataset : file.file().extendible_datasets()) waiting += dataset.pending_bytes();
+      most_waiting = std::max(most_waiting, waiting);
+    }
+  }
+  const size_t frame_bytes = sizeof(double) * (2 * run.dofs + 2);
+  CHECK(most_waiting >= io::ResultFile::kRowBatchBytes - frame_bytes);
+  CHECK(most_waiting < io::ResultFile::kRowBatchBytes);
+  const Hdf5File file = Hdf5File::open_read_only(path);
+  const std::vector<double> time = file.read_doubles("/fields/time");
+  REQUIRE(time.size() == kFrames);
+  CHECK(time.back() == 0.001 * (kFrames - 1));
+  CHECK(file.read_doubles("/fields/frames/" + std::to_string(kFrames - 1) + "/rotation") ==
+        std::vector<double>(run.dofs / kDofsPerNode, kFrames - 1));
 }
 
 TEST_CASE("result file: a flush that fails while the run goes on fails the next step, naming the file",

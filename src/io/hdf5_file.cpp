@@ -684,10 +684,14 @@ void Hdf5File::stage() {
   for (ExtendibleDataset& dataset : datasets_) dataset.stage();
 }
 
+void Hdf5File::write_staged() {
+  for (ExtendibleDataset& dataset : datasets_) dataset.write_staged();
+}
+
 void Hdf5File::flush_staged() {
   auto message = [&] { return "cannot flush '" + path_ + "'"; };
   latch_->refuse_if_failed(message);
-  for (ExtendibleDataset& dataset : datasets_) dataset.write_staged();
+  write_staged();
   latch_->check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), message);
   if (working_path_.empty()) return;
   try {

@@ -207,8 +207,9 @@ class Hdf5File {
   // flush() in two parts, for a flush written by another thread: stage() takes the rows
   // appended so far (the appending thread calls it, between appends), flush_staged()
   // writes them and flushes (the writing thread: no other call on this file meanwhile,
-  // appends aside).
+  // appends aside). write_staged() writes them alone, for the next flush to flush.
   void stage();
+  void write_staged();
   void flush_staged();
   // Writes the appended rows and closes the file (a published file: renames it to its path).
   // Throws IoError; afterwards the object holds no file. The destructor closes quietly.

@@ -484,27 +484,34 @@ void ResultFile::flush_if_due() {
   // most of the rows (the copy needs room beside the file being written). While a flush is
   // being written, the rows wait for the next; rows that have grown so wait for it, so that
   // a run faster than its disk holds no more than that in memory.
-  const bool grown = pending_bytes() >= std::max(kFlushBytes, flushed_bytes_ / 2);
+  const bool grown = pending_bytes() + unflushed_bytes_ >= std::max(kFlushBytes, flushed_bytes_ / 2);
   if (!grown && flush_job_.running()) return;
   flush_job_.wait();  // a finished flush's failure fails the step that finds it
   const auto since = std::chrono::steady_clock::now() - last_flush_;
   if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) {
-    start_views_if_due();
+    start_writes_if_due();
     return;
   }
   start_flush();
 }
 
-void ResultFile::start_views_if_due() {
+void ResultFile::start_writes_if_due() {
   // The views are most of a flush's work: made while the writer would idle, a few dozen at
   // a time, they do not pile up for the flushes, whose spacing grows with the file, nor for
-  // the end of the run, which waits for them.
+  // the end of the run, which waits for them. The rows, written as they reach a batch, do
+  // not pile up in memory: buffers of a batch's size are reused, not grown and faulted in.
   const size_t from = first_unviewed_frame(), to = frames_written();
-  if (to - from < kViewBatch) return;
+  const bool rows_due = pending_bytes() >= kRowBatchBytes;
+  if (to - from < kViewBatch && !rows_due) return;
   frames_viewed_ = to;
-  flush_job_.start([this, from, to] {
+  if (rows_due) {
+    unflushed_bytes_ += pending_bytes();
+    file_.stage();
+  }
+  flush_job_.start([this, from, to, rows_due] {
     silence_hdf5_errors();
     for (size_t frame = from; frame < to; ++frame) write_views(frame);
+    if (rows_due) file_.write_staged();
   });
 }
 
@@ -521,7 +528,8 @@ void ResultFile::start_flush() {
   frames_viewed_ = frames_written();
   std::vector<double> frames;
   frames.swap(unflushed_frames_);
-  flushed_bytes_ += pending_bytes();
+  flushed_bytes_ += pending_bytes() + unflushed_bytes_;
+  unflushed_bytes_ = 0;
   file_.stage();
   flush_job_.start([this, first_view, last_view = frames_viewed_, frames = std::move(frames)] {
     write_flush(first_view, last_view, frames);

@@ -146,6 +146,9 @@ class ResultFile {
   static constexpr size_t kFlushBytes = 256 * 1024;
   /// The least frames whose views are written between flushes, together.
   static constexpr size_t kViewBatch = 16;
+  /// The bytes of waiting rows that are written between flushes (the copy waits for the
+  /// flush): memory holds about this much, whatever the file's size.
+  static constexpr size_t kRowBatchBytes = 1024 * 1024;
 
  private:
   /// Bytes of the rows waiting in memory for the next flush.
@@ -155,9 +158,10 @@ class ResultFile {
   /// The flush's writing, on the writer's thread: the views of the frames first_view ..
   /// last_view - 1, the rows, the file's copy, then 'frames' (their times) in the index.
   void write_flush(size_t first_view, size_t last_view, const std::vector<double>& frames);
-  /// Starts writing the views of the frames without them, if kViewBatch or more wait and
-  /// no flush is due: the file's copy and the index wait for the next flush.
-  void start_views_if_due();
+  /// Starts writing the views of the frames without them, if kViewBatch or more wait, and
+  /// the rows waiting, if kRowBatchBytes or more: no flush is due, so the file's copy and
+  /// the index wait for the next flush.
+  void start_writes_if_due();
   struct HistoryChannel {
     ExtendibleDataset* dataset;
     Channel value;
@@ -211,7 +215,8 @@ class ResultFile {
   int steps_recorded_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::chrono::steady_clock::duration last_flush_cost_{};
-  size_t flushed_bytes_ = 0;  // bytes of rows written by the flushes so far
+  size_t flushed_bytes_ = 0;    // bytes of rows written by the flushes so far
+  size_t unflushed_bytes_ = 0;  // bytes of rows written since the last flush, not yet copied
   ExtendibleDataset* field_time_ = nullptr;
   ExtendibleDataset* field_step_ = nullptr;
   ExtendibleDataset* field_displacement_ = nullptr;
