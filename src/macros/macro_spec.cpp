@@ -81,6 +81,10 @@ Problem integer_problem(lua_State* L, int index, const ParameterSpec& p, const s
          describe_value(L, index) + ")";
 }
 
+// A list's entry and a matrix's row, named for a message.
+std::string entry_name(const std::string& list, lua_Integer entry) { return list + " entry " + std::to_string(entry); }
+std::string row_name(const std::string& matrix, lua_Integer row) { return matrix + " row " + std::to_string(row); }
+
 Problem check_number(lua_State* L, int index, ValueType type, const ParameterSpec& p, const std::string& what) {
   if (lua_type(L, index) != LUA_TNUMBER) return type_problem(L, index, type, what);
   const double value = lua_tonumber(L, index);
@@ -120,7 +124,9 @@ Problem check_list(lua_State* L, int index, ValueType type, const ParameterSpec&
   const ValueType entry_type = type == ValueType::IntegerList ? ValueType::Integer : ValueType::Number;
   for (lua_Integer i = 1; i <= length; ++i) {
     lua_rawgeti(L, index, i);
-    Problem problem = check_number(L, lua_gettop(L), entry_type, p, what + " entry " + std::to_string(i));
+    // An entry is named only when it has a problem: a history's list has thousands.
+    Problem problem = check_number(L, lua_gettop(L), entry_type, p, what);
+    if (problem) problem = check_number(L, lua_gettop(L), entry_type, p, entry_name(what, i));
     lua_pop(L, 1);
     if (problem) return problem;
   }
@@ -133,14 +139,15 @@ Problem check_matrix(lua_State* L, int index, const ParameterSpec& p, const std:
   size_t width = 0;
   for (lua_Integer r = 1; r <= rows; ++r) {
     lua_rawgeti(L, index, r);
-    Problem problem = check_list(L, lua_gettop(L), ValueType::NumberList, p, what + " row " + std::to_string(r));
+    Problem problem = check_list(L, lua_gettop(L), ValueType::NumberList, p, what);
+    if (problem) problem = check_list(L, lua_gettop(L), ValueType::NumberList, p, row_name(what, r));
     const size_t row_width = lua_rawlen(L, -1);
     lua_pop(L, 1);
     if (problem) return problem;
     if (r == 1) width = row_width;
     if (row_width != width)
-      return what + " row " + std::to_string(r) + " has " + std::to_string(row_width) + " entries, expected " +
-             std::to_string(width) + " like row 1";
+      return row_name(what, r) + " has " + std::to_string(row_width) + " entries, expected " + std::to_string(width) +
+             " like row 1";
   }
   return std::nullopt;
 }
@@ -165,7 +172,8 @@ Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec
       const auto length = static_cast<lua_Integer>(lua_rawlen(L, index));
       for (lua_Integer i = 1; i <= length; ++i) {
         lua_rawgeti(L, index, i);
-        Problem problem = check_value(L, -1, ValueType::String, p, what + " entry " + std::to_string(i));
+        Problem problem = check_value(L, -1, ValueType::String, p, what);
+        if (problem) problem = check_value(L, -1, ValueType::String, p, entry_name(what, i));
         lua_pop(L, 1);
         if (problem) return problem;
       }
