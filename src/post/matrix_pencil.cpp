@@ -23,9 +23,9 @@ std::vector<DampedComponent> matrix_pencil(const SignalWindow& window, const Pen
   for (Eigen::Index r = 0; r < hankel.rows(); ++r)
     for (Eigen::Index c = 0; c < hankel.cols(); ++c) hankel(r, c) = window.value[static_cast<size_t>(r + c)];
   // Y's right singular vectors are the eigenvectors of Y^T Y, whose eigenvalues are the
-  // squared singular values: a symmetric eigenproblem costs a quarter of the SVD. Squaring
-  // costs accuracy only in the small singular values; the kept ones exceed a hundredth of
-  // the largest, and their subspace moves by round-off times (s_0 / s)^2 <= 1e4.
+  // squared singular values: the symmetric eigenproblem takes two thirds of the SVD's time
+  // or less. Squaring costs accuracy only in the small singular values; the kept ones exceed
+  // a hundredth of the largest, and their subspace moves by round-off times (s_0 / s)^2 <= 1e4.
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> gram(hankel.transpose() * hankel);
   const Eigen::VectorXd squares = gram.eigenvalues().reverse();  // largest first
   if (!(squares[0] > 0.0)) return {};                            // a straight line: nothing rings

@@ -7,9 +7,9 @@
 // has rank M for M exponentials. Its SVD Y = U S V^T keeps the M right singular vectors
 // whose singular values exceed 'relative_threshold' times the largest (what is smaller is
 // taken as the rest of a non-stationary signal rather than a component); they are found
-// as the eigenvectors of Y^T Y. With V1 and V2
-// those vectors without their last and their first row, the poles z_i are the eigenvalues
-// of pinv(V1) V2, and the amplitudes a_i the least-squares fit of the Vandermonde system.
+// as the eigenvectors of Y^T Y. With V1 and V2 those vectors without their last and their
+// first row, the poles z_i are the eigenvalues of pinv(V1) V2, and the amplitudes a_i the
+// least-squares fit of the Vandermonde system.
 // A real signal gives conjugate pairs: each pair is one damped sinusoid
 // 2 |a| exp(-sigma t) cos(omega t + arg a), reported once, at omega > 0.
 //
