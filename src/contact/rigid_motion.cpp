@@ -60,7 +60,7 @@ RigidPose RigidMotion::evaluate_pose(double time) const {
   return pose;
 }
 
-RigidPose RigidMotion::pose(double time) const {
+const RigidPose& RigidMotion::pose(double time) const {
   // One entry per thread: tires solved in parallel (TireGroup) never share it, and a
   // motion destroyed and another built at its address cannot be mistaken for it.
   struct Kept {

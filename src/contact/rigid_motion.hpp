@@ -73,8 +73,9 @@ class RigidMotion {
   /// The pose at time t. Every node of an evaluation pass asks at the same time, so the
   /// last pose is kept (one per thread) and the motion's functions, sine and cosine run
   /// once per pass rather than once per node. The functions must depend on time alone
-  /// (as their rates by differences already assume).
-  RigidPose pose(double time) const;
+  /// (as their rates by differences already assume). The reference holds until the next
+  /// pose() on this thread.
+  const RigidPose& pose(double time) const;
 
   /// Spatial position at time t of the material point 'material'.
   Eigen::Vector2d to_space(const Eigen::Vector2d& material, double time) const {

@@ -158,9 +158,9 @@ std::vector<Eigen::Vector2d> RoadProfile::cleat_points(double start, double leng
   return {{start, level}, {start, level + height}, {start + length, level + height}, {start + length, level}};
 }
 
-double Drum::clearance(const Eigen::Vector2d& x, double time) const {
-  const Eigen::Vector2d axis = centre() + motion().pose(time).translation;
-  return (x - axis).norm() - (radius_ + std::max(cleat_.height, 0.0));
+double Drum::clearance(const Eigen::Vector2d& x, double /*time*/) const {
+  // A drum turns about its fixed axis (its motion is a rotation alone): no pose to look up.
+  return (x - centre()).norm() - (radius_ + std::max(cleat_.height, 0.0));
 }
 
 }  // namespace tirefe

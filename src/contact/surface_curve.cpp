@@ -35,7 +35,8 @@ Eigen::Vector2d unit(const Eigen::Vector2d& direction, const char* what) {
 
 /// Angle in [0, 2 pi).
 double wrapped_angle(double angle) {
-  angle = std::fmod(angle, 2.0 * kPi);
+  // fmod leaves an angle within one turn as it is; only the others pay for it.
+  if (!(std::abs(angle) < 2.0 * kPi)) angle = std::fmod(angle, 2.0 * kPi);
   return angle < 0.0 ? angle + 2.0 * kPi : angle;
 }
 
@@ -91,7 +92,14 @@ SurfaceCurve::Piece SurfaceCurve::Piece::arc(const Eigen::Vector2d& centre, doub
   piece.start_angle_ = start_angle;
   piece.orientation_ = sweep > 0.0 ? 1.0 : -1.0;
   piece.end_ = radius * std::min(std::abs(sweep), 2.0 * kPi);
+  piece.keep_ends();
   return piece;
+}
+
+void SurfaceCurve::Piece::keep_ends() {
+  if (!arc_) return;
+  point_and_tangent(begin_, begin_point_, begin_tangent_);
+  point_and_tangent(end_, end_point_, end_tangent_);
 }
 
 Eigen::Vector2d SurfaceCurve::Piece::point(double l) const {
@@ -125,12 +133,17 @@ double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
   const double l = radius_ * wrapped_angle(orientation_ * (std::atan2(radial.y(), radial.x()) - start_angle_));
   if (l <= end_) return l;
   // Outside the arc's span: the nearer end.
-  return (x - point(begin_)).squaredNorm() <= (x - point(end_)).squaredNorm() ? begin_ : end_;
+  return (x - begin_point_).squaredNorm() <= (x - end_point_).squaredNorm() ? begin_ : end_;
 }
 
 void SurfaceCurve::Piece::closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point,
                                         Eigen::Vector2d& tangent) const {
   l = closest(x);
+  if (arc_ && (l == begin_ || l == end_)) {
+    point = l == begin_ ? begin_point_ : end_point_;
+    tangent = l == begin_ ? begin_tangent_ : end_tangent_;
+    return;
+  }
   const Eigen::Vector2d radial = x - origin_;
   const double distance = radial.norm();
   if (!arc_ || !(distance > 0.0) || l <= begin_ || l >= end_) return point_and_tangent(l, point, tangent);
@@ -234,6 +247,7 @@ SurfaceCurve::SurfaceCurve(std::vector<Piece> pieces, bool closed, double edge_r
       throw ModelError("surface: the surface folds back on itself at " + where(end));
   }
   if (edge_radius > 0.0) round_convex_corners(edge_radius);
+  for (Piece& piece : pieces_) piece.keep_ends();  // the rounding trims arcs
   number_arc_length();
 }
 
@@ -370,11 +384,11 @@ void SurfaceCurve::candidate_range(const Eigen::Vector2d& x, int& first, int& la
   last = std::clamp(last, below, count - 1);
 }
 
-double SurfaceCurve::distance_bound(int i, const Eigen::Vector2d& x) const {
-  const Piece& piece = pieces_[i];
-  const double outside_ball = (x - balls_[i].centre).norm() - balls_[i].radius;
+bool SurfaceCurve::beyond(int i, const Eigen::Vector2d& x, double reach) const {
+  if ((x - balls_[i].centre).norm() - balls_[i].radius > reach) return true;
   // Every point of an arc lies on its circle: |x - y| >= | |x - c| - r |.
-  return piece.arc_ ? std::max(outside_ball, std::abs((x - piece.origin_).norm() - piece.radius_)) : outside_ball;
+  const Piece& piece = pieces_[i];
+  return piece.arc_ && std::abs((x - piece.origin_).norm() - piece.radius_) > reach;
 }
 
 SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
@@ -383,11 +397,12 @@ SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
   int nearest = first;
   double nearest_l = 0.0, nearest_distance = kInfinity;
   Eigen::Vector2d nearest_point, nearest_tangent;
+  double reach = kInfinity;  // sqrt(nearest_distance) + margin
   for (int i = first; i <= last; ++i) {
     // A piece that cannot come nearer than the nearest so far is not projected on (a drum's
     // cleat, away from it: its arcs' arctangents are most of a projection's cost). The
     // margin keeps round-off in the bound from skipping a piece as near.
-    if (nearest_distance < kInfinity && distance_bound(i, x) > std::sqrt(nearest_distance) + 1e-9 * scale_) continue;
+    if (reach < kInfinity && beyond(i, x, reach)) continue;
     double l = 0.0;
     Eigen::Vector2d point, tangent;
     pieces_[i].closest_point(x, l, point, tangent);
@@ -398,6 +413,7 @@ SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
       nearest_distance = distance;
       nearest_point = point;
       nearest_tangent = tangent;
+      reach = nearest_distance < kInfinity ? std::sqrt(nearest_distance) + 1e-9 * scale_ : kInfinity;
     }
   }
   const Piece& piece = pieces_[nearest];

@@ -84,6 +84,11 @@ class SurfaceCurve {
     double radius_ = 0.0, start_angle_ = 0.0, orientation_ = 1.0;  // arc (+1 counter-clockwise)
     double begin_ = 0.0, end_ = 0.0;                               // local range of l (lines may reach +-infinity)
     double shift_ = 0.0;                                           // s = shift + l on the finished curve
+    // An arc's point and tangent at its two ends, kept by keep_ends() once its span is final:
+    // a point outside the span is projected onto the nearer end, without a sine or cosine.
+    Eigen::Vector2d begin_point_ = Eigen::Vector2d::Zero(), begin_tangent_ = Eigen::Vector2d::Zero();
+    Eigen::Vector2d end_point_ = Eigen::Vector2d::Zero(), end_tangent_ = Eigen::Vector2d::Zero();
+    void keep_ends();
   };
 
   /// A corner left after rounding: where the vertex rule applies.
@@ -133,9 +138,9 @@ class SurfaceCurve {
   const Joint* joint_after(int piece) const;
   const Joint* joint_before(int piece) const;
   void candidate_range(const Eigen::Vector2d& x, int& first, int& last) const;
-  /// A lower bound of the distance from x to piece i, without trigonometry (-infinity for
-  /// a ray or a line).
-  double distance_bound(int i, const Eigen::Vector2d& x) const;
+  /// True if piece i lies farther than 'reach' from x, by bounds without trigonometry (a
+  /// ball around the piece; an arc's circle). Never for a ray or a line.
+  bool beyond(int i, const Eigen::Vector2d& x, double reach) const;
 
   std::vector<Piece> pieces_;
   std::vector<Joint> joints_;  // joints_[i] follows pieces_[i]; the last one only when closed
