@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "macros/deck_runner.hpp"
+#include "macros/program_heap.hpp"
 #include "parallel/mpi_tire_group.hpp"
 
 namespace {
@@ -62,6 +63,7 @@ int end_run(const DeckOutcome& outcome, int rank, MPI_Comm ending) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tirefe::macros::keep_row_buffers_in_heap();
   int provided = 0, rank = 0, ranks = 1;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);  // tire threads never call MPI
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
