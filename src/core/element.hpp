@@ -512,15 +512,26 @@ class ElementBlockOf final : public ElementBlock {
     double* acceleration = velocity + kDofs * count;
     constexpr bool reads_velocity = detail::ReadsVelocity<Kernel>::value;
     const bool reads_acceleration = detail::ReadsAcceleration<Kernel>::value && with_acceleration;
+    // One pass per DOF reads each index once for all the fields it gathers.
+    const double *u = state.displacement.data(), *v = state.velocity.data(), *a = state.acceleration.data();
     for (int k = 0; k < kDofs; ++k) {
       if (kIdle[k]) continue;
       const int* dofs = batch_dofs_.data() + k * count;
       const int first = k * count;
-      for (int e = 0; e < count; ++e) displacement[first + e] = state.displacement[dofs[e]];
-      if constexpr (reads_velocity)
-        for (int e = 0; e < count; ++e) velocity[first + e] = state.velocity[dofs[e]];
-      if (reads_acceleration)
-        for (int e = 0; e < count; ++e) acceleration[first + e] = state.acceleration[dofs[e]];
+      if (reads_acceleration) {
+        for (int e = 0; e < count; ++e) {
+          const int dof = dofs[e];
+          displacement[first + e] = u[dof];
+          if constexpr (reads_velocity) velocity[first + e] = v[dof];
+          acceleration[first + e] = a[dof];
+        }
+      } else {
+        for (int e = 0; e < count; ++e) {
+          const int dof = dofs[e];
+          displacement[first + e] = u[dof];
+          if constexpr (reads_velocity) velocity[first + e] = v[dof];
+        }
+      }
     }
     return BlockValues{count, displacement, reads_velocity ? velocity : nullptr,
                        reads_acceleration ? acceleration : nullptr};
