@@ -62,31 +62,46 @@ struct Timings {
   double difference = 0;                                      // |x_ring - x_klu| / |x_klu|
 };
 
-Timings time_tire(const char* tire_set, int fixed_components, int repetitions) {
-  Model model;
+/// The tire built into 'model', its spindle condensed and fixed in its first
+/// 'fixed_components'.
+Tire condensed_tire(Model& model, const char* tire_set, int fixed_components) {
   const Tire tire = build_tire(model, macros::load_tire_parameters(tire_set), LoadFunction::linear());
   for (int c = 0; c < fixed_components; ++c) model.fix(tire.spindle, c);
   model.condense_node(tire.spindle);
-  Analysis analysis(model);
+  return tire;
+}
+
+/// Inflated quasi-statically to t = 1 on a held hub (so the static tangent is regular),
+/// the hub's other components released after.
+void inflate(Model& model, Analysis& analysis, int spindle, int fixed_components) {
   analysis.set_time_step(0.5);
-  if (fixed_components < 3) {  // hold the hub while inflating, so the static tangent is regular
-    for (int c = fixed_components; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
-    analysis.advance(1.0);
-    for (int c = fixed_components; c < kDofsPerNode; ++c) model.release(tire.spindle, c);
-  } else {
-    analysis.advance(1.0);
-  }
+  for (int c = fixed_components; c < kDofsPerNode; ++c) model.fix(spindle, c);
+  analysis.advance(1.0);
+  for (int c = fixed_components; c < kDofsPerNode; ++c) model.release(spindle, c);
+}
+
+/// A Newmark step's effective tangent (h = 1e-4 s) at 'time'.
+EvaluationContext newmark_context(double time) {
+  EvaluationContext context;
+  context.time = time;
+  const double h = 1e-4;
+  context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
+  context.want_tangent = true;
+  return context;
+}
+
+Timings time_tire(const char* tire_set, int fixed_components, int repetitions) {
+  Model model;
+  const Tire tire = condensed_tire(model, tire_set, fixed_components);
+  Analysis analysis(model);
+  inflate(model, analysis, tire.spindle, fixed_components);
 
   Timings timings;
   Assembler& assembler = analysis.assembler();
   assembler.update_pattern();
-  EvaluationContext context;
-  context.time = 1.0;
-  const double h = 1e-4;
-  context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
+  EvaluationContext context = newmark_context(1.0);
   Eigen::VectorXd residual;
   const State& state = analysis.state();
-  context.want_tangent = true;
   timings.assembly = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
   context.want_tangent = false;
   timings.residual_only = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
@@ -157,12 +172,9 @@ struct DrumTimings {
 /// The tire on a dead axle pressed onto the deck's drum at rest (hub 25 mm down).
 DrumTimings time_on_drum(const char* tire_set, int repetitions) {
   Model model;
-  const Tire tire = build_tire(model, macros::load_tire_parameters(tire_set), LoadFunction::linear());
-  for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
-  model.condense_node(tire.spindle);
+  const Tire tire = condensed_tire(model, tire_set, kDofsPerNode);  // held while pressed
   Analysis analysis(model);
-  analysis.set_time_step(0.5);
-  analysis.advance(1.0);  // inflated on a held hub
+  inflate(model, analysis, tire.spindle, kDofsPerNode);
 
   // The drum's top under the hub, touching the lowest contact node.
   double lowest = 0.0;
@@ -191,11 +203,7 @@ DrumTimings time_on_drum(const char* tire_set, int repetitions) {
   timings.in_contact = summarize_contact(static_cast<const ContactBlock&>(contact)).nodes_in_contact;
   Assembler& assembler = analysis.assembler();
   assembler.update_pattern();
-  EvaluationContext context;
-  context.time = 2.0;
-  const double h = 1e-4;
-  context.factors = {1.0, 1.0, 1.0, 1.0, 0.5 / (0.25 * h), 1.0 / (0.25 * h * h)};
-  context.want_tangent = true;
+  EvaluationContext context = newmark_context(2.0);
   const State& state = analysis.state();
   Eigen::VectorXd residual;
   timings.assembly = microseconds_per_call(repetitions, [&] { assembler.assemble(context, state, residual); });
