@@ -139,15 +139,15 @@ double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
 void SurfaceCurve::Piece::closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point,
                                         Eigen::Vector2d& tangent) const {
   l = closest(x);
-  if (arc_ && (l == begin_ || l == end_)) {
+  if (!arc_) return point_and_tangent(l, point, tangent);
+  // An arc's closest() gives an end (x beyond the span, or at the centre) or a point inside.
+  if (l == begin_ || l == end_) {
     point = l == begin_ ? begin_point_ : end_point_;
     tangent = l == begin_ ? begin_tangent_ : end_tangent_;
     return;
   }
   const Eigen::Vector2d radial = x - origin_;
-  const double distance = radial.norm();
-  if (!arc_ || !(distance > 0.0) || l <= begin_ || l >= end_) return point_and_tangent(l, point, tangent);
-  const Eigen::Vector2d outward = radial / distance;
+  const Eigen::Vector2d outward = radial / radial.norm();
   point = origin_ + radius_ * outward;
   tangent = orientation_ * Eigen::Vector2d(-outward.y(), outward.x());
 }

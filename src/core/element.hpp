@@ -518,19 +518,11 @@ class ElementBlockOf final : public ElementBlock {
       if (kIdle[k]) continue;
       const int* dofs = batch_dofs_.data() + k * count;
       const int first = k * count;
-      if (reads_acceleration) {
-        for (int e = 0; e < count; ++e) {
-          const int dof = dofs[e];
-          displacement[first + e] = u[dof];
-          if constexpr (reads_velocity) velocity[first + e] = v[dof];
-          acceleration[first + e] = a[dof];
-        }
-      } else {
-        for (int e = 0; e < count; ++e) {
-          const int dof = dofs[e];
-          displacement[first + e] = u[dof];
-          if constexpr (reads_velocity) velocity[first + e] = v[dof];
-        }
+      for (int e = 0; e < count; ++e) {  // the compiler takes reads_acceleration out of the loop
+        const int dof = dofs[e];
+        displacement[first + e] = u[dof];
+        if constexpr (reads_velocity) velocity[first + e] = v[dof];
+        if (reads_acceleration) acceleration[first + e] = a[dof];
       }
     }
     return BlockValues{count, displacement, reads_velocity ? velocity : nullptr,
