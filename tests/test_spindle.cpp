@@ -1,6 +1,7 @@
 // The spindle force interface (docs/model.md section 6): the condensed Jacobian H_ss against
 // central finite differences of the converged spindle force on a tire rolling with
-// friction on a moving flat road; trial solves leave the tire's history alone.
+// friction on a moving flat road; trial solves leave the tire's history alone; a
+// corrector's trial started on its residual alone against plain Newton's.
 #include <catch2/catch.hpp>
 
 #include "contact/rigid_motion.hpp"
@@ -104,6 +105,43 @@ TEST_CASE("spindle Jacobian H_ss equals central differences of the spindle force
   CHECK(error < 1e-5 * scale);
   CHECK(jacobian.row(2).isZero());  // free spin: no moment, no rz column
   CHECK(jacobian.col(2).isZero());
+}
+
+TEST_CASE("a corrector's trial started on its residual alone, rolling with slip, gives plain Newton's answer",
+          "[spindle][vehicle]") {
+  RollingTire lean, plain;  // plain: every Newton evaluation with its tangent
+  plain.tire.analysis().newton_settings().residual_only_when_converging = false;
+  for (RollingTire* tire : {&lean, &plain}) tire->roll(10);  // the spin-up, slip in the patch
+  REQUIRE(summarize_contact(lean.tire.contact()).nodes_slipping >= 1);
+  auto trial = [](RollingTire& tire, double dx, SpindleStart start, bool jacobian) {
+    SpindleInput input{kStep, dx, -kDeflection, 0.0, start};
+    input.jacobian = jacobian;
+    return tire.spindle->solve_step(input);
+  };
+  REQUIRE((force_of(trial(lean, 0.0, SpindleStart::Predictor, true)) -
+           force_of(trial(plain, 0.0, SpindleStart::Predictor, true)))
+              .norm() == 0.0);
+  // A corrector's increments, fore-aft: one that converges at once, one that iterates
+  // (its start made again with the tangent, from the history it began with).
+  for (const double dx : {1e-9, 2e-5}) {
+    const SpindleReply lean_reply = trial(lean, dx, SpindleStart::LastTrial, false);
+    const NewtonReport lean_report = lean.tire.analysis().last_newton_report();
+    const SpindleReply plain_reply = trial(plain, dx, SpindleStart::LastTrial, false);
+    INFO("dx " << dx << ": Newton " << lean_reply.newton_iterations << " and " << plain_reply.newton_iterations);
+    CHECK(lean_report.residual_only == 1);
+    CHECK((lean_reply.newton_iterations == 0) == (dx < 1e-6));
+    CHECK(lean_reply.newton_iterations == plain_reply.newton_iterations);
+    CHECK((force_of(lean_reply) - force_of(plain_reply)).norm() == 0.0);
+    SpindleRequest request;
+    request.command = SpindleCommand::Jacobian;
+    const SpindleReply lean_jacobian = lean.spindle->serve(request), plain_jacobian = plain.spindle->serve(request);
+    CHECK((jacobian_of(lean_jacobian) - jacobian_of(plain_jacobian)).norm() == 0.0);
+  }
+  // The committed steps alike: the contact history the trials leave is plain Newton's.
+  for (RollingTire* tire : {&lean, &plain}) tire->spindle->commit();
+  lean.roll(3);
+  plain.roll(3);
+  CHECK((lean.spindle->committed_force() - plain.spindle->committed_force()).norm() == 0.0);
 }
 
 TEST_CASE("spindle trial solves do not advance the tire; commit and revert do what they say", "[spindle][vehicle]") {

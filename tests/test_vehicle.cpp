@@ -2,7 +2,8 @@
 // against weight / stiffness, its wheel-hop frequency against the linearised two-mass
 // system, the direct spindle Jacobian against the finite-difference one (same answer,
 // fewer tire solves), a Jacobian fetched after a solve without it against one solved with
-// it, and four concurrent tires against sequential ones, bit for bit.
+// it, a corrector's trial started on its residual alone against plain Newton's, and four
+// concurrent tires against sequential ones, bit for bit.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -127,6 +128,38 @@ TEST_CASE("a Jacobian asked after a solve without it: the solve's own, and a cor
   const SpindleReply refused = ask_jacobian();
   CHECK(refused.status == SpindleStatus::Failed);
   CHECK(std::string(refused.message).find("trial") != std::string::npos);
+}
+
+TEST_CASE("a corrector's trial started on its residual alone gives plain Newton's forces and H_ss",
+          "[vehicle][spindle]") {
+  // Two tires alike, one with plain Newton's every evaluation taking the tangent.
+  PressedAndDriven lean, plain;
+  plain.tire.analysis().newton_settings().residual_only_when_converging = false;
+  auto ask_jacobian = [](PressedAndDriven& tire) {
+    SpindleRequest request;
+    request.command = SpindleCommand::Jacobian;
+    return tire.spindle->serve(request);
+  };
+  const SpindleReply lean_first = lean.solve(0.0, -1e-4, SpindleStart::Predictor);
+  const SpindleReply plain_first = plain.solve(0.0, -1e-4, SpindleStart::Predictor);
+  REQUIRE((force_of(lean_first) - force_of(plain_first)).norm() == 0.0);
+  // A corrector's increments: one small enough to converge at once, one that iterates
+  // (its start made again with the tangent).
+  for (const double dy : {-1e-4 - 1e-9, -1.03e-4}) {
+    const SpindleReply lean_trial = lean.solve(0.0, dy, SpindleStart::LastTrial, false);
+    const int lean_residual_only = lean.tire.analysis().last_newton_report().residual_only;
+    const SpindleReply plain_trial = plain.solve(0.0, dy, SpindleStart::LastTrial, false);
+    INFO("dy " << dy << ": Newton " << lean_trial.newton_iterations << " and " << plain_trial.newton_iterations);
+    CHECK(lean_residual_only == 1);  // the start, of the residual alone
+    CHECK(plain.tire.analysis().last_newton_report().residual_only == 0);
+    CHECK(lean_trial.newton_iterations == plain_trial.newton_iterations);
+    CHECK((lean_trial.newton_iterations == 0) == (dy > -1.01e-4));
+    CHECK((force_of(lean_trial) - force_of(plain_trial)).norm() == 0.0);  // bit for bit
+    const SpindleReply lean_jacobian = ask_jacobian(lean), plain_jacobian = ask_jacobian(plain);
+    CHECK(jacobian_of(lean_jacobian).diagonal().head<2>().minCoeff() > 1e5);  // a loaded tire's H_ss, N/m
+    CHECK((jacobian_of(lean_jacobian) - jacobian_of(plain_jacobian)).norm() == 0.0);
+    CHECK((force_of(lean_jacobian) - force_of(plain_jacobian)).norm() == 0.0);
+  }
 }
 
 TEST_CASE("quarter car: static ride height is weight over stiffness, the tire carries the whole weight",

@@ -101,6 +101,10 @@ void Analysis::driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const { driven_
 const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
   DrivenDofSolver* driven = solvers_.driven();
   if (!trial_pending_ || !driven) throw ModelError("the driven tangent needs a solved trial step");
+  if (start_without_tangent_) {  // Newton converged at a start of the residual alone
+    double force_level = 0.0;
+    evaluate(true, start_residual_, force_level);
+  }
   driven->factorize_with_schur(assembler_.tangent());
   response_pattern_ = assembler_.pattern_version();
   return driven->schur_complement();
@@ -124,6 +128,14 @@ void Analysis::size_state() {
 }
 
 void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, double& force_level) {
+  if (with_tangent && start_without_tangent_) {
+    // That start again, now with its tangent, from the history it began with: the
+    // evaluation plain Newton would have made there, the same residual bit for bit.
+    model_.revert_history();
+    first_evaluation_ = true;
+  }
+  start_without_tangent_ = !with_tangent && first_evaluation_;
+  start_expected_converged_ = false;
   EvaluationContext context;
   context.time = trial_.time;
   context.time_step = carried_.steps.current;
@@ -190,6 +202,7 @@ double Analysis::apply_increment(const Eigen::VectorXd& increment) {
 }
 
 bool Analysis::try_step(double step, double end_time, StepRecord& record) {
+  start_without_tangent_ = false;
   carried_.steps.current = step;
   trial_ = carried_.state;
   integrator_.predict(carried_.state, step, trial_);
@@ -271,6 +284,7 @@ void Analysis::finish_step(double step) {
   for (int dof : driven_.dofs()) carried_.reactions[dof] = residual_all_[dof];
   carried_.reactions_valid = true;
   model_.commit_history();
+  start_without_tangent_ = false;
   std::swap(carried_.state, trial_);
   carried_.external_old = external_new_;
   carried_.old_forces_valid = integrator_.weights_old_forces();
@@ -403,6 +417,7 @@ const StepRecord& Analysis::resolve_trial_step(double step) {
   trial_record_ = StepRecord{};
   // Judged as the trial from the predictor was: against the force level of its first residual.
   resolve_reference_ = trial_reference_;
+  start_expected_converged_ = true;
   const bool solved = iterate(step, trial_record_);
   resolve_reference_ = 0.0;
   return keep_trial(step, solved);

@@ -115,8 +115,10 @@ class Analysis : private StepEquations, private SteppedSystem {
   /// state moved by its linear response to them (A_uu du_u = -A_us du_s with the factors
   /// of driven_tangent(), taken at that state) instead of from the predictor: a host's
   /// corrector moves the driven DOFs little between its trials, so Newton has little
-  /// left to do. Newton's reference force is at least that of the trial from the predictor,
-  /// so that the same absolute tolerance judges both. From the predictor when there is no such trial (none pending, no
+  /// left to do: its first evaluation assembles the residual alone, the tangent following
+  /// only if Newton iterates or driven_tangent() asks for it. Newton's reference force is
+  /// at least that of the trial from the predictor, so that the same absolute tolerance
+  /// judges both. From the predictor when there is no such trial (none pending, no
   /// driven_tangent() since, another step size).
   const StepRecord& resolve_trial_step(double step);
   /// Commits the trial step as advance() commits a step (observers hear of it).
@@ -134,7 +136,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   void driven_forces(Eigen::Ref<Eigen::VectorXd> forces) const;
   /// H = K_ss - K_su K_uu^-1 K_us of the effective tangent at the converged trial step
   /// over the driven DOFs (docs/model.md eq. 27): the Jacobian of driven_forces() with
-  /// respect to the driven displacements. One factorization of the converged tangent.
+  /// respect to the driven displacements. One factorization of the converged tangent (and
+  /// its assembly, when resolve_trial_step() converged on the residual alone).
   const DrivenDofSolver::SmallMatrix& driven_tangent();
 
   void add_step_observer(std::function<void(const Analysis&, const StepRecord&)> observer) {
@@ -174,6 +177,7 @@ class Analysis : private StepEquations, private SteppedSystem {
   RingSolver* solver_taking_tangent();
   /// A host's driven_tangent() and resolve_trial_step() read the converged step's tangent.
   bool wants_converged_tangent() const override { return !driven_.empty(); }
+  bool start_expected_converged() const override { return start_expected_converged_; }
 
   Model& model_;
   Assembler assembler_;
@@ -195,13 +199,16 @@ class Analysis : private StepEquations, private SteppedSystem {
   StepRecord trial_record_;
   int response_pattern_ = -1;  // pattern of the trial's factors from driven_tangent(); -1: none
   Eigen::VectorXd driven_move_, response_;
-  double trial_reference_ = 0.0;         // Newton's reference force of the step's trial from the predictor
-  double resolve_reference_ = 0.0;       // that force, a floor of the force level while resolving
-  Eigen::VectorXd inertia_forces_;       // M a of the step being finished
-  bool first_evaluation_ = false;        // the next evaluate() is the first of a Newton solve
-  RingSolver* layout_solver_ = nullptr;  // the solver whose layout the assembler holds bound,
-  int layout_pattern_ = -1;              // for this pattern version
-  bool tangent_in_solver_ = false;       // the last evaluation's tangent lies in layout_solver_
+  double trial_reference_ = 0.0;           // Newton's reference force of the step's trial from the predictor
+  double resolve_reference_ = 0.0;         // that force, a floor of the force level while resolving
+  Eigen::VectorXd inertia_forces_;         // M a of the step being finished
+  bool first_evaluation_ = false;          // the next evaluate() is the first of a Newton solve
+  bool start_expected_converged_ = false;  // the next Newton solve starts from a trial's linear response
+  bool start_without_tangent_ = false;     // the last evaluation was such a start's, of the residual alone
+  Eigen::VectorXd start_residual_;         // the free residual of that start made again with its tangent
+  RingSolver* layout_solver_ = nullptr;    // the solver whose layout the assembler holds bound,
+  int layout_pattern_ = -1;                // for this pattern version
+  bool tangent_in_solver_ = false;         // the last evaluation's tangent lies in layout_solver_
 };
 
 }  // namespace tirefe

@@ -36,7 +36,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
   double norm_two_back = 0.0;  // at the start of the one before
   double step_fraction = 1.0;  // of the current increment applied so far
   int halvings = 0;
-  bool with_tangent = true;
+  bool with_tangent = !(settings_.residual_only_when_converging && equations.start_expected_converged());
   bool chord_taken = false;  // in this solve
   const bool may_skip_tangent = settings_.residual_only_when_converging && !equations.wants_converged_tangent();
   for (;;) {

@@ -21,6 +21,11 @@
 // otherwise the same state is evaluated again with its tangent. The converged state meets
 // the same tolerances as plain Newton's; StepEquations::wants_converged_tangent() keeps
 // the tangent of the converged evaluation and plain Newton's iterates.
+//
+// The first evaluation: with the tangent, unless the equations expect their start to
+// converge (StepEquations::start_expected_converged(): a trial moved by its linear
+// response); then the residual alone, and the same state again with the tangent if it
+// does not converge. NewtonSettings::residual_only_when_converging turns off both.
 #pragma once
 
 #include <Eigen/Dense>
@@ -45,7 +50,7 @@ struct NewtonSettings {
   double divergence_ratio = 1e8;
   int line_search_from = 2;  // increments taken whole before backtracking starts
   int max_backtracks = 4;
-  bool residual_only_when_converging = true;  // the last evaluation without the tangent (above)
+  bool residual_only_when_converging = true;  // the last evaluation, or an expected start, without the tangent (above)
   std::ostream* log = nullptr;                // per-iteration lines when set
 };
 
@@ -75,6 +80,10 @@ class StepEquations {
   virtual double apply_increment(const Eigen::VectorXd& increment) = 0;
   /// True when the caller reads tangent() after convergence: it is then that of the converged state.
   virtual bool wants_converged_tangent() const { return false; }
+  /// True when this solve starts from a state expected to meet the tolerance: its first
+  /// evaluation assembles the residual alone (and is made again with the tangent if it
+  /// does not converge after all).
+  virtual bool start_expected_converged() const { return false; }
 };
 
 class NewtonSolver {
