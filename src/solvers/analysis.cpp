@@ -238,6 +238,7 @@ bool Analysis::iterate(double step, StepRecord& record) {
     while (record.augmentations < controller_.settings().max_augmentations && model_.augment()) {
       ++record.augmentations;
       first_evaluation_ = true;
+      start_without_tangent_ = false;  // a new solve, with its tangent from the start
       report = &newton_.solve(*this, linear_solver);
       record.newton_iterations += report->iterations;
     }
