@@ -202,7 +202,6 @@ double Analysis::apply_increment(const Eigen::VectorXd& increment) {
 }
 
 bool Analysis::try_step(double step, double end_time, StepRecord& record) {
-  start_without_tangent_ = false;
   carried_.steps.current = step;
   trial_ = carried_.state;
   integrator_.predict(carried_.state, step, trial_);
@@ -228,7 +227,7 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
 bool Analysis::iterate(double step, StepRecord& record) {
   try {
     LinearSolver& linear_solver = solvers_.newton_solver();
-    first_evaluation_ = true;
+    begin_solve();
     const NewtonReport* report = &newton_.solve(*this, linear_solver);
     if (resolve_reference_ == 0.0) trial_reference_ = report->reference_force;
     record.newton_iterations = report->iterations;
@@ -237,8 +236,7 @@ bool Analysis::iterate(double step, StepRecord& record) {
     // constraints are met to their tolerance (or the augmentation budget is spent).
     while (record.augmentations < controller_.settings().max_augmentations && model_.augment()) {
       ++record.augmentations;
-      first_evaluation_ = true;
-      start_without_tangent_ = false;  // a new solve, with its tangent from the start
+      begin_solve();
       report = &newton_.solve(*this, linear_solver);
       record.newton_iterations += report->iterations;
     }
@@ -285,7 +283,6 @@ void Analysis::finish_step(double step) {
   for (int dof : driven_.dofs()) carried_.reactions[dof] = residual_all_[dof];
   carried_.reactions_valid = true;
   model_.commit_history();
-  start_without_tangent_ = false;
   std::swap(carried_.state, trial_);
   carried_.external_old = external_new_;
   carried_.old_forces_valid = integrator_.weights_old_forces();

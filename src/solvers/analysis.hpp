@@ -178,6 +178,11 @@ class Analysis : private StepEquations, private SteppedSystem {
   /// A host's driven_tangent() and resolve_trial_step() read the converged step's tangent.
   bool wants_converged_tangent() const override { return !driven_.empty(); }
   bool start_expected_converged() const override { return start_expected_converged_; }
+  /// A Newton solve begins: its first evaluation comes next, and no earlier start is made again.
+  void begin_solve() {
+    first_evaluation_ = true;
+    start_without_tangent_ = false;
+  }
 
   Model& model_;
   Assembler assembler_;
