@@ -4,6 +4,7 @@
 --   local series = require("series")
 --   local low, high = series.range(record.time, record.fz, 2.4, 2.6)
 --   local peak_time, peak = series.peak(record.time, record.fz, 2.4, 2.6)
+--   local strike = series.rise(record.time, record.fz, 2.4, 2.6, 3700, 1850)
 --   local turn = series.at(record.time, record.turn, 7.537)
 local series = {}
 
@@ -24,6 +25,25 @@ function series.peak(time, values, from, to)
     if t >= from and t <= to and values[i] > peak then peak_time, peak = t, values[i] end
   end
   return peak_time, peak
+end
+
+-- The first time from <= t <= to at which the values rise through 'level' after having
+-- been below 'below' (<= level) in the window: a load's return after an unloading, say.
+-- Linear between the samples either side; nil if the values never do.
+function series.rise(time, values, from, to, level, below)
+  if below > level then error("series.rise: 'below' (" .. below .. ") is above 'level' (" .. level .. ")", 2) end
+  local armed = false
+  for i, t in ipairs(time) do
+    if t > to then break end
+    if t >= from then
+      if armed and values[i] >= level then  -- the sample before was below 'level'
+        local w = (level - values[i - 1]) / (values[i] - values[i - 1])
+        return time[i - 1] + w * (t - time[i - 1])
+      end
+      if values[i] < below then armed = true end
+    end
+  end
+  return nil
 end
 
 -- The mean of fn(value, t) over the samples at times from < t <= to (nil if none).

@@ -84,7 +84,7 @@ tirefe.check{ name = "full-speed passages read", value = count, expected = 2, to
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 30);
 }
 
-TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, means, rolling radius", "[lua][modules]") {
+TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, rises, means, rolling radius", "[lua][modules]") {
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("series_deck.lua", R"(
 local series = require("series")
@@ -98,6 +98,15 @@ local peak_time, peak = series.peak(time, fz, 1.5, 5.0)
 tirefe.check{ name = "peak: the first of equal maxima [s]", value = peak_time, expected = 2.0, tolerance = 0 }
 tirefe.check{ name = "peak value", value = peak, expected = 30, tolerance = 0 }
 tirefe.check{ name = "no peak in an empty window", value = series.peak(time, fz, 6, 7) == nil and 1 or 0, expected = 1 }
+-- A load that drops below 0 and rises back through 20 between t = 3 (-5) and t = 4 (30).
+tirefe.check{ name = "rise through 20 after a drop below 0 [s]", value = series.rise(time, fz, 1.0, 5.0, 20, 0),
+              expected = 3 + 25 / 35, relative = 1e-14 }
+tirefe.check{ name = "no rise without the drop in the window", value = series.rise(time, fz, 3.5, 5.0, 20, 0) == nil
+              and 1 or 0, expected = 1 }
+tirefe.check{ name = "no rise through a level never reached", value = series.rise(time, fz, 1.0, 5.0, 40, 0) == nil
+              and 1 or 0, expected = 1 }
+tirefe.check{ name = "a drop level above the rise is refused", value = pcall(series.rise, time, fz, 1, 5, 20, 25) and 1
+              or 0, expected = 0 }
 tirefe.check{ name = "mean over from < t <= to", value = series.mean(time, fz, 1.0, 3.0, function(v) return v end),
               expected = 12.5, tolerance = 1e-15 }
 tirefe.check{ name = "mean spacing of peak times [s]", value = series.mean_spacing{ 2.0, 2.375, 2.75, 3.125 },
@@ -110,7 +119,7 @@ tirefe.check{ name = "rolling radius = speed / spin, averaged [m]",
               value = rolling.radius{ time = time, spin = { 10, 20, 40, 50, 60 }, speed = 2.0, from = 1.0, to = 3.0 },
               expected = 0.075, tolerance = 1e-15 }
 )");
-  tirefe::testing::check_deck_passes(deck, folder.path("out"), 11);
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 15);
 }
 
 TEST_CASE("lua/press.lua presses a tire onto a road to a load; rolling.lua's contact ring", "[lua][modules][press]") {
