@@ -9,7 +9,7 @@
 -- and the body motions; the left-front and left-rear Fx, Fz around the pothole and
 -- their spectra (wheel hop ~10 Hz; the first vertical tire mode ~90 Hz) are plotted by
 --   /usr/bin/python3 post/plot_vehicle.py 8.9 10 results/vehicle_pothole_LF.h5 results/vehicle_pothole_LR.h5
--- Wall time on the 2-core machine: about 8-9 s (15-16 s CPU, the tires in two lanes) for
+-- Wall time on the 2-core machine: about 7.5-8.5 s (13-15 s CPU, the tires in two lanes) for
 -- the 8 s dynamic part (docs/vehicle.md). The deck checks itself once the left wheels
 -- have crossed: the weight and its split, the strike times.
 --

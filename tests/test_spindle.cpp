@@ -231,12 +231,21 @@ TEST_CASE("spindle Jacobian H_ss with a driven spin (a braked wheel) equals cent
 TEST_CASE("driven-DOF solves and H_ss through the RingSolver's border equal those through KLU, on a rolling tire",
           "[spindle][linear]") {
   // The ring route reads H from the border Schur complement and needs no column solves;
-  // the general route solves for the columns with KLU's factors. Same matrix: the
-  // effective tangent of a tire rolling with friction (stick and slip in the patch).
+  // the general route solves for the columns with KLU's factors; the assembled route
+  // condenses from the held ring's factors and the held rows and columns kept beside them.
+  // Same matrix: the effective tangent of a tire rolling with friction (stick and slip in
+  // the patch), assembled here at the trial the spindle solve converged to.
   RollingTire rolling;
   rolling.roll(20);
   rolling.solve(0.0, -kDeflection);
   Analysis& analysis = rolling.tire.analysis();
+  EvaluationContext context;
+  context.time = analysis.trial_state().time;
+  context.time_step = kStep;
+  context.factors = analysis.integrator().factors(kStep);
+  context.want_tangent = true;
+  Eigen::VectorXd residual;
+  analysis.assembler().query(context, analysis.trial_state(), residual);
   const SparseMatrix& tangent = analysis.assembler().tangent();
   const DofMap& dofs = analysis.model().dof_map();
   const int spindle = rolling.tire.tire().spindle;
@@ -267,5 +276,23 @@ TEST_CASE("driven-DOF solves and H_ss through the RingSolver's border equal thos
     CHECK((x_held - x_general).norm() <= 1e-9 * x_general.norm());
     for (int equation : driven) CHECK(x_held[equation] == 0.0);
     CHECK_THROWS_AS(structured.schur_complement(), std::logic_error);
+
+    // The tangent assembled into the held ring's storage, entry by entry as the assembler
+    // adds the elements' entries there: the same H, solves and driven columns.
+    double* storage = structured.begin_assembly();
+    const std::vector<int>& destinations = structured.assembly_solver()->entry_destinations();
+    for (int entry = 0; entry < static_cast<int>(tangent.nonZeros()); ++entry)
+      storage[destinations[entry]] += tangent.valuePtr()[entry];
+    structured.factorize_with_schur_assembled();
+    const Eigen::MatrixXd h_assembled = structured.schur_complement();
+    CHECK((h_assembled - h_general).norm() <= 1e-9 * h_general.norm());
+    Eigen::VectorXd x_assembled = rhs;
+    structured.solve(x_assembled);
+    CHECK((x_assembled - x_general).norm() <= 1e-9 * x_general.norm());
+    Eigen::VectorXd move = Eigen::VectorXd::Zero(tangent.rows()), product;
+    for (int i = 0; i < driven_count; ++i) move[driven[i]] = 1e-3 * (i + 1);
+    structured.multiply_driven_columns(move, product);
+    const Eigen::VectorXd expected = tangent * move;
+    CHECK((product - expected).norm() <= 1e-12 * expected.norm());
   }
 }

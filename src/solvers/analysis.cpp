@@ -105,7 +105,10 @@ const DrivenDofSolver::SmallMatrix& Analysis::driven_tangent() {
     double force_level = 0.0;
     evaluate(true, start_residual_, force_level);
   }
-  driven->factorize_with_schur(assembler_.tangent());
+  if (tangent_in_solver_)
+    driven->factorize_with_schur_assembled();
+  else
+    driven->factorize_with_schur(assembler_.tangent());
   response_pattern_ = assembler_.pattern_version();
   return driven->schur_complement();
 }
@@ -147,7 +150,8 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
   tangent_in_solver_ = false;
   if (solver) {
     // Straight into the solver's blocks: no sparse values to clear and copy (docs/kernel.md).
-    assembler_.assemble_into_solver(context, trial_, residual_all_, solver->begin_assembly());
+    double* storage = solvers_.driving() ? solvers_.driven()->begin_assembly() : solver->begin_assembly();
+    assembler_.assemble_into_solver(context, trial_, residual_all_, storage);
     tangent_in_solver_ = true;
   } else {
     assembler_.assemble(context, trial_, residual_all_);
@@ -170,7 +174,7 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
 }
 
 RingSolver* Analysis::solver_taking_tangent() {
-  RingSolver* ring = solvers_.driving() ? nullptr : solvers_.ring_solver();
+  RingSolver* ring = solvers_.driving() ? solvers_.driven()->assembly_solver() : solvers_.ring_solver();
   if (!ring || !solvers_.analyzed(assembler_.pattern_version())) return nullptr;
   if (ring != layout_solver_ || layout_pattern_ != assembler_.pattern_version() || !assembler_.solver_layout_bound()) {
     assembler_.bind_solver_layout(ring->entry_destinations());
@@ -185,9 +189,13 @@ void Analysis::factorize_tangent(LinearSolver& solver) {
     solver.factorize(assembler_.tangent());
     return;
   }
-  if (&solver != layout_solver_)
+  DrivenDofSolver* driven = solvers_.driving() ? solvers_.driven() : nullptr;
+  if (driven ? &solver != driven || driven->assembly_solver() != layout_solver_ : &solver != layout_solver_)
     throw std::logic_error("analysis: the tangent lies in one solver's storage and another was asked to factor it");
-  layout_solver_->factorize_assembled();
+  if (driven)
+    driven->factorize_assembled();
+  else
+    layout_solver_->factorize_assembled();
 }
 
 double Analysis::apply_increment(const Eigen::VectorXd& increment) {
@@ -404,8 +412,11 @@ const StepRecord& Analysis::resolve_trial_step(double step) {
   for (size_t i = 0; i < driven_dofs.size(); ++i)
     driven_move_[dofs.equation(driven_dofs[i])] =
         driven_.displacements()[static_cast<Eigen::Index>(i)] - trial_.displacement[driven_dofs[i]];
-  response_.setZero(dofs.equation_count());
-  response_.noalias() -= assembler_.tangent() * driven_move_;
+  if (tangent_in_solver_)
+    driven->multiply_driven_columns(driven_move_, response_);
+  else
+    response_.noalias() = assembler_.tangent() * driven_move_;
+  response_ = -response_;
   driven->solve(response_);  // du_u, with du_s = 0
   response_ += driven_move_;
   model_.revert_history();  // the trial history follows from the committed one again

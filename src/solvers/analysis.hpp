@@ -173,7 +173,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   void factorize_tangent(LinearSolver& solver) override;
   double apply_increment(const Eigen::VectorXd& increment) override;
   /// The RingSolver that Newton's tangent is assembled into (its own storage, bound to the
-  /// assembler for this pattern), or null: the RingSolver solving alone, not driven.
+  /// assembler for this pattern), or null: the RingSolver solving alone, or the held one of
+  /// a DrivenDofSolver on the ring route.
   RingSolver* solver_taking_tangent();
   /// A host's driven_tangent() and resolve_trial_step() read the converged step's tangent.
   bool wants_converged_tangent() const override { return !driven_.empty(); }

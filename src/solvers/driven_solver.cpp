@@ -29,6 +29,7 @@ void DrivenDofSolver::analyze(const Matrix& pattern) {
   }
   held_ = ring_->holding(driven_);
   held_->analyze(pattern);
+  columns_.setZero(pattern.rows(), static_cast<Eigen::Index>(driven_.size()));
 }
 
 bool DrivenDofSolver::analyze_ring_route() {
@@ -56,6 +57,43 @@ void DrivenDofSolver::factorize(const Matrix& matrix) {
   held_->factorize(matrix);
   held_factors_ = true;
   fresh_factorizations_ = inner_.factorization_count() + held_->factorization_count();
+}
+
+double* DrivenDofSolver::begin_assembly() {
+  if (!held_) throw std::logic_error("DrivenDofSolver: an assembly into the solver needs the ring route");
+  schur_current_ = held_factors_ = false;
+  return held_->begin_assembly();
+}
+
+void DrivenDofSolver::factorize_assembled() {
+  schur_current_ = held_factors_ = false;
+  held_->factorize_assembled();
+  held_factors_ = true;
+  fresh_factorizations_ = inner_.factorization_count() + held_->factorization_count();
+}
+
+void DrivenDofSolver::factorize_with_schur_assembled() {
+  if (schur_current_) return;
+  if (!held_factors_) factorize_assembled();
+  // Z_u = A_uu^-1 A_us, column by column (the held solve leaves the driven rows at zero).
+  const int count = static_cast<int>(driven_.size());
+  for (int j = 0; j < count; ++j) {
+    const double* column = held_->held_column(driven_[j]);
+    std::copy(column, column + columns_.rows(), columns_.col(j).data());
+  }
+  held_->solve(columns_);
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Map<const Eigen::VectorXd> row(held_->held_row(driven_[i]), columns_.rows());
+    for (int j = 0; j < count; ++j)
+      schur_(i, j) = held_->held_column(driven_[j])[driven_[i]] - row.dot(columns_.col(j));
+  }
+  schur_current_ = true;
+}
+
+void DrivenDofSolver::multiply_driven_columns(const Eigen::VectorXd& x, Eigen::VectorXd& product) const {
+  product.setZero(x.size());
+  for (int equation : driven_)
+    product += x[equation] * Eigen::Map<const Eigen::VectorXd>(held_->held_column(equation), x.size());
 }
 
 const DrivenDofSolver::SmallMatrix& DrivenDofSolver::schur_complement() const {

@@ -62,6 +62,21 @@ class DrivenDofSolver final : public LinearSolver {
   /// (factorize() on the ring route).
   const SmallMatrix& schur_complement() const;
 
+  /// The ring route's tangent assembled straight into the held RingSolver's storage (its
+  /// held rows and columns kept beside it): that solver, or null on the general route.
+  RingSolver* assembly_solver() { return held_.get(); }
+  /// That storage, cleared for an assembly (every factorisation gone).
+  double* begin_assembly();
+  /// Newton's factorisation of the assembled tangent.
+  void factorize_assembled();
+  /// factorize_with_schur() of the assembled tangent: H = A_ss - A_su A_uu^-1 A_us from
+  /// Newton's factors of A_uu (made here if not yet) and the held rows and columns, one
+  /// solve per driven equation. Once per assembly.
+  void factorize_with_schur_assembled();
+  /// product = A(:, s) x_s for the assembled tangent: its driven columns times the driven
+  /// entries of 'x' (over every equation).
+  void multiply_driven_columns(const Eigen::VectorXd& x, Eigen::VectorXd& product) const;
+
  private:
   /// Maps the driven equations into the RingSolver's border; false if they do not all lie there.
   bool analyze_ring_route();

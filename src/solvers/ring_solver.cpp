@@ -212,12 +212,14 @@ void RingSolver::analyze(const Matrix& pattern) {
   const int* starts = pattern.outerIndexPtr();
   const int* rows = pattern.innerIndexPtr();
   const int sink = satellite_offset(satellites);
+  held_coupling_offset_ = sink + 1;
   for (int column = 0; column < equations; ++column)
     for (int entry = starts[column]; entry < starts[column + 1]; ++entry) {
       const int row_position = position_of_equation_[rows[entry]];
       const int column_position = position_of_equation_[column];
       if (row_position == padded_size_ || column_position == padded_size_) {  // a held row or column
-        destination_[entry] = sink;
+        destination_[entry] = column_position == padded_size_ ? held_column_offset(held_index(column)) + rows[entry]
+                                                              : held_row_offset(held_index(rows[entry])) + column;
         row_position_[entry] = padded_size_;
         continue;
       }
@@ -243,11 +245,26 @@ void RingSolver::analyze(const Matrix& pattern) {
   pattern_starts_.assign(starts, starts + equations + 1);
   pattern_rows_.assign(rows, rows + pattern.nonZeros());
 
-  blocks_.assign(sink + 1, 0.0);
+  blocks_.assign(held_row_offset(static_cast<int>(held_.size())), 0.0);
   row_scale_.assign(padded_size_ + 1, 0.0);
   pivots_.assign(padded_size_, Pivot{});
   border_schur_.setZero(border_size(), border_size());
   work_.setZero(padded_size_ + 1);
+}
+
+int RingSolver::held_index(int equation) const {
+  const auto place = std::lower_bound(held_.begin(), held_.end(), equation);
+  if (place == held_.end() || *place != equation)
+    throw std::invalid_argument("ring solver: equation " + std::to_string(equation) + " is not held");
+  return static_cast<int>(place - held_.begin());
+}
+
+const double* RingSolver::held_column(int equation) const {
+  return blocks_.data() + held_column_offset(held_index(equation));
+}
+
+const double* RingSolver::held_row(int equation) const {
+  return blocks_.data() + held_row_offset(held_index(equation));
 }
 
 void RingSolver::find_hosts(const Matrix& pattern) {

@@ -75,7 +75,9 @@
 // in a DrivenDofSolver's Newton iterations): their rows and columns are skipped, their
 // solution is zero, and the border and its width shrink by them, so the chain carries
 // fewer border columns (a free spin's rz alone: 4 instead of 6). H is then the Schur
-// complement onto the free border equations only.
+// complement onto the free border equations only. The held rows and columns of the matrix
+// are kept beside the factors (held_row(), held_column()), so that a DrivenDofSolver can
+// condense onto them from an assembly into this solver's storage.
 //
 // factorize() and solve() allocate nothing: every buffer is sized by analyze(). solve()
 // uses one internal work vector, so one solver must not solve from two threads at once.
@@ -137,6 +139,12 @@ class RingSolver final : public LinearSolver {
   double* begin_assembly();
   /// factorize() of the matrix assembled into begin_assembly()'s storage, the same numbers.
   void factorize_assembled();
+  /// A held equation's column and row of the last matrix given or assembled, over every
+  /// equation in equation order (the column's entries in held rows and the row's in
+  /// other equations' columns; the rest zero): what the factors leave out. Kept by the
+  /// factorisation, until the next begin_assembly() or factorize().
+  const double* held_column(int equation) const;
+  const double* held_row(int equation) const;
 
   /// H = K_bb - K_bu K_uu^-1 K_ub (eq. 27) over the border equations, in the order of
   /// border_equations(); for the effective tangent cK K + cC C + cM M it is the spindle
@@ -191,6 +199,13 @@ class RingSolver final : public LinearSolver {
   int border_block_offset() const { return 27 * chain_ + 6 * width_ * chain_; }
   // Satellite i's blocks: D_s, A(s,h) (then D_s^-1 A(s,h)), A(h,s).
   int satellite_offset(int i) const { return border_block_offset() + width_ * width_ + 27 * i; }
+  // After the sink: the held equations' columns, then their rows, each over every equation.
+  int held_column_offset(int h) const { return held_coupling_offset_ + h * equation_count(); }
+  int held_row_offset(int h) const {
+    return held_coupling_offset_ + (static_cast<int>(held_.size()) + h) * equation_count();
+  }
+  int equation_count() const { return static_cast<int>(position_of_equation_.size()); }
+  int held_index(int equation) const;  // its place in held_
   int satellite_position(int i) const { return satellite_start_ + 3 * i; }
   // The host's diagonal block: D_k in the chain, or S's top-left corner for r_0.
   Eigen::Map<Eigen::Matrix3d, 0, Eigen::OuterStride<>> host_block(int i);
@@ -212,6 +227,7 @@ class RingSolver final : public LinearSolver {
   int width_ = 0;            // e = 3 + border equations
   int satellite_start_ = 0;  // 3m + e rounded up to a multiple of 3
   int padded_size_ = 0;
+  int held_coupling_offset_ = 0;  // in blocks_, after the sink
   std::vector<int> satellite_nodes_;
   std::vector<int> satellite_hosts_;     // padded position of each satellite's host (3k or 3m)
   std::vector<bool> planar_satellites_;  // its rotation padding, its translations free (a contact node)
@@ -225,7 +241,7 @@ class RingSolver final : public LinearSolver {
   std::vector<int> border_equations_;
 
   // From factorize().
-  std::vector<double> blocks_;     // D, U (then X), L, W (then Y), V, S (then its factors)
+  std::vector<double> blocks_;     // D, U (then X), L, W (then Y), V, S (then its factors), held rows and columns
   std::vector<double> row_scale_;  // largest |entry| of each padded row (permuted with the pivots)
   std::vector<Pivot> pivots_;      // 3 per chain node, 3 for r_0, H's, 3 per satellite
   Eigen::MatrixXd border_schur_;
