@@ -203,7 +203,7 @@ void RingSolver::analyze(const Matrix& pattern) {
     auto prescribed = [&](int c) { return dofs_.equation(dof_index(satellite_nodes_[i], c)) == DofMap::kPrescribed; };
     planar_satellites_[i] = prescribed(kRz) && !prescribed(kUx) && !prescribed(kUy);
   }
-  for (int equation : held_) position_of_equation_[equation] = padded_size_;  // the sink
+  for (int equation : held_) position_of_equation_[equation] = padded_size_;  // out of the factors
   find_hosts(pattern);
 
   // Every stored entry must land in a block of the structure.
@@ -211,8 +211,7 @@ void RingSolver::analyze(const Matrix& pattern) {
   row_position_.resize(pattern.nonZeros());
   const int* starts = pattern.outerIndexPtr();
   const int* rows = pattern.innerIndexPtr();
-  const int sink = satellite_offset(satellites);
-  held_coupling_offset_ = sink + 1;
+  held_coupling_offset_ = satellite_offset(satellites);
   for (int column = 0; column < equations; ++column)
     for (int entry = starts[column]; entry < starts[column + 1]; ++entry) {
       const int row_position = position_of_equation_[rows[entry]];
@@ -232,7 +231,7 @@ void RingSolver::analyze(const Matrix& pattern) {
                          "), which are not ring neighbours; give the ring nodes in ring order, the nodes "
                          "coupled to everything as border nodes, or use the KLU solver");
     }
-  // The same destinations row by row (held ones in the sink's row, padded_size_), for
+  // The same destinations row by row (held ones in row padded_size_), for
   // factorize_assembled()'s row scales.
   row_starts_.assign(padded_size_ + 3, 0);
   for (int row : row_position_) ++row_starts_[row + 2];

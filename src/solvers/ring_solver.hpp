@@ -199,7 +199,7 @@ class RingSolver final : public LinearSolver {
   int border_block_offset() const { return 27 * chain_ + 6 * width_ * chain_; }
   // Satellite i's blocks: D_s, A(s,h) (then D_s^-1 A(s,h)), A(h,s).
   int satellite_offset(int i) const { return border_block_offset() + width_ * width_ + 27 * i; }
-  // After the sink: the held equations' columns, then their rows, each over every equation.
+  // After the satellites' blocks: the held equations' columns, then their rows, each over every equation.
   int held_column_offset(int h) const { return held_coupling_offset_ + h * equation_count(); }
   int held_row_offset(int h) const {
     return held_coupling_offset_ + (static_cast<int>(held_.size()) + h) * equation_count();
@@ -221,13 +221,13 @@ class RingSolver final : public LinearSolver {
 
   // From analyze(). Padded positions: chain node k at 3k + c, r_0 at 3m + c, border
   // equation j at 3m + 3 + j, satellite i at 3m + 3 ceil(e / 3) + 3i + c; held equations
-  // at padded_size_, a sink that the arithmetic never reads (its entries land in the
-  // last element of blocks_).
+  // at padded_size_, out of the factors (their entries land in the held rows and columns
+  // after the satellites' blocks).
   int chain_ = 0;            // m = ring nodes - 1
   int width_ = 0;            // e = 3 + border equations
   int satellite_start_ = 0;  // 3m + e rounded up to a multiple of 3
   int padded_size_ = 0;
-  int held_coupling_offset_ = 0;  // in blocks_, after the sink
+  int held_coupling_offset_ = 0;  // in blocks_, after the satellites' blocks
   std::vector<int> satellite_nodes_;
   std::vector<int> satellite_hosts_;     // padded position of each satellite's host (3k or 3m)
   std::vector<bool> planar_satellites_;  // its rotation padding, its translations free (a contact node)
