@@ -9,10 +9,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "contact/node_contact.hpp"
+#include "contact/tread_contact.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
-#include "tire/contact_penalty.hpp"
 #include "tire/tire_builder.hpp"
 
 using namespace tirefe;
@@ -42,10 +41,7 @@ CurveCost run_curve(int elements) {
   for (int node : tire.tread_nodes)
     lowest = std::min(lowest, model.mesh().position(node).y() + analysis.state().displacement[dof_index(node, kUy)]);
   auto road = std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, lowest));
-  ContactParameters contact;
-  contact.normal_penalty = structural_penalty(analysis, tire.tread_nodes);
-  contact.tangential_penalty = structural_tangential_penalty(analysis, tire.tread_nodes, *road);
-  add_contact_block(model, "road", road, tire.tread_nodes, contact, analysis.state().time);
+  add_tread_contact_block(model, "road", road, tire.tread_nodes, tread_rubber(parameters, 0.0));
   const auto press_start = Clock::now();
   analysis.set_time_step(1.0 / 15);
   for (const StepRecord& record : analysis.advance(1.0)) {

@@ -21,7 +21,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "contact/node_contact.hpp"
+#include "contact/tread_contact.hpp"
 #include "core/assembler.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
@@ -176,9 +176,9 @@ DrumTimings time_on_drum(const char* tire_set, int repetitions) {
   Analysis analysis(model);
   inflate(model, analysis, tire.spindle, kDofsPerNode);
 
-  // The drum's top under the hub, touching the lowest contact node.
+  // The drum's top under the hub, touching the lowest tread node.
   double lowest = 0.0;
-  for (int node : tire.contact_nodes)
+  for (int node : tire.tread_nodes)
     lowest = std::min(lowest, model.mesh().position(node).y() + analysis.state().displacement[dof_index(node, 1)]);
   const double drum_radius = 0.85;
   Cleat cleat;  // the deck's, on the far side of the drum
@@ -188,11 +188,8 @@ DrumTimings time_on_drum(const char* tire_set, int repetitions) {
   cleat.angle = -0.5 * 3.14159265358979323846;
   auto drum = std::make_shared<Drum>(2.0 * drum_radius, Eigen::Vector2d(0.0, lowest - drum_radius),
                                      MotionFunction::constant(), cleat);
-  ContactParameters parameters;
-  parameters.normal_penalty = 2e7;
-  parameters.tangential_penalty = 2e6;
-  parameters.friction = 0.3;
-  ElementBlock& contact = add_contact_block(model, "drum", drum, tire.contact_nodes, parameters, 1.0);
+  TreadContactBlock& contact =
+      add_tread_contact_block(model, "drum", drum, tire.tread_nodes, tread_rubber(tire.parameters, 0.3));
   const int press = model.add_load_function(LoadFunction::table({{1.0, 0.0}, {2.0, 1.0}}));
   model.prescribe(tire.spindle, 1, -0.025, press);
   analysis.set_time_step(0.05);
@@ -200,7 +197,7 @@ DrumTimings time_on_drum(const char* tire_set, int repetitions) {
   model.release(tire.spindle, 2);  // a dead axle: the hub turns
 
   DrumTimings timings;
-  timings.in_contact = summarize_contact(static_cast<const ContactBlock&>(contact)).nodes_in_contact;
+  timings.in_contact = summarize_contact(contact).nodes_in_contact;
   Assembler& assembler = analysis.assembler();
   assembler.update_pattern();
   EvaluationContext context = newmark_context(2.0);

@@ -28,13 +28,8 @@ local p = tirefe.parameters{
   cleat_height = { 0.025, "cleat height", unit = "m" },
   cleat_length = { 0.66, "cleat length along the drum surface", unit = "m" },
   cleat_edge_radius = { 0.005, "rounding of the cleat's top edges", unit = "m" },
-  cleat_start_deg = { -90, "where the cleat's middle is at rest, from +x (-90: bottom)", unit = "deg" },
+  cleat_start_deg = { -90.0, "where the cleat's middle is at rest, from +x (-90: bottom)", unit = "deg" },
   friction = { 0.3, "Coulomb friction coefficient" },
-  contact_penalty = { 2e7, "normal contact penalty (1.5 kN on a node penetrates 0.08 mm)", unit = "N/m" },
-  tangential_factor = { 30, "tangential penalty / the structure's tangential stiffness at a contact node" },
-  contact_tolerance = { 5e-4, "penetration left after the Uzawa updates", unit = "m" },
-  multiplier_tolerance = { 1e3, "relative multiplier change asking for an update (1e3: only penetration does)" },
-  contact_hold = { true, "each Newton solve's first evaluation keeps the contacts its step began with (false: the contact law from the first evaluation on)" },
   speed_kmh = { 51.3, "final drum surface speed", unit = "km/h" },
   spin_up_time = { 4.0, "spin-up of the drum from rest, from t = 2 s", unit = "s" },
   end_time = { 8.0, "end of the run", unit = "s" },
@@ -93,17 +88,13 @@ model:history{ name = "spin_rate", node = tire.spindle, quantity = "spin_rate" }
 model:history{ name = "spindle_height", node = tire.spindle, dof = "uy" }
 model:history{ name = "spindle_turn", node = tire.spindle, dof = "rz" }
 
--- 0-1 s: inflation. The drum is defined after it: automatic contact penalties are scaled
--- from the structure's stiffness, and the uninflated tire has none to speak of.
+-- 0-1 s: inflation, then the drum under the tire: the tread touches it through its
+-- rubber (docs/contact.md, Tread contact).
 model:solve{ to = 1.0, dt = 0.25 }
 model:surface{ name = "drum", type = "drum", diameter = p.drum_diameter, cleat_height = p.cleat_height,
                cleat_length = p.cleat_length, cleat_angle = cleat.cleat_angle, edge_radius = p.cleat_edge_radius,
                speed = -rig.omega, ramp_time = p.spin_up_time, start_time = rig.start }
-model:contact{ surface = "drum", set = tire.contact_set, friction = p.friction, penalty = p.contact_penalty,
-               tangential_factor = p.tangential_factor,
-               tolerance = p.contact_tolerance, multiplier_tolerance = p.multiplier_tolerance,
-               hold_first_evaluation = p.contact_hold, history = "drum",
-               output_every = 20 }
+model:tire_contact{ surface = "drum", friction = p.friction, history = "drum", output_every = 20 }
 
 -- 1-2 s: press. Five steps toward a first guess of the deflection, then secant steps on the
 -- measured force-deflection curve until the spindle carries the load to 0.1 %.
@@ -133,7 +124,7 @@ local record = { time = history("time"), fx = history("spindle_fx"), fz = histor
 local cleat_ringing = require("cleat_ringing")
 local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
   ring_time = p.ring_time, end_time = p.end_time, speed_kmh = p.speed_kmh, measured = cleat_ringing.measured(p),
-  contact = tire.contact, unloaded_radius = tire_parameters.outer_diameter / 2, deflection = loaded_deflection,
+  tread = tire.tread, unloaded_radius = tire_parameters.outer_diameter / 2, deflection = loaded_deflection,
   elements = p.elements }
 if p.check then
   tirefe.check{ name = "pressed to the load [N]", value = spindle_fz_at_start, expected = p.load, tolerance = 1e-3 * p.load }

@@ -40,7 +40,7 @@ local function flat_road_forces(k_sw, k_sw_sign, pressure, deflections)
     lowest = math.min(lowest, 0.5 * tire_parameters.outer_diameter * math.sin(angle) + model:value{ node = node, dof = "uy" })
   end
   model:surface{ name = "road", type = "flat", point = { 0, lowest } }
-  model:contact{ surface = "road", set = tire.tread_set }  -- penalties scaled from the inflated tire
+  model:tire_contact{ surface = "road" }
 
   return path:load_curve(deflections, p.step_mm * 1e-3)
 end

@@ -103,8 +103,7 @@ local function loaded_modes(title, module)
   model:load_function{ name = "drum_turn", fn = drum_angle }
   model:surface{ name = "drum", type = "drum", diameter = 2 * drum_radius, load_function = "drum_turn",
                  amplitude = 1.0 }
-  local contact = model:contact{ surface = "drum", set = tire.contact_set, friction = p.mu,
-                                 penalty_factor = 100, tangential_factor = 1000 }
+  model:tire_contact{ surface = "drum", friction = p.mu }
   -- Pressed by the spindle position (lua/press.lua): 23 mm in 1 s, then two chord
   -- corrections (the depth scaled by target / load) bring the load to p.load.
   local path = require("press").path(model, tire.spindle, "press")

@@ -29,7 +29,7 @@ local function tire_model(title, road)
   local surface = road(level)
   surface.name = "road"
   model:surface(surface)
-  model:contact{ surface = "road", set = tire.contact_set, friction = p.mu }
+  model:tire_contact{ surface = "road", friction = p.mu }
   return model, tire
 end
 

@@ -20,7 +20,7 @@ local tp = require("tires.145SR12")
 -- Inflated on a held hub; the road touches the inflated tire's lowest tread node.
 local tire, level = require("tire_on_road").inflated(model, tp)
 model:surface{ name = "road", type = "flat", point = {0, level}, speed = -p.speed, ramp_time = 0.05, start_time = 2.0 }
-model:contact{ surface = "road", set = tire.contact_set, friction = p.mu, history = "patch" }
+model:tire_contact{ surface = "road", friction = p.mu, history = "patch" }
 require("press").path(model, tire.spindle, "press"):move_to(p.deflection, 4, 0.25)  -- from 1 to 2 s
 
 model:integrator{ type = "hht", alpha = -0.05 }

@@ -37,8 +37,7 @@ model:fix{ node = tire.spindle, dofs = { "ux", "rz" } }
 local path = require("press").path(model, tire.spindle, "press")  -- holds the spindle's height (lua/press.lua)
 model:surface{ name = "road", type = "flat", point = { 0, -parameters.outer_diameter / 2 - p.gap },
                speed = -p.speed, ramp_time = p.ramp_time, start_time = 2.0 }
-model:contact{ surface = "road", set = tire.contact_set, friction = 0.8, penalty = 2e7, tangential_penalty = 2e6,
-               history = "patch", output_every = 10 }
+model:tire_contact{ surface = "road", friction = 0.8, history = "patch", output_every = 10 }
 
 model:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
 model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }

@@ -28,6 +28,8 @@
 -- multibody model is not published.
 
 local p = tirefe.parameters{
+  tire = { "tires.145SR12", "tire parameter set in lua/tires/ (tires.145SR12_tread_layer: the calibrated tire)" },
+  elements = { 100, "wedges around each tire" },
   dt = { 5e-4, "time step", unit = "s" },
   dt_pothole = { 2.5e-4, "time step while a wheel crosses the chuckhole", unit = "s" },
   settle = { 1.0, "settling on the still road after inflation and pressing", unit = "s" },
@@ -44,9 +46,10 @@ local p = tirefe.parameters{
   predictor = { "zero_acceleration", "the tires' HHT predictor" },
 }
 local g = 9.81
-local tp = require("tires.145SR12")
+local tp = require(p.tire)
 local series = require("series")
 tp.pressure = 0.243e6
+tp.elements = p.elements
 
 local wheelbase, a, track = 2.7, 1.1, 1.5
 local sprung = 1160.0
@@ -80,7 +83,7 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
     model:surface{ name = "road", type = "flat", point = {0, level}, speed = -v, ramp_time = p.ramp,
                    start_time = start }
   end
-  model:contact{ surface = "road", set = tire.contact_set, friction = p.mu, history = "patch" }
+  model:tire_contact{ surface = "road", friction = p.mu, history = "patch" }
   -- Pressed to the static corner load: the deflection from the tire's secant stiffness
   -- between 10 and 20 mm (the press of the design position; settling does the rest).
   local weight = load + carrier * g

@@ -7,7 +7,7 @@
 --
 --   local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages,
 --     record = record, ring_time = 0.15, end_time = 8.0, speed_kmh = 51.3, measured = ...,
---     contact = tire.contact, unloaded_radius = 0.2715, deflection = 0.0251, elements = 100 }
+--     tread = tire.tread, unloaded_radius = 0.2715, deflection = 0.0251, elements = 100 }
 local series, cleat_ringing, rolling = require("series"), require("cleat_ringing"), require("rolling")
 local cleat_summary = {}
 
@@ -63,7 +63,7 @@ end
 -- [rad], which with args.elements, the tire's wedges, gives the node spacings between the
 -- passages); args.measured: cleat_ringing.measured of the run's conditions (or nil). Returns the summary: the last passage, fx_peak_to_peak,
 -- fz_peak_to_peak [N] and ringing of it, 'before' (the same for the passage before it, or
--- nil), measured, impact_period [s], rolling_radius and belt_radius [m] (the contact nodes'
+-- nil), measured, impact_period [s], rolling_radius and belt_radius [m] (the tread nodes'
 -- ring circumference / 2 pi), node_spacings_between (the tire's turn from the one passage
 -- to the other, or nil); empty without a passage. /results holds the last passage's
 -- under their names, the one before's with "before_" in front.
@@ -92,11 +92,11 @@ function cleat_summary.report(args)
   end
   if summary.before then summary.node_spacings_between = report_both(args, summary.before, summary) end
   -- Steady rolling before the passage: drum surface speed / spin rate over 20 ms, beside the
-  -- contact nodes' ring at the end of the run (the belt rings little by then).
+  -- tread nodes' ring at the end of the run (the belt rings little by then).
   summary.rolling_radius = rolling.radius{ time = record.time, spin = record.spin, speed = rig.speed,
                                            from = last.on - 0.03, to = last.on - 0.01 }
-  summary.belt_radius = rolling.contact_circumference(model, args.contact) / (2 * math.pi)
-  print(string.format("rolling radius before the cleat %.2f mm; contact ring circumference / 2 pi %.2f mm; unloaded "
+  summary.belt_radius = rolling.tread_circumference(model, args.tread) / (2 * math.pi)
+  print(string.format("rolling radius before the cleat %.2f mm; tread ring circumference / 2 pi %.2f mm; unloaded "
                       .. "radius %.2f mm, loaded %.2f mm", summary.rolling_radius * 1e3, summary.belt_radius * 1e3,
                       args.unloaded_radius * 1e3, (args.unloaded_radius - args.deflection) * 1e3))
   return summary

@@ -1,10 +1,10 @@
--- The rolling radius of a tire on a moving surface, and the length of the ring its contact
--- nodes form: nodes that stick to the surface through the patch carry it forward by that
--- length per turn of the tire, so the two give the same radius however deflected it is.
+-- The rolling radius of a tire on a moving surface, and the length of the ring its tread
+-- nodes form: a tread that sticks to the surface through the patch carries it forward by
+-- that length per turn of the tire, so the two give the same radius however deflected it is.
 --
 --   local rolling = require("rolling")
 --   local r = rolling.radius{ time = record.time, spin = record.spin, speed = 14.25, from = 2.4, to = 2.42 }
---   local ring = rolling.contact_circumference(model, tire.contact) / (2 * math.pi)
+--   local ring = rolling.tread_circumference(model, tire.tread) / (2 * math.pi)
 local rolling = {}
 
 -- Effective rolling radius [m]: the surface speed over the spin rate, averaged over the
@@ -18,8 +18,8 @@ function rolling.radius(args)
 end
 
 -- The length [m] of the closed polygon through the given nodes' current positions (a
--- tire's contact nodes: the tread nodes, or the tread layer's nodes).
-function rolling.contact_circumference(model, nodes)
+-- tire's tread nodes).
+function rolling.tread_circumference(model, nodes)
   local length, first, previous = 0, nil, nil
   for _, node in ipairs(nodes) do
     local x = model:value{ node = node, dof = "ux", quantity = "position" }

@@ -6,6 +6,7 @@
 --   local peak_time, peak = series.peak(record.time, record.fz, 2.4, 2.6)
 --   local strike = series.rise(record.time, record.fz, 2.4, 2.6, 3700, 1850)
 --   local turn = series.at(record.time, record.turn, 7.537)
+--   local t, fz_200 = series.low_pass(record.time, record.fz, 200, 2.4, 2.6, 2.5e-4)
 local series = {}
 
 -- The lowest and highest value at times from <= t <= to (math.huge, -math.huge if none).
@@ -65,6 +66,44 @@ function series.at(time, values, t)
     end
   end
   return nil
+end
+
+-- The values low-passed at 'bandwidth' Hz without phase lag, as wheel-force transducer and
+-- crash data are read (SAE J211-1, its channel frequency classes): the series resampled
+-- every 'step' s over from <= t <= to (linear between samples), then a two-pole
+-- Butterworth filter run forward and backward, which halves the gain at its corner twice:
+-- its corner sits at bandwidth / 0.8023 so that the pair passes 'bandwidth' at -3 dB
+-- (|H|^2 = 1 / (1 + (f / f_c)^4) = 1/2). Each pass starts settled on the value at its end.
+-- Returns the new times and values.
+function series.low_pass(time, values, bandwidth, from, to, step)
+  if not (bandwidth > 0 and step > 0 and to > from) then
+    error("series.low_pass: needs bandwidth > 0, step > 0 and to > from", 2)
+  end
+  if bandwidth * step >= 0.25 then
+    error("series.low_pass: a " .. bandwidth .. " Hz bandwidth needs samples closer than " .. 0.25 / bandwidth .. " s", 2)
+  end
+  local times, x = {}, {}
+  for k = 0, math.floor((to - from) / step + 1e-9) do
+    local t = from + k * step
+    local v = series.at(time, values, t)
+    if v == nil then error("series.low_pass: the series does not cover t = " .. t .. " s", 2) end
+    times[#times + 1], x[#x + 1] = t, v
+  end
+  local wa = math.tan(math.pi * (bandwidth / 0.8023) * step)  -- the corner, prewarped
+  local d = 1 + math.sqrt(2) * wa + wa * wa
+  local a0 = wa * wa / d
+  local b1, b2 = -2 * (wa * wa - 1) / d, (-1 + math.sqrt(2) * wa - wa * wa) / d
+  local function pass(input, first, last, increment)
+    local out = {}
+    local x1, x2, y1, y2 = input[first], input[first], input[first], input[first]
+    for i = first, last, increment do
+      local y = a0 * (input[i] + 2 * x1 + x2) + b1 * y1 + b2 * y2
+      out[i], x2, x1, y2, y1 = y, x1, input[i], y1, y
+    end
+    return out
+  end
+  local forward = pass(x, 1, #x, 1)
+  return times, pass(forward, #x, 1, -1)
 end
 
 -- The mean spacing of the given times (nil for fewer than two).

@@ -7,7 +7,7 @@ local tire_on_road = {}
 
 -- Builds the tire from a parameter set (the table is not changed), holds its spindle and
 -- inflates it from 0 to 1 s in four steps (the pressure on the load function "inflate").
--- Returns the tire and the height of its lowest contact node: a road at that level touches it.
+-- Returns the tire and the height of its lowest tread node: a road at that level touches it.
 function tire_on_road.inflated(model, parameters)
   local copy = {}
   for key, value in pairs(parameters) do copy[key] = value end
@@ -17,7 +17,7 @@ function tire_on_road.inflated(model, parameters)
   model:fix{ node = tire.spindle }
   model:solve{ to = 1.0, dt = 0.25 }
   local level = math.huge
-  for _, node in ipairs(tire.contact) do
+  for _, node in ipairs(tire.tread) do
     level = math.min(level, model:value{ node = node, dof = "uy", quantity = "position" })
   end
   return tire, level

@@ -11,7 +11,7 @@ local model = tirefe.model{ title = "a tire for a host" }
 local tp = require("tires.145SR12")
 local tire, level = require("tire_on_road").inflated(model, tp)
 model:surface{ name = "road", type = "flat", point = { 0, level } }
-model:contact{ surface = "road", set = tire.tread_set, friction = p.friction }
+model:tire_contact{ surface = "road", friction = p.friction }
 model:load_function{ name = "press", points = { { 1, 0 }, { 2, 1 } } }
 model:prescribe{ node = tire.spindle, dof = "uy", value = -p.depth, load_function = "press" }
 model:solve{ to = 2.0, dt = 0.25 }

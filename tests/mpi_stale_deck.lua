@@ -10,7 +10,7 @@ local function quarter_car(title)
   local model = tirefe.model{ title = title }
   local tire, level = require("tire_on_road").inflated(model, require("tires.145SR12"))
   model:surface{ name = "road", type = "flat", point = {0, level} }
-  model:contact{ surface = "road", set = tire.tread_set, friction = 0.9 }
+  model:tire_contact{ surface = "road", friction = 0.9 }
   model:load_function{ name = "press", points = {{1, 0}, {2, -0.015}} }
   model:prescribe{ node = tire.spindle, dof = "uy", value = 1, load_function = "press" }
   model:solve{ to = 2, dt = 0.25 }

@@ -1164,7 +1164,7 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
   Analysis analysis(model);
   {
     io::ResultFile file(folder.path("contact.h5"), io::RunMetadata{"contact", "", "", {}});
-    add_contact_output(file, analysis, contact, "road", 1);
+    add_contact_output(file, analysis, contact_source(contact), "road", 1);
     analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
@@ -1215,7 +1215,7 @@ TEST_CASE("a discarded result file creates no file and evaluates no channel", "[
     io::ResultFile file(folder.path("elsewhere.h5"), io::RunMetadata{"elsewhere", "", "", {}},
                         io::ResultStorage::Discarded);
     file.set_field_interval(1);
-    add_contact_output(file, analysis, contact, "road", 1);
+    add_contact_output(file, analysis, contact_source(contact), "road", 1);
     file.add_channel("counted", "", [&](const Analysis&, const StepRecord&) { return ++evaluated; });
     CHECK_THROWS_AS(file.add_channel("counted", "", nullptr), io::IoError);  // the deck's errors stay the same
     analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });

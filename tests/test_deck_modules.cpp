@@ -122,7 +122,7 @@ tirefe.check{ name = "rolling radius = speed / spin, averaged [m]",
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 15);
 }
 
-TEST_CASE("lua/press.lua presses a tire onto a road to a load; rolling.lua's contact ring", "[lua][modules][press]") {
+TEST_CASE("lua/press.lua presses a tire onto a road to a load; rolling.lua's tread ring", "[lua][modules][press]") {
   // The 145 SR-12 inflated on a held hub over a flat road, pressed to 2500 N by secant steps.
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("press_deck.lua", R"(
@@ -130,20 +130,20 @@ local tp = require("tires.145SR12")
 tp.elements = 60
 local model = tirefe.model{ title = "press" }
 local tire, level = require("tire_on_road").inflated(model, tp)
--- The inflated, unloaded contact nodes form a regular polygon of 60 sides about the spindle.
+-- The inflated, unloaded tread nodes form a regular polygon of 60 sides about the spindle.
 local sx = model:value{ node = tire.spindle, dof = "ux", quantity = "position" }
 local sy = model:value{ node = tire.spindle, dof = "uy", quantity = "position" }
 local r = 0
-for _, node in ipairs(tire.contact) do
+for _, node in ipairs(tire.tread) do
   local x = model:value{ node = node, dof = "ux", quantity = "position" }
   local y = model:value{ node = node, dof = "uy", quantity = "position" }
-  r = r + math.sqrt((x - sx) ^ 2 + (y - sy) ^ 2) / #tire.contact
+  r = r + math.sqrt((x - sx) ^ 2 + (y - sy) ^ 2) / #tire.tread
 end
-tirefe.check{ name = "contact ring of the round tire = 2 n r sin(pi / n) [m]",
-              value = require("rolling").contact_circumference(model, tire.contact),
-              expected = 2 * #tire.contact * r * math.sin(math.pi / #tire.contact), relative = 1e-9 }
+tirefe.check{ name = "tread ring of the round tire = 2 n r sin(pi / n) [m]",
+              value = require("rolling").tread_circumference(model, tire.tread),
+              expected = 2 * #tire.tread * r * math.sin(math.pi / #tire.tread), relative = 1e-9 }
 model:surface{ name = "road", type = "flat", point = { 0, level } }
-model:contact{ surface = "road", set = tire.contact_set, friction = 0.5 }
+model:tire_contact{ surface = "road", friction = 0.5 }
 local path = require("press").path(model, tire.spindle, "press")
 local depth = path:to_load{ load = 2500 }
 tirefe.check{ name = "pressed to the load [N]", value = path:load(), expected = 2500, tolerance = 2.5 }
@@ -171,7 +171,7 @@ local function pressed_tire(title)
   local model = tirefe.model{ title = title }
   local tire, level = require("tire_on_road").inflated(model, tp)
   model:surface{ name = "road", type = "flat", point = { 0, level } }
-  model:contact{ surface = "road", set = tire.contact_set, friction = 0 }
+  model:tire_contact{ surface = "road", friction = 0 }
   return model, press.path(model, tire.spindle, "press"), tire
 end
 
@@ -341,7 +341,7 @@ local model = { result = function(_, args) results[args.name] = args.value end,
                   return 0.27 * (args.dof == "ux" and math.cos(angle) or math.sin(angle))
                 end }
 local summary = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
-  ring_time = 0.15, end_time = 3.5, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025,
+  ring_time = 0.15, end_time = 3.5, speed_kmh = 51.3, tread = contact, unloaded_radius = 0.2715, deflection = 0.025,
   elements = 100 }
 tirefe.check{ name = "the last passage rung out by 3.5 s", value = summary.passage.on, expected = passages[3].on,
               tolerance = 0 }
@@ -386,7 +386,7 @@ tirefe.check{ name = "node spacings the tire turned between the passages", value
 tirefe.check{ name = "written to the results", value = results.node_spacings_between_passages,
               expected = summary.node_spacings_between, tolerance = 0 }
 local one = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
-  ring_time = 0.15, end_time = 3.2, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+  ring_time = 0.15, end_time = 3.2, speed_kmh = 51.3, tread = contact, unloaded_radius = 0.2715, deflection = 0.025 }
 tirefe.check{ name = "one passage rung out by 3.2 s: no passage before", value = one.before == nil and 1 or 0,
               expected = 1, tolerance = 0 }
 tirefe.check{ name = "impacts a turn apart [s]", value = summary.impact_period, expected = rig:turn_time(),
@@ -398,7 +398,7 @@ tirefe.check{ name = "rolling radius = speed / spin [m]", value = summary.rollin
 tirefe.check{ name = "belt radius: the 100-gon's perimeter / 2 pi [m]", value = summary.belt_radius,
               expected = 0.27 * 100 * math.sin(math.pi / 100) / math.pi, relative = 1e-12 }
 local no_passage = require("cleat_summary").report{ model = model, rig = rig, passages = passages, record = record,
-  ring_time = 0.15, end_time = 2.9, speed_kmh = 51.3, contact = contact, unloaded_radius = 0.2715, deflection = 0.025 }
+  ring_time = 0.15, end_time = 2.9, speed_kmh = 51.3, tread = contact, unloaded_radius = 0.2715, deflection = 0.025 }
 tirefe.check{ name = "none rung out by 2.9 s: an empty summary", value = next(no_passage) == nil and 1 or 0,
               expected = 1, tolerance = 0 }
 local cleat = { cleat_angle = -math.pi / 2, cleat_length = 0.66, end_time = 2.9 }
@@ -435,23 +435,20 @@ tirefe.check{ name = "non-negative: -0.01 is refused by name", value = refusal(g
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 5);
 }
 
-TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's contact nodes",
+TEST_CASE("TireOnRoad and lua/tire_on_road.lua put the road under the tire's lowest tread node",
           "[lua][modules][vehicle]") {
-  // With a tread layer the contact nodes are the layer's, 10 mm below the belt at rest:
-  // both the C++ tire and the deck module must find the road level from them, and the C++
-  // tire must put its contact on them.
+  // Both the C++ tire and the deck module find the road level from the inflated tread
+  // nodes, and the C++ tire puts its tread contact on the chords between them.
   const tirefe::TireParameters layered = tirefe::macros::load_tire_parameters("tires.145SR12_tread_layer");
   tirefe::TireOnRoad tire(
       layered, [](double level) { return std::make_shared<tirefe::FlatRoad>(Eigen::Vector2d(0.0, level)); },
       tirefe::RoadContact{});
-  const std::vector<int>& contact_nodes = tire.tire().contact_nodes;
-  REQUIRE(contact_nodes.size() == 100);
-  CHECK(contact_nodes != tire.tire().tread_nodes);
-  std::vector<int> touching;
-  for (int e = 0; e < tire.contact().size(); ++e) touching.push_back(tire.contact().element_nodes(e).front());
-  CHECK(touching == contact_nodes);
+  const std::vector<int>& tread = tire.tire().tread_nodes;
+  REQUIRE(tire.contact().size() == 100);
+  for (int e = 0; e < tire.contact().size(); ++e)
+    CHECK(tire.contact().element_nodes(e) == std::vector<int>{tread[e], tread[(e + 1) % 100]});
   const double r_outer = 0.543 / 2;
-  CHECK(tire.road_level() == Approx(-r_outer).margin(0.001));  // the layer's outer face, inflated
+  CHECK(tire.road_level() == Approx(-r_outer).margin(0.001));  // the tread, inflated
 
   std::ostringstream expected;
   expected.precision(17);

@@ -618,9 +618,9 @@ TEST_CASE("EnergyBalance books the trapezoidal work of the loads and of the held
   model.add_nodal_load(1, kUx, 3.0, model.add_load_function(LoadFunction([](double) { return 1.0; })));
   const int held = dof_index(0, kUx), loaded = dof_index(1, kUx), driven = dof_index(1, kUy);
 
-  EnergyRecord record;
-  bool started = false;
-  EnergyBalance balance(model, record, started);
+  CarriedState carried;
+  const EnergyRecord& record = carried.energy;
+  EnergyBalance balance(model, carried);
   State before;
   before.resize(model.mesh().dof_count());
   before.displacement[loaded] = 0.25;
@@ -647,11 +647,16 @@ TEST_CASE("EnergyBalance books the trapezoidal work of the loads and of the held
   // 3 * 0.1 (load) + 5 * 0.1 (prescribed) + 15 * 0.2 (driven)
   const double work = balance.step_work(before, after, loads, loads, reactions_old, reactions_new, {driven});
   CHECK(work == Approx(3.8).epsilon(1e-14));
-  balance.add_step(after, work);
+  balance.add_step(before, after, work);
   CHECK(record.kinetic == Approx(1.0).epsilon(1e-15));
   CHECK(record.strain == Approx(0.53).epsilon(1e-14));  // 8 (0.1^2 + 0.35^2) / 2
   CHECK(record.external_work == Approx(3.8).epsilon(1e-14));
   CHECK(record.dissipated == Approx(0.5 + 3.8 - 1.0 - 0.53).epsilon(1e-14));
+  // No dashpots, no blocks without a potential, no contact: the balance's error is the
+  // same number as what is dissipated, with the sign of energy created.
+  CHECK(record.damping == 0.0);
+  CHECK(record.unstored_work == 0.0);
+  CHECK(record.balance_error == Approx(-record.dissipated).epsilon(1e-14));
   balance.forget();
   CHECK_FALSE(balance.started());
 }

@@ -32,7 +32,7 @@ bool same_bits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 }
 
 /// Every contact element's trial history is its committed one, byte for byte.
-bool history_as_committed(const ContactBlock& contact) {
+bool history_as_committed(const TreadContactBlock& contact) {
   for (int e = 0; e < contact.size(); ++e)
     if (std::memcmp(static_cast<const void*>(&contact.trial_history(e)),
                     static_cast<const void*>(&contact.committed_history(e)), sizeof(contact.trial_history(e))) != 0)
@@ -47,7 +47,7 @@ TEST_CASE("queries between steps leave the elements' history and the next steps 
   const auto quiet = pressed_tire();
   const auto queried = pressed_tire();
   Analysis& analysis = queried->analysis();
-  const std::vector<int>& nodes = queried->tire().contact_nodes;
+  const std::vector<int>& nodes = queried->tire().tread_nodes;
   REQUIRE(same_bits(quiet->analysis().state().displacement, analysis.state().displacement));
 
   // Queries at the committed state and, for the modal analysis, at a state 2 mm deeper in

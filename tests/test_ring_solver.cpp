@@ -15,7 +15,7 @@
 #include "core/assembler.hpp"
 #include "contact/node_contact.hpp"
 #include "elements/tread_beam.hpp"
-#include "elements/tread_layer.hpp"
+#include "elements/tread_beam.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/analysis.hpp"
 #include "solvers/ring_solver.hpp"
@@ -28,9 +28,22 @@ namespace {
 
 const char* const kSpindleCases[] = {"spindle free", "dead axle (ux, uy fixed)", "spindle fixed"};
 const int kFixedComponents[] = {0, 2, 3};
-// The paper's tire (a ring of belt nodes and the spindle) and the calibrated one, whose
-// tread layer hangs a contact node on each belt node.
+// The paper's tire (a ring of belt nodes and the spindle) and the calibrated one.
 const char* const kTires[] = {"tires.145SR12", "tires.145SR12_tread_layer"};
+
+/// Hangs a new node 10 mm outside ring node 'host' on a short beam: a satellite of it.
+int hang_satellite(Model& model, int host, const std::string& block = "hung") {
+  const Eigen::Vector2d at = model.mesh().position(host) * 1.04;
+  const int node = model.mesh().add_node(at);
+  BeamSection section;  // about as stiff as the tread rubber under a node: 1e6 N/m
+  section.axial_stiffness = 1e4;
+  section.shear_stiffness = 1e4;
+  section.bending_stiffness = 0.1;
+  section.mass_per_length = 1.0;
+  section.rotary_inertia_per_length = 1e-4;
+  model.add_block<TreadBeam>(block).add({host, node}, TreadBeam(model.mesh().position(host), at, section));
+  return node;
+}
 
 /// The tire with its spindle condensed, inflated quasi-statically with the hub held
 /// (a free hub has rigid-body modes, quasi-statically), then the first 'fixed' spindle
@@ -38,10 +51,12 @@ const char* const kTires[] = {"tires.145SR12", "tires.145SR12_tread_layer"};
 struct InflatedTire {
   Model model;
   Tire tire;
+  int satellite = -1;  // a node hung on tread node 30, if asked for
   std::unique_ptr<Analysis> analysis;
 
-  InflatedTire(int fixed, bool ring_solver, const char* tire_set = kTires[0]) {
+  InflatedTire(int fixed, bool ring_solver, const char* tire_set = kTires[0], bool satellite = false) {
     tire = build_tire(model, macros::load_tire_parameters(tire_set), LoadFunction::table({{0.0, 0.0}, {1.0, 1.0}}));
+    if (satellite) this->satellite = hang_satellite(model, tire.tread_nodes[30]);
     model.condense_node(tire.spindle);
     for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
     analysis = std::make_unique<Analysis>(model);
@@ -254,13 +269,12 @@ TEST_CASE("ring solver: pivots of rows far smaller than the rest are judged agai
   // kPivotTolerance times the matrix's largest entry, but not below their own rows', so
   // the matrix is as regular as before and solves as KLU solves it (and with a residual
   // as small).
-  InflatedTire inflated(1, false, kTires[1]);
+  InflatedTire inflated(1, false, kTires[1], true);
   SparseMatrix scaled = inflated.tangent(1e-4);
   const DofMap& dofs = inflated.model.dof_map();
   std::vector<int> small_rows;
-  for (int node : {inflated.tire.tread_nodes[10], inflated.tire.contact_nodes[30]})
+  for (int node : {inflated.tire.tread_nodes[10], inflated.satellite})
     for (int c = 0; c < kDofsPerNode; ++c) small_rows.push_back(dofs.equation(dof_index(node, c)));
-  REQUIRE(inflated.tire.contact_nodes[30] != inflated.tire.tread_nodes[30]);  // a satellite
   double largest = 0.0, largest_small = 0.0;
   for (int column = 0; column < scaled.outerSize(); ++column)
     for (SparseMatrix::InnerIterator entry(scaled, column); entry; ++entry) {
@@ -274,10 +288,10 @@ TEST_CASE("ring solver: pivots of rows far smaller than the rest are judged agai
   check_against_klu(ring, scaled, 1e-8);  // the scaling costs digits (KLU equilibrates rows first)
 }
 
-TEST_CASE("ring solver: the calibrated tire pressed on a road with friction, its contact nodes satellites",
+TEST_CASE("ring solver: the calibrated tire pressed on a road with friction, its tread contact on the ring's chords",
           "[ring_solver]") {
-  // A rigid road couples each contact node to itself only, so the pressed tire keeps the
-  // pattern of a ring, a border and satellites: TireOnRoad solves it with the RingSolver.
+  // The tread contact couples a chord's two nodes (as the tread beam does), so the pressed
+  // tire keeps the pattern of a ring and a border: TireOnRoad solves it with the RingSolver.
   TireOnRoad on_road(
       macros::load_tire_parameters(kTires[1]),
       [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); }, RoadContact{0.8});
@@ -474,19 +488,22 @@ TEST_CASE("ring solver: a satellite with its rotation free, or held, solves as K
 }
 
 TEST_CASE("ring solver: a node outside the lists is taken only as a satellite of one ring node", "[ring_solver]") {
-  // The calibrated tire's contact node c_5 hangs on belt node b_5; a second spring from
-  // c_5 to b_6, to the spindle or to c_6, or a node with no coupling, does not fit.
+  // Node s_5 hangs on belt node b_5 (and s_6 on b_6); a second beam from s_5 to b_6, to
+  // the spindle or to s_6, or a node with no coupling, does not fit.
   Model model;
   const Tire tire = build_tire(model, macros::load_tire_parameters(kTires[1]), LoadFunction::linear());
+  const int hung[] = {hang_satellite(model, tire.tread_nodes[5]), hang_satellite(model, tire.tread_nodes[6], "hung6")};
   model.condense_node(tire.spindle);
   for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);  // regular quasi-statically
   Analysis analysis(model);
   analysis.use_ring_solver(tire.tread_nodes, {tire.spindle});  // fits as built
-  TreadLayerProperties spring;
-  spring.radial_stiffness = spring.circumferential_stiffness = 1e6;
   auto couple = [&](int other) {
-    const int contact = tire.contact_nodes[5];
-    model.add_block<TreadLayer>("extra").add({contact, other}, TreadLayer(model.mesh().position(contact), spring));
+    BeamSection section;
+    section.axial_stiffness = section.shear_stiffness = 1e6;
+    section.bending_stiffness = 1.0;
+    section.mass_per_length = 1.0;
+    model.add_block<TreadBeam>("extra").add(
+        {hung[0], other}, TreadBeam(model.mesh().position(hung[0]), model.mesh().position(other), section));
   };
   auto refused = [&](const std::string& reason) {
     CHECK_THROWS_WITH(analysis.use_ring_solver(tire.tread_nodes, {tire.spindle}),
@@ -507,8 +524,8 @@ TEST_CASE("ring solver: a node outside the lists is taken only as a satellite of
     couple(tire.spindle);
     refused("and to border node " + std::to_string(tire.spindle));
   }
-  SECTION("coupled to another contact node") {
-    couple(tire.contact_nodes[6]);
+  SECTION("coupled to another satellite") {
+    couple(hung[1]);
     refused("and to satellite node");
   }
   SECTION("coupled to nothing") {

@@ -27,8 +27,7 @@ model:solve{ to = 1.0, dt = 0.25 }
 model:surface{ name = "drum", type = "drum", diameter = 2 * drum_radius, cleat_height = 0.01, cleat_length = 0.2,
                cleat_angle = math.pi / 2 + 1.2, edge_radius = 0.003, speed = -p.speed / drum_radius,
                ramp_time = 0.2, start_time = 1.5 }
-model:contact{ surface = "drum", set = tire.contact_set, friction = 0.5, penalty = 2e7, tangential_factor = 30,
-               history = "drum" }
+model:tire_contact{ surface = "drum", friction = 0.5, history = "drum" }
 model:solve{ to = 1.5, dt = 0.05 }
 
 model:release{ node = tire.spindle, dofs = { "rz" } }

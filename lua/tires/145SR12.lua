@@ -22,4 +22,12 @@ return {
   sidewall_circumferential_damping = 150.0,
   rim_mass = 8.0,
   rim_rotary_inertia = 0.1,
+  -- The tread rubber the tire touches the road through (docs/tire.md; the paper's contact
+  -- is a penalty on the belt nodes). In compression, a grooved tread confined between belt
+  -- and road: a compression modulus of about 40 MPa (E (1 + 2 S^2), E about 4 MPa, blocks of
+  -- shape factor S about 2) over 10 mm of rubber, 0.077 m of it across the tread (E_c w / h).
+  -- In shear stiff, as the paper's belt nodes stick to the road: 10 x the rubber's G w / h.
+  -- No damping of its own, as the paper's model has none there.
+  tread_layer_radial_stiffness = 3e8,          -- N/m^2
+  tread_layer_circumferential_stiffness = 1e8, -- N/m^2
 }

@@ -6,23 +6,57 @@
 
 namespace tirefe {
 
-void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactBlock& block,
+ContactSource contact_source(const ContactBlock& block) {
+  ContactSource source;
+  source.block = block.name();
+  if (block.size() > 0) source.surface = &block.kernel(0).surface();
+  source.summarize = [&block] { return summarize_contact(block); };
+  source.fill = [&block](ContactNodeResults& results) { fill_contact_results(block, results); };
+  source.write_points = [&block](io::Hdf5File& file, const std::string& group) {
+    std::vector<long long> nodes;
+    for (int e = 0; e < block.size(); ++e) nodes.push_back(block.element_nodes(e)[0]);
+    file.write_int_vector(group + "nodes", nodes);
+  };
+  return source;
+}
+
+ContactSource contact_source(const TreadContactBlock& block) {
+  ContactSource source;
+  source.block = block.name();
+  if (block.size() > 0) source.surface = &block.kernel(0).surface();
+  source.summarize = [&block] { return summarize_contact(block); };
+  source.fill = [&block](ContactNodeResults& results) { fill_contact_results(block, results); };
+  source.write_points = [&block](io::Hdf5File& file, const std::string& group) {
+    std::vector<long long> starts;
+    std::vector<double> positions;
+    for (int e = 0; e < block.size(); ++e)
+      for (int q = 0; q < TreadContact::kSamples; ++q) {
+        starts.push_back(block.element_nodes(e)[0]);
+        positions.push_back(TreadContact::sample_weight(q));
+      }
+    file.write_int_vector(group + "chord_start", starts);
+    file.write_vector(group + "chord_position", positions);
+  };
+  return source;
+}
+
+void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactSource& source,
                         const std::string& channel_prefix, int every) {
   if (!channel_prefix.empty()) {
-    const ContactBlock* source = &block;
+    const auto summarize = source.summarize;
     file.add_channel(channel_prefix + "_fx", "N",
-                     [source](const Analysis&, const StepRecord&) { return summarize_contact(*source).force.x(); });
+                     [summarize](const Analysis&, const StepRecord&) { return summarize().force.x(); });
     file.add_channel(channel_prefix + "_fy", "N",
-                     [source](const Analysis&, const StepRecord&) { return summarize_contact(*source).force.y(); });
+                     [summarize](const Analysis&, const StepRecord&) { return summarize().force.y(); });
     file.add_channel(channel_prefix + "_patch_length", "m",
-                     [source](const Analysis&, const StepRecord&) { return summarize_contact(*source).patch_length; });
-    file.add_channel(channel_prefix + "_nodes_in_contact", "", [source](const Analysis&, const StepRecord&) {
-      return static_cast<double>(summarize_contact(*source).nodes_in_contact);
+                     [summarize](const Analysis&, const StepRecord&) { return summarize().patch_length; });
+    file.add_channel(channel_prefix + "_nodes_in_contact", "", [summarize](const Analysis&, const StepRecord&) {
+      return static_cast<double>(summarize().nodes_in_contact);
     });
     // The surface's prescribed motion (a drum's angle, a road's travel), to place events
     // such as a cleat passage on the time axis.
-    if (block.size() > 0) {
-      const RigidMotion* motion = &block.kernel(0).surface().motion();
+    if (source.surface) {
+      const RigidMotion* motion = &source.surface->motion();
       file.add_channel(channel_prefix + "_surface_angle", "rad",
                        [motion](const Analysis& run, const StepRecord&) { return motion->angle_at(run.state().time); });
       file.add_channel(channel_prefix + "_surface_x", "m", [motion](const Analysis& run, const StepRecord&) {
@@ -32,17 +66,17 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactB
   }
   if (every <= 0) return;
 
-  const std::string group = "/contact/" + block.name() + "/";
-  std::vector<long long> nodes;
-  for (int e = 0; e < block.size(); ++e) nodes.push_back(block.element_nodes(e)[0]);
+  const std::string group = "/contact/" + source.block + "/";
   io::Hdf5File& hdf5 = file.file();
-  hdf5.write_int_vector(group + "nodes", nodes);
-  const std::vector<hsize_t> row{static_cast<hsize_t>(block.size())};
+  source.write_points(hdf5, group);
+  ContactNodeResults sizing;
+  source.fill(sizing);
+  const std::vector<hsize_t> row{static_cast<hsize_t>(sizing.gap.size())};
   struct Datasets {
     io::ExtendibleDataset *time, *gap, *normal_force, *tangential_force, *state, *coordinate, *sliding_velocity;
     ContactNodeResults results;
   };
-  // Per-node rows are fields: compressed (most nodes are open, most values zero).
+  // Per-point rows are fields: compressed (most points are open, most values zero).
   auto field = [&](const char* name, const char* unit) -> io::ExtendibleDataset* {
     return &hdf5.create_compressed_extendible(group + name, row, unit);
   };
@@ -54,11 +88,10 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactB
                                                       field("coordinate", "m"),
                                                       field("sliding_velocity", "m/s"),
                                                       {}});
-  const ContactBlock* source = &block;
-  analysis.add_step_observer([datasets, source, every](const Analysis& run, const StepRecord& record) {
+  analysis.add_step_observer([datasets, fill = source.fill, every](const Analysis& run, const StepRecord& record) {
     if (record.step % every != 0) return;
     Datasets& d = *datasets;
-    fill_contact_results(*source, d.results);
+    fill(d.results);
     d.time->append(run.state().time);
     d.gap->append(d.results.gap.data());
     d.normal_force->append(d.results.normal_force.data());

@@ -59,7 +59,13 @@ std::vector<Eigen::Vector2d> RigidSurface::outline(double time, const Eigen::Vec
 // ---- FlatRoad ----------------------------------------------------------------------
 
 FlatRoad::FlatRoad(const Eigen::Vector2d& point, const Eigen::Vector2d& direction, RigidMotion motion)
-    : RigidSurface("flat", SurfaceCurve({Piece::line(point, direction)}, false), std::move(motion)) {}
+    : RigidSurface("flat", SurfaceCurve({Piece::line(point, direction)}, false), std::move(motion)),
+      point_(point),
+      normal_(Eigen::Vector2d(-direction.y(), direction.x()).normalized()) {}
+
+double FlatRoad::clearance(const Eigen::Vector2d& x, double time) const {
+  return (motion().to_material(x, time) - point_).dot(normal_);
+}
 
 // ---- Drum --------------------------------------------------------------------------
 
@@ -118,7 +124,15 @@ SurfaceCurve profile_curve(const std::vector<Eigen::Vector2d>& points, double ed
 }  // namespace
 
 RoadProfile::RoadProfile(const std::vector<Eigen::Vector2d>& points, double edge_radius, RigidMotion motion)
-    : RigidSurface("profile", profile_curve(points, edge_radius), std::move(motion)) {}
+    : RigidSurface("profile", profile_curve(points, edge_radius), std::move(motion)) {
+  highest_ = points.front().y();
+  for (const Eigen::Vector2d& point : points) highest_ = std::max(highest_, point.y());
+}
+
+double RoadProfile::clearance(const Eigen::Vector2d& x, double time) const {
+  // Every point of the profile, its level ends included, lies at or below its highest point.
+  return motion().to_material(x, time).y() - highest_;
+}
 
 std::vector<Eigen::Vector2d> RoadProfile::read_points(const std::string& path) {
   std::ifstream in(path);

@@ -71,6 +71,11 @@ class FlatRoad : public RigidSurface {
   /// direction (below, for the default +x). s = 0 at 'point'.
   explicit FlatRoad(const Eigen::Vector2d& point = Eigen::Vector2d::Zero(),
                     const Eigen::Vector2d& direction = Eigen::Vector2d::UnitX(), RigidMotion motion = {});
+  /// The signed distance from the line.
+  double clearance(const Eigen::Vector2d& x, double time) const override;
+
+ private:
+  Eigen::Vector2d point_, normal_;  // in the road's own frame
 };
 
 struct Cleat {
@@ -103,6 +108,8 @@ class RoadProfile : public RigidSurface {
   /// continued level beyond its first and last points; convex corners rounded with
   /// edge_radius. s = 0 at the first point.
   RoadProfile(const std::vector<Eigen::Vector2d>& points, double edge_radius = 0.0, RigidMotion motion = {});
+  /// The height above the profile's highest point.
+  double clearance(const Eigen::Vector2d& x, double time) const override;
 
   /// Two columns "x y" per line, '#' starts a comment. Throws ModelError naming the file and
   /// line for unreadable, short or non-monotonic data.
@@ -112,6 +119,9 @@ class RoadProfile : public RigidSurface {
   static std::vector<Eigen::Vector2d> pothole_points(double start, double length, double depth, double level = 0.0);
   /// A flat road at height 'level' with a rectangular cleat of 'length' and 'height' starting at x = start.
   static std::vector<Eigen::Vector2d> cleat_points(double start, double length, double height, double level = 0.0);
+
+ private:
+  double highest_ = 0.0;  // the largest y of the points (the profile's own frame)
 };
 
 }  // namespace tirefe

@@ -73,9 +73,16 @@ struct EvaluationContext {
 struct ElementEnergy {
   double strain = 0.0;
   double kinetic = 0.0;
+  // Booked by an element that keeps its own account (a contact on a moving surface), since
+  // its history began: the work a prescribed motion did through it on the structure, and
+  // what it dissipated (friction, its dashpots).
+  double supplied = 0.0;
+  double dissipated = 0.0;
   ElementEnergy& operator+=(const ElementEnergy& other) {
     strain += other.strain;
     kinetic += other.kinetic;
+    supplied += other.supplied;
+    dissipated += other.dissipated;
     return *this;
   }
 };
@@ -159,6 +166,12 @@ class ElementBlock {
 
   virtual void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) = 0;
   virtual ElementEnergy energy(const State& state) const = 0;
+  /// How the energy balance books the block's work (energy_balance.hpp): its forces derive
+  /// from the energy() it stores, or they do work it does not store (a follower load); it
+  /// may have dashpots, whose forces the damping factors give; it may keep its own account
+  /// of dissipation and of the work of a moving surface (ElementEnergy::supplied, dissipated).
+  virtual bool stores_energy() const = 0;
+  virtual bool has_dashpots() const = 0;
   /// Adds the block's inertia forces M a at 'state' to 'global' (one entry per DOF) and
   /// returns true; false, adding nothing, when the kernel cannot say (it reads the
   /// acceleration but has no mass_times).
@@ -210,7 +223,11 @@ struct HasAugment<Kernel,
 //   static constexpr bool kReadsVelocity = false;  // the batch path gathers no velocities
 //       (its values.velocity is null)
 //   static constexpr bool kStoresEnergy = false;  // energy() is always zero (a follower
-//       load's): the block's energy() neither gathers nor loops
+//       load's): the block's energy() neither gathers nor loops, and the energy balance
+//       books the work of its forces instead
+//   static constexpr bool kBooksEnergy = true;  // the kernel keeps its own account of what
+//       it dissipates, its velocity-dependent forces included (a contact's): the energy
+//       balance does not evaluate its dashpots
 //   static constexpr bool kReadsLastTrial = true;  // 'trial' arrives holding what the
 //       element's last evaluation left (the previous Newton iterate's history) rather than
 //       a copy of 'base'; the kernel then writes every field of it
@@ -252,6 +269,7 @@ TIREFE_KERNEL_FLAG(ReadsAcceleration, kReadsAcceleration, true)
 TIREFE_KERNEL_FLAG(ReadsVelocity, kReadsVelocity, true)
 TIREFE_KERNEL_FLAG(StoresEnergy, kStoresEnergy, true)
 TIREFE_KERNEL_FLAG(ReadsLastTrial, kReadsLastTrial, false)
+TIREFE_KERNEL_FLAG(BooksEnergy, kBooksEnergy, false)
 #undef TIREFE_KERNEL_FLAG
 
 template <class Kernel, class = void>
@@ -391,6 +409,11 @@ class ElementBlockOf final : public ElementBlock {
       total += kernels_[e].energy(local, trial_[e]);
     }
     return total;
+  }
+
+  bool stores_energy() const override { return detail::StoresEnergy<Kernel>::value; }
+  bool has_dashpots() const override {
+    return detail::ReadsVelocity<Kernel>::value && !detail::BooksEnergy<Kernel>::value;
   }
 
   bool add_inertia_forces(const State& state, Eigen::VectorXd& global) const override {

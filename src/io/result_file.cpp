@@ -57,6 +57,13 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
   add_channel("energy_strain", "J", [](const Analysis&, const StepRecord& step) { return step.energy.strain; });
   add_channel("external_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.external_work; });
   add_channel("energy_dissipated", "J", [](const Analysis&, const StepRecord& step) { return step.energy.dissipated; });
+  add_channel("surface_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.surface_work; });
+  add_channel("unstored_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.unstored_work; });
+  add_channel("energy_damping", "J", [](const Analysis&, const StepRecord& step) { return step.energy.damping; });
+  add_channel("contact_dissipated", "J",
+              [](const Analysis&, const StepRecord& step) { return step.energy.contact_dissipated; });
+  add_channel("energy_balance_error", "J",
+              [](const Analysis&, const StepRecord& step) { return step.energy.balance_error; });
   file_.flush();
 }
 

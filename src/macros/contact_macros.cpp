@@ -14,6 +14,7 @@
 
 #include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
+#include "contact/tread_contact.hpp"
 #include "contact/road_file.hpp"
 #include "tire/contact_penalty.hpp"
 #include "macros/deck_model.hpp"
@@ -220,13 +221,26 @@ int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   return 0;
 }
 
+/// 'name', refused if an element block has it already.
+std::string unused_block_name(DeckModel& deck, const std::string& name) {
+  for (const auto& block : deck.model().blocks())
+    if (block->name() == name) throw ModelError("an element block named '" + name + "' exists already (give 'name')");
+  return name;
+}
+
+/// The history channels and per-point rows a contact macro asks for.
+void add_output(DeckModel& deck, const MacroArguments& arguments, const ContactSource& source) {
+  const std::string prefix = arguments.string_or("history", "");
+  const int every = static_cast<int>(arguments.integer("output_every"));
+  if (!prefix.empty() || every > 0)
+    add_contact_output(deck.output_or_default(), deck.analysis(), source, prefix, every);
+}
+
 int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const std::string surface_name = arguments.string("surface");
   const std::shared_ptr<const RigidSurface> surface = deck.surface(surface_name);
   const std::vector<int> nodes = target_nodes(deck, arguments);
-  const std::string name = arguments.string_or("name", "contact_" + surface_name);
-  for (const auto& block : deck.model().blocks())
-    if (block->name() == name) throw ModelError("an element block named '" + name + "' exists already (give 'name')");
+  const std::string name = unused_block_name(deck, arguments.string_or("name", "contact_" + surface_name));
   ContactParameters parameters;
   parameters.friction = arguments.number("friction");
   if (!arguments.has("penalty") || !arguments.has("tangential_penalty"))
@@ -245,12 +259,23 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
   parameters.hold_first_evaluation = arguments.boolean("hold_first_evaluation");
   const ContactBlock& block =
       add_contact_block(deck.model(), name, surface, nodes, parameters, deck.analysis().state().time);
-  const std::string prefix = arguments.string_or("history", "");
-  const int every = static_cast<int>(arguments.integer("output_every"));
-  if (!prefix.empty() || every > 0) add_contact_output(deck.output_or_default(), deck.analysis(), block, prefix, every);
+  add_output(deck, arguments, contact_source(block));
   lua_pushnumber(L, parameters.normal_penalty);
   lua_pushnumber(L, parameters.tangential_penalty);
   return 2;
+}
+
+int tire_contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
+  const std::string surface_name = arguments.string("surface");
+  const std::shared_ptr<const RigidSurface> surface = deck.surface(surface_name);
+  const Tire& tire = deck.tire(arguments.string("tire"));
+  const std::string name = unused_block_name(deck, arguments.string_or("name", "contact_" + surface_name));
+  TreadRubber rubber = tread_rubber(tire.parameters, arguments.number("friction"));
+  rubber.search_distance = arguments.number("search_distance");
+  const TreadContactBlock& block = add_tread_contact_block(deck.model(), name, surface, tire.tread_nodes, rubber);
+  add_output(deck, arguments, contact_source(block));
+  lua_pushstring(L, name.c_str());
+  return 1;
 }
 
 const std::vector<std::string> kQuantities{
@@ -258,9 +283,14 @@ const std::vector<std::string> kQuantities{
 
 int contact_value_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
-  const auto* block = dynamic_cast<const ContactBlock*>(&deck.model().block(name));
-  if (!block) throw ModelError("block '" + name + "' is not a contact block");
-  const ContactSummary summary = summarize_contact(*block);
+  const ElementBlock& any = deck.model().block(name);
+  ContactSummary summary;
+  if (const auto* nodes = dynamic_cast<const ContactBlock*>(&any))
+    summary = summarize_contact(*nodes);
+  else if (const auto* tread = dynamic_cast<const TreadContactBlock*>(&any))
+    summary = summarize_contact(*tread);
+  else
+    throw ModelError("block '" + name + "' is not a contact block");
   const std::string quantity = arguments.string("quantity");
   const double values[] = {summary.force.x(),
                            summary.force.y(),
@@ -393,6 +423,25 @@ void add_contact_macros(MacroTable& table) {
          std::string("0"), Range::NonNegative}},
        "model:contact{ surface = \"drum\", set = \"tread\", friction = 0.3, history = \"patch\" }"},
       contact_macro);
+  add({"tire_contact",
+       "A tire's tread against a surface through its tread rubber (docs/contact.md, Tread contact): a massless "
+       "layer whose radial and shear stiffness and damping (the tire's tread_layer_* parameters) make a compliant "
+       "contact law with Coulomb friction, sampled along every chord of the tread. Returns the block's name.",
+       {{"surface", VT::String, true, "", "surface name"},
+        {"tire", VT::String, false, "", "the tire's name (model:tire{ name })", std::string("tire")},
+        {"name", VT::String, false, "", "element block name", std::string("contact_<surface>")},
+        {"friction", VT::Number, false, "", "Coulomb coefficient mu", std::string("0"), Range::NonNegative},
+        {"search_distance", VT::Number, false, "m",
+         "sample points open when their step began and farther from the surface than this are not projected",
+         std::string("0.005"), Range::Positive},
+        {"history", VT::String, false, "",
+         "prefix of history channels <prefix>_fx, _fy, _patch_length, _nodes_in_contact (sample points), "
+         "_surface_angle, _surface_x"},
+        {"output_every", VT::Integer, false, "",
+         "write per-sample rows (/contact/<name>/...) every n steps; 0: never", std::string("0"),
+         Range::NonNegative}},
+       "model:tire_contact{ surface = \"drum\", friction = 0.3, history = \"drum\" }"},
+      tire_contact_macro);
   add({"contact_value",
        "Returns a total of a contact block at the current time: force on the structure (fx, fy), patch length, "
        "nodes in contact or slipping, or the largest penetration.",

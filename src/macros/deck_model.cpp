@@ -84,6 +84,17 @@ void DeckModel::set_wheel_heading(int spindle, Heading heading) {
   wheel_headings_[spindle] = heading;
 }
 
+void DeckModel::define_tire(const Tire& tire) { tires_[tire.name] = tire; }
+
+const Tire& DeckModel::tire(const std::string& name) const {
+  const auto found = tires_.find(name);
+  if (found != tires_.end()) return found->second;
+  std::string known;
+  for (const auto& [other, unused] : tires_) known += (known.empty() ? "'" : ", '") + other + "'";
+  throw ModelError("no tire named '" + name + "' in this model (" +
+                   (known.empty() ? std::string("build one with model:tire first") : "it has " + known) + ")");
+}
+
 Heading DeckModel::wheel_heading(int node) const {
   const auto found = wheel_headings_.find(node);
   if (found == wheel_headings_.end())

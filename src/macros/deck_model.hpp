@@ -15,6 +15,7 @@
 #include "io/result_file.hpp"
 #include "macros/deck_session.hpp"
 #include "solvers/analysis.hpp"
+#include "tire/tire_builder.hpp"
 #include "tire/wheel_axes.hpp"
 #include "vehicle/spindle_exchange.hpp"
 
@@ -107,6 +108,11 @@ class DeckModel {
   /// Refuses 'what' while a restart is skipping time whose state it does not have.
   void require_state(const std::string& what) const;
 
+  /// A tire built by model:tire, by its name (model:tire_contact finds its tread there).
+  void define_tire(const Tire& tire);
+  /// ModelError naming the model's tires if there is none of that name.
+  const Tire& tire(const std::string& name) const;
+
   /// A tire's heading (model:tire{ heading }), by its spindle node: the wheel axes of its
   /// spindle forces. One result file states one heading, so a model's tires share it.
   void set_wheel_heading(int spindle, Heading heading);
@@ -135,6 +141,7 @@ class DeckModel {
   std::map<std::string, std::shared_ptr<const RigidSurface>> surfaces_;
   std::map<int, std::unique_ptr<TireSpindle>> spindles_;  // by 0-based node; declared after analysis_, which they drive
   std::map<int, Heading> wheel_headings_;                 // by spindle node
+  std::map<std::string, Tire> tires_;                     // by name
   std::unique_ptr<io::ResultFile> output_;
   std::vector<std::function<void(io::ResultFile&)>> output_descriptions_;  // until it opens
   bool calls_lua_ = false;

@@ -54,25 +54,21 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const Tire tire =
       build_tire(deck.model(), parameters,
                  deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))), name);
-  // Spindle equations last, as the spindle-force condensation and the RingSolver's border
-  // want them; a tread layer's contact nodes join the RingSolver as satellites of the belt.
+  // Spindle equations last, as the spindle-force condensation and the RingSolver's border want them.
   deck.model().condense_node(tire.spindle);
   deck.analysis().prefer_ring_solver(tire.tread_nodes, {tire.spindle});
-  // The result file takes the rim's rigid motion out of the tire's nodes (/fields/deformation)
-  // and shows a tread layer's contact nodes.
-  std::vector<int> carried = tire.tread_nodes;
-  if (parameters.tread_layer.enabled())
-    carried.insert(carried.end(), tire.contact_nodes.begin(), tire.contact_nodes.end());
-  const std::string contact_set = parameters.tread_layer.enabled() ? name + "_contact" : "";
+  deck.define_tire(tire);
+  // The result file takes the rim's rigid motion out of the tire's nodes (/fields/deformation).
   Heading heading = Heading::PlusX;
   parse_heading(arguments.string("heading"), heading);  // the spec allows +x and -x only
   deck.set_wheel_heading(tire.spindle, heading);
-  deck.describe_output([spindle = tire.spindle, carried, contact_set, heading](io::ResultFile& file) {
+  deck.describe_output([spindle = tire.spindle, carried = tire.tread_nodes, heading](io::ResultFile& file) {
     file.file().write_attribute("/", "heading", std::string(heading_name(heading)));
     file.add_rim(spindle, carried);
-    if (!contact_set.empty()) file.show_node_set(contact_set);
   });
-  lua_createtable(L, 0, 6);
+  lua_createtable(L, 0, 5);
+  lua_pushstring(L, name.c_str());
+  lua_setfield(L, -2, "name");
   lua_pushinteger(L, tire.spindle + 1);
   lua_setfield(L, -2, "spindle");
   lua_createtable(L, static_cast<int>(tire.tread_nodes.size()), 0);
@@ -81,18 +77,10 @@ int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
     lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setfield(L, -2, "tread");
-  lua_createtable(L, static_cast<int>(tire.contact_nodes.size()), 0);
-  for (size_t i = 0; i < tire.contact_nodes.size(); ++i) {
-    lua_pushinteger(L, tire.contact_nodes[i] + 1);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-  }
-  lua_setfield(L, -2, "contact");
   lua_pushstring(L, (name + "_spindle").c_str());
   lua_setfield(L, -2, "spindle_set");
   lua_pushstring(L, (name + "_tread").c_str());
   lua_setfield(L, -2, "tread_set");
-  lua_pushstring(L, (name + "_contact").c_str());
-  lua_setfield(L, -2, "contact_set");
   return 1;
 }
 
@@ -146,9 +134,9 @@ void add_tire_macros(MacroTable& table) {
       {{"tire",
         "Builds a ring tire (docs/model.md section 1): a spindle node, N tread nodes on the outer circle, and N wedges "
         "of tread beam + sidewall + inflation pressure, with the rim and hub as mass and rotary inertia on the "
-        "spindle; optionally a tread-rubber layer between the tread nodes and the road. Returns {spindle, tread, "
-        "contact, spindle_set, tread_set, contact_set} (deck node numbers and set names; contact the nodes that "
-        "touch the road: the layer's nodes, or the tread nodes without a layer). "
+        "spindle; the tread rubber's stiffness and damping make its contact law with a road "
+        "(model:tire_contact). Returns {name, spindle, tread, spindle_set, tread_set} (deck node numbers and set "
+        "names). "
         "docs/tire.md explains every parameter and where the 145 SR-12 values come from.",
         {{"name", VT::String, false, "", "prefix of the tire's blocks and node sets", std::string("tire")},
          {"elements",
@@ -181,10 +169,13 @@ void add_tire_macros(MacroTable& table) {
          optional_non_negative("sidewall_radial_damping", "N s/m^2", "dashpot along the cord, per length"),
          optional_non_negative("sidewall_circumferential_damping", "N s/m^2", "dashpot across the cord, per length"),
          optional_non_negative("tread_layer_radial_stiffness", "N/m^2",
-                               "tread-rubber layer: radial stiffness per length of circumference (0: no layer)"),
+                               "tread rubber: radial stiffness per length of circumference, the contact's normal "
+                               "law (0: no tread rubber, no contact)"),
          optional_non_negative("tread_layer_circumferential_stiffness", "N/m^2",
-                               "tread-rubber layer: shear stiffness per length of circumference (0: no layer)"),
-         optional_non_negative("tread_layer_mass_per_length", "kg/m", "tread-rubber layer: mass on the contact nodes"),
+                               "tread rubber: shear stiffness per length of circumference, the contact's tangential "
+                               "law"),
+         optional_non_negative("tread_layer_mass_per_length", "kg/m",
+                               "tread rubber: mass per length, carried by the belt (the road side is massless)"),
          optional_non_negative("tread_layer_radial_damping", "N s/m^2",
                                "tread-rubber layer: radial dashpot per length of circumference (hysteresis)"),
          optional_non_negative("tread_layer_circumferential_damping", "N s/m^2",

@@ -295,7 +295,7 @@ void Analysis::finish_step(double step) {
   carried_.external_old = external_new_;
   carried_.old_forces_valid = integrator_.weights_old_forces();
   ++carried_.accepted_steps;
-  energy_.add_step(carried_.state, work);
+  energy_.add_step(trial_, carried_.state, work);  // trial_ holds the old state now
 }
 
 void Analysis::restart_energy_balance() {

@@ -195,7 +195,7 @@ class Analysis : private StepEquations, private SteppedSystem {
 
   CarriedState carried_;
   StepController controller_{carried_.steps};
-  EnergyBalance energy_{model_, carried_.energy, carried_.energy_started};
+  EnergyBalance energy_{model_, carried_};
   State trial_;
   Eigen::VectorXd residual_all_, external_new_;
   DrivenDofs driven_;

@@ -18,6 +18,14 @@ struct EnergyRecord {
   double external_work = 0.0;  // of nodal loads and support reactions since the start
   double initial = 0.0;        // kinetic + strain at the start of the analysis
   double dissipated = 0.0;     // initial + external_work - kinetic - strain
+  // The balance closed term by term (energy_balance.hpp), since the start:
+  double surface_work = 0.0;        // done on the structure by moving surfaces, through contacts
+  double unstored_work = 0.0;       // done on it by element forces that store no energy
+  double damping = 0.0;             // dissipated by the elements' dashpots
+  double contact_dissipated = 0.0;  // dissipated by friction and the contacts' dashpots
+  double balance_error = 0.0;  // kinetic + strain + damping + contact - initial - external - surface - unstored
+  // The contacts' own accounts when the balance started (their histories carry them).
+  double supplied_at_start = 0.0, contact_dissipated_at_start = 0.0;
 };
 
 /// The sizes of the steps: the deck's, and the next one (smaller after cuts, growing back).
@@ -32,6 +40,8 @@ struct CarriedState {
   Eigen::VectorXd external_old;         // F_n, the loads at the committed time
   Eigen::VectorXd old_internal_forces;  // g_n = f_int(u_n) + C v_n, HHT's weighting
   Eigen::VectorXd reactions;            // at prescribed and driven DOFs, zero elsewhere
+  Eigen::VectorXd dashpot_forces;       // C v_n of the blocks with dashpots, for the energy balance
+  Eigen::VectorXd unstored_forces;      // f_n of the blocks that store no energy, for the energy balance
   bool old_forces_valid = false;        // old_internal_forces belongs to the committed state
   bool acceleration_pending = false;    // the committed acceleration is to be put in equilibrium
   bool reactions_valid = false;         // reactions belong to the committed state
@@ -63,6 +73,15 @@ struct CarriedState {
     visit("/analysis/external_work", self.energy.external_work);
     visit("/analysis/energy_initial", self.energy.initial);
     visit("/analysis/energy_dissipated", self.energy.dissipated);
+    visit("/analysis/dashpot_forces", self.dashpot_forces);
+    visit("/analysis/unstored_forces", self.unstored_forces);
+    visit("/analysis/surface_work", self.energy.surface_work);
+    visit("/analysis/unstored_work", self.energy.unstored_work);
+    visit("/analysis/energy_damping", self.energy.damping);
+    visit("/analysis/contact_dissipated", self.energy.contact_dissipated);
+    visit("/analysis/balance_error", self.energy.balance_error);
+    visit("/analysis/supplied_at_start", self.energy.supplied_at_start);
+    visit("/analysis/contact_dissipated_at_start", self.energy.contact_dissipated_at_start);
     visit("/analysis/old_forces_valid", self.old_forces_valid);
     visit("/analysis/acceleration_pending", self.acceleration_pending);
     visit("/analysis/reactions_valid", self.reactions_valid);

@@ -5,11 +5,15 @@ namespace tirefe {
 void EnergyBalance::start(const State& state, Eigen::VectorXd& loads) {
   model_.external_forces(state.time, loads);
   const ElementEnergy stored = stored_energy(state);
-  record_ = EnergyRecord{};
-  record_.kinetic = stored.kinetic;
-  record_.strain = stored.strain;
-  record_.initial = stored.kinetic + stored.strain;
-  started_ = true;
+  EnergyRecord& record = carried_.energy;
+  record = EnergyRecord{};
+  record.kinetic = stored.kinetic;
+  record.strain = stored.strain;
+  record.initial = stored.kinetic + stored.strain;
+  record.supplied_at_start = stored.supplied;
+  record.contact_dissipated_at_start = stored.dissipated;
+  block_forces(state, carried_.dashpot_forces, carried_.unstored_forces);
+  carried_.energy_started = true;
 }
 
 double EnergyBalance::step_work(const State& old_state, const State& new_state, const Eigen::VectorXd& loads_old,
@@ -26,18 +30,58 @@ double EnergyBalance::step_work(const State& old_state, const State& new_state, 
   return work;
 }
 
-void EnergyBalance::add_step(const State& state, double work) {
+void EnergyBalance::add_step(const State& old_state, const State& state, double work) {
   const ElementEnergy stored = stored_energy(state);
-  record_.kinetic = stored.kinetic;
-  record_.strain = stored.strain;
-  record_.external_work += work;
-  record_.dissipated = record_.initial + record_.external_work - stored.kinetic - stored.strain;
+  EnergyRecord& record = carried_.energy;
+  record.kinetic = stored.kinetic;
+  record.strain = stored.strain;
+  record.external_work += work;
+  record.dissipated = record.initial + record.external_work - stored.kinetic - stored.strain;
+
+  block_forces(state, dashpots_, unstored_);
+  const Eigen::VectorXd step = state.displacement - old_state.displacement;
+  if (carried_.dashpot_forces.size() == step.size() && carried_.unstored_forces.size() == step.size()) {
+    record.damping += 0.5 * (carried_.dashpot_forces + dashpots_).dot(step);
+    record.unstored_work -= 0.5 * (carried_.unstored_forces + unstored_).dot(step);
+  }
+  carried_.dashpot_forces.swap(dashpots_);
+  carried_.unstored_forces.swap(unstored_);
+  record.surface_work = stored.supplied - record.supplied_at_start;
+  record.contact_dissipated = stored.dissipated - record.contact_dissipated_at_start;
+  record.balance_error = record.kinetic + record.strain + record.damping + record.contact_dissipated -
+                         record.initial - record.external_work - record.surface_work - record.unstored_work;
 }
 
 ElementEnergy EnergyBalance::stored_energy(const State& state) const {
   ElementEnergy total;
   for (const auto& block : model_.blocks()) total += block->energy(state);
   return total;
+}
+
+void EnergyBalance::block_forces(const State& state, Eigen::VectorXd& dashpots, Eigen::VectorXd& unstored) {
+  const Eigen::Index size = state.displacement.size();
+  dashpots.setZero(size);
+  unstored.setZero(size);
+  EvaluationContext context;
+  context.time = state.time;
+  context.want_tangent = false;
+  AssemblyTarget target;
+  bool evaluated = false;
+  for (const auto& block : model_.blocks()) {
+    if (block->has_dashpots()) {
+      context.factors = IntegratorFactors::damping_force();
+      target.residual = &dashpots;
+      block->assemble(context, state, target);
+      evaluated = true;
+    }
+    if (!block->stores_energy()) {
+      context.factors = IntegratorFactors::stiffness_force();
+      target.residual = &unstored;
+      block->assemble(context, state, target);
+      evaluated = true;
+    }
+  }
+  if (evaluated) model_.revert_history();  // an evaluation writes trial history: back to the committed
 }
 
 }  // namespace tirefe

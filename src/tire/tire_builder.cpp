@@ -19,31 +19,6 @@ void require(bool valid, const std::string& parameter, const std::string& what, 
   throw ModelError("tire parameter '" + parameter + "' " + what + " (got " + got + ")");
 }
 
-/// One contact node on each tread node, joined by the tread-rubber spring; each takes the
-/// stiffness and mass of its node's share pi D / N of the circumference. The contact
-/// nodes' rotation carries nothing and is held.
-std::vector<int> add_tread_layer(Model& model, const Tire& tire, const std::string& name) {
-  const TireParameters& parameters = tire.parameters;
-  const double share = kPi * parameters.outer_diameter / parameters.elements;
-  TreadLayerProperties layer;
-  layer.radial_stiffness = share * parameters.tread_layer.radial_stiffness;
-  layer.circumferential_stiffness = share * parameters.tread_layer.circumferential_stiffness;
-  layer.mass = share * parameters.tread_layer.mass_per_length;
-  layer.radial_damping = share * parameters.tread_layer.radial_damping;
-  layer.circumferential_damping = share * parameters.tread_layer.circumferential_damping;
-  Mesh& mesh = model.mesh();
-  auto& springs = model.add_block<TreadLayer>(name + "_tread_layer");
-  std::vector<int> contact_nodes;
-  for (int tread : tire.tread_nodes) {
-    const Eigen::Vector2d position = mesh.position(tread);
-    const int contact = mesh.add_node(position);
-    model.fix(contact, kRz);
-    springs.add({contact, tread}, TreadLayer(position - parameters.centre, layer));
-    contact_nodes.push_back(contact);
-  }
-  return contact_nodes;
-}
-
 }  // namespace
 
 void TireParameters::check() const {
@@ -81,8 +56,8 @@ void TireParameters::check() const {
             "must be positive when the tread layer is on", tread_layer.radial_stiffness);
     require(tread_layer.circumferential_stiffness > 0, "tread_layer_circumferential_stiffness",
             "must be positive when the tread layer is on", tread_layer.circumferential_stiffness);
-    require(tread_layer.mass_per_length > 0, "tread_layer_mass_per_length",
-            "must be positive when the tread layer is on (the contact nodes need mass)", tread_layer.mass_per_length);
+    require(tread_layer.mass_per_length >= 0, "tread_layer_mass_per_length", "must not be negative",
+            tread_layer.mass_per_length);
   } else {
     require(tread_layer.mass_per_length == 0, "tread_layer_mass_per_length", "needs the tread layer's stiffnesses",
             tread_layer.mass_per_length);
@@ -114,6 +89,10 @@ Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pre
 
   SidewallProperties sidewall = parameters.sidewall;
   sidewall.rim_radius = 0.5 * parameters.rim_diameter;
+  // The tread rubber's mass moves with the belt: the layer's road side is massless
+  // (contact/tread_contact.hpp), its mass redistributed to the belt nodes.
+  BeamSection belt = parameters.tread;
+  belt.mass_per_length += parameters.tread_layer.mass_per_length;
   auto& treads = model.add_block<TreadBeam>(name + "_tread");
   auto& sidewalls = model.add_block<SidewallWedge>(name + "_sidewall");
   auto& pressures = model.add_block<TreadPressure>(name + "_pressure");
@@ -121,7 +100,7 @@ Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pre
     const int a = tire.tread_nodes[i], b = tire.tread_nodes[(i + 1) % count];
     const Eigen::Vector2d& xa = mesh.position(a);
     const Eigen::Vector2d& xb = mesh.position(b);
-    treads.add({a, b}, TreadBeam(xa, xb, parameters.tread));
+    treads.add({a, b}, TreadBeam(xa, xb, belt));
     sidewalls.add({tire.spindle, a, b}, SidewallWedge(parameters.centre, xa, xb, sidewall, tire.pressure));
     pressures.add({a, b}, TreadPressure(xa, xb, parameters.tread_width, tire.pressure));
   }
@@ -129,9 +108,26 @@ Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pre
   rim.mass = parameters.rim_mass;
   rim.rotary_inertia = parameters.rim_rotary_inertia;
   model.add_block<NodalSpringMass>(name + "_rim").add({tire.spindle}, NodalSpringMass(rim));
-  tire.contact_nodes = parameters.tread_layer.enabled() ? add_tread_layer(model, tire, name) : tire.tread_nodes;
-  mesh.define_node_set(name + "_contact", tire.contact_nodes);
   return tire;
+}
+
+}  // namespace tirefe
+
+namespace tirefe {
+
+TreadRubber tread_rubber(const TireParameters& parameters, double friction) {
+  const TreadLayerParameters& layer = parameters.tread_layer;
+  if (!layer.enabled())
+    throw ModelError(
+        "the tire touches the road through its tread rubber: give tread_layer_radial_stiffness and "
+        "tread_layer_circumferential_stiffness (docs/tire.md)");
+  TreadRubber rubber;
+  rubber.normal_stiffness = layer.radial_stiffness;
+  rubber.tangential_stiffness = layer.circumferential_stiffness;
+  rubber.normal_damping = layer.radial_damping;
+  rubber.tangential_damping = layer.circumferential_damping;
+  rubber.friction = friction;
+  return rubber;
 }
 
 }  // namespace tirefe

@@ -7,29 +7,30 @@
 //   - the sidewall arch-membrane element (block <name>_sidewall),
 //   - the follower inflation pressure on the tread chord (block <name>_pressure);
 // and the rigid rim + hub is a mass and rotary inertia on the spindle (block <name>_rim).
-// Optionally a tread-rubber layer (block <name>_tread_layer): one contact node per tread
-// node, joined to it by a TreadLayer spring; the contact nodes then carry the contact.
-// Node sets: <name>_spindle, <name>_tread, <name>_contact (the nodes that touch the road).
+// The tread rubber between the belt and the road is a massless layer: its stiffness and
+// damping make the tire's contact law (tread_rubber(), contact/tread_contact.hpp), its
+// mass rides on the belt.
+// Node sets: <name>_spindle, <name>_tread.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "contact/tread_contact.hpp"
 #include "core/model.hpp"
 #include "elements/pressure_schedule.hpp"
 #include "elements/sidewall.hpp"
-#include "elements/tread_layer.hpp"
 #include "elements/tread_beam.hpp"
 
 namespace tirefe {
 
-/// The tread rubber between the belt and the road, per unit length of circumference.
-/// Off (the paper's model: the belt nodes touch the road) while both stiffnesses are 0.
+/// The tread rubber between the belt and the road, per unit length of circumference: the
+/// tire's contact law. A tire without it (both stiffnesses 0) cannot touch a road.
 struct TreadLayerParameters {
   double radial_stiffness = 0.0;           // [N/m^2]: normal force per m of circumference per m of compression
   double circumferential_stiffness = 0.0;  // [N/m^2]: shear force per m of circumference per m of shift
-  double mass_per_length = 0.0;            // rubber carried by the contact nodes [kg/m]
+  double mass_per_length = 0.0;            // the rubber's mass, carried by the belt [kg/m]
   double radial_damping = 0.0;             // [N s/m^2]: dashpot of the rubber's hysteresis, per m of circumference
   double circumferential_damping = 0.0;    // [N s/m^2]
   bool enabled() const { return radial_stiffness > 0.0 || circumferential_stiffness > 0.0; }
@@ -56,7 +57,6 @@ struct Tire {
   std::string name;
   int spindle = -1;                // 0-based node index
   std::vector<int> tread_nodes;    // 0-based, counter-clockwise from the +x axis
-  std::vector<int> contact_nodes;  // the tread-layer nodes, or the tread nodes without a layer
   std::shared_ptr<PressureSchedule> pressure;
   TireParameters parameters;
 };
@@ -64,5 +64,9 @@ struct Tire {
 /// Adds a tire to the model; the pressure follows parameters.pressure * pressure_ramp(t).
 Tire build_tire(Model& model, const TireParameters& parameters, LoadFunction pressure_ramp,
                 const std::string& name = "tire");
+
+/// The tire's contact law with 'friction': its tread rubber. Throws ModelError for a tire
+/// without one.
+TreadRubber tread_rubber(const TireParameters& parameters, double friction);
 
 }  // namespace tirefe

@@ -2,8 +2,6 @@
 
 #include <limits>
 
-#include "tire/contact_penalty.hpp"
-
 namespace tirefe {
 
 TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, const RoadContact& contact) {
@@ -13,26 +11,19 @@ TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, 
   model_.condense_node(tire_.spindle);
   for (int c = 0; c < kDofsPerNode; ++c) model_.fix(tire_.spindle, c);
   analysis_ = std::make_unique<Analysis>(model_);
-  // The ring of tread nodes and the spindle; a tread layer's contact nodes are satellites
-  // of their belt nodes, and the road (a rigid surface) couples each to itself only.
+  // The ring of tread nodes and the spindle; the tread contact couples a chord's two nodes,
+  // as the tread beam does.
   analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
   analysis_->set_time_step(0.25);
   analysis_->advance(1.0);
 
-  // The nodes that touch the road are the tire's contact nodes (the tread layer's, or the
-  // tread's without one), as for model:tire in a deck and lua/tire_on_road.lua.
-  const std::vector<int>& touching = tire_.contact_nodes;
+  // The road touches the lowest tread node.
   road_level_ = std::numeric_limits<double>::infinity();
-  for (int node : touching)
+  for (int node : tire_.tread_nodes)
     road_level_ =
         std::min(road_level_, model_.mesh().position(node).y() + analysis_->state().displacement[dof_index(node, 1)]);
-  const std::shared_ptr<const RigidSurface> surface = road(road_level_);
-  ContactParameters penalties;
-  penalties.friction = contact.friction;
-  penalties.normal_penalty = structural_penalty(*analysis_, touching, contact.penalty_factor);
-  penalties.tangential_penalty =
-      structural_tangential_penalty(*analysis_, touching, *surface, contact.tangential_factor);
-  contact_ = &add_contact_block(model_, "contact", surface, touching, penalties, analysis_->state().time);
+  contact_ = &add_tread_contact_block(model_, "contact", road(road_level_), tire_.tread_nodes,
+                                      tread_rubber(tire_.parameters, contact.friction));
 }
 
 double TireOnRoad::press(double deflection) {

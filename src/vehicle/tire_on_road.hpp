@@ -1,10 +1,9 @@
 // TireOnRoad: a tire model ready to be driven through its spindle. Builds the ring tire
 // with its spindle at the origin and held, inflates it quasi-statically (1 s, the hub
 // held: a free hub has rigid-body modes quasi-statically), puts the road under the
-// inflated tire, touching its lowest contact node (Tire::contact_nodes: the tread layer's
-// nodes, or the tread nodes without a layer), and adds Coulomb contact on those with the
-// structure's default penalties (node_contact.hpp). The spindle is condensed and the
-// RingSolver solves (a tread layer's contact nodes as satellites of the belt nodes).
+// inflated tire, touching its lowest tread node, and adds the tread contact with Coulomb
+// friction on the tire's own tread rubber (contact/tread_contact.hpp). The spindle is
+// condensed and the RingSolver solves.
 // press() then loads it quasi-statically, and drive() makes it dynamic and hands the
 // spindle to a TireSpindle for a host.
 #pragma once
@@ -12,7 +11,7 @@
 #include <functional>
 #include <memory>
 
-#include "contact/node_contact.hpp"
+#include "contact/tread_contact.hpp"
 #include "contact/rigid_surface.hpp"
 #include "solvers/analysis.hpp"
 #include "tire/tire_builder.hpp"
@@ -22,8 +21,6 @@ namespace tirefe {
 
 struct RoadContact {
   double friction = 0.0;
-  double penalty_factor = 1.0;     // normal penalty / largest diagonal stiffness at the tread nodes
-  double tangential_factor = 1.0;  // tangential penalty / smallest tangential stiffness there
 };
 
 class TireOnRoad {
@@ -49,14 +46,14 @@ class TireOnRoad {
   const Tire& tire() const { return tire_; }
   /// Height of the road below the spindle at the end of inflation (negative) [m].
   double road_level() const { return road_level_; }
-  const ContactBlock& contact() const { return *contact_; }
+  const TreadContactBlock& contact() const { return *contact_; }
 
  private:
   Model model_;
   Tire tire_;
   std::unique_ptr<Analysis> analysis_;
   double road_level_ = 0.0;
-  const ContactBlock* contact_ = nullptr;
+  const TreadContactBlock* contact_ = nullptr;
   std::unique_ptr<TireSpindle> spindle_;
 };
 
