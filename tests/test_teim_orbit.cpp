@@ -226,9 +226,9 @@ TEST_CASE("a foreign file is read leniently: what tirefe does not read is passed
   reader.number("VERTICAL", "Q_FZ2");
   // Q_FZ1 is a standard key tirefe lists as unused; DYNAMIC_STIFFNESS is like no key it reads;
   // [GOODYEAR] (and its repeated key) is a section tirefe does not read.
-  reader.finish_foreign({{"VERTICAL", "Q_FZ1"}});
+  reader.finish_foreign({{"VERTICAL", {"Q_FZ1"}}});
   CHECK_THROWS_WITH(reader.finish(), Contains("f.tir:13: [VERTICAL] unknown key 'Q_FZ1'"));
-  CHECK_THROWS_WITH(reader.finish_foreign({}),
+  CHECK_THROWS_WITH(reader.finish_foreign({{"VERTICAL", {}}}),
                     Contains("f.tir:13: [VERTICAL] unknown key 'Q_FZ1' (did you mean 'Q_FZ2'? tirefe reads that one"));
   CHECK_THROWS_WITH(reader.number("GOODYEAR", "K"),
                     Contains("f.tir:19: [GOODYEAR] K is given twice (first at line 18)"));

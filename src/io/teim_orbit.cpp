@@ -530,18 +530,20 @@ void TeimOrbitReader::finish() const {
   if (!first_message.empty()) fail(first_line, first_message);
 }
 
-void TeimOrbitReader::finish_foreign(const std::set<std::pair<std::string, std::string>>& unused) const {
-  for (const TeimOrbitSection& section : file_.sections()) {
-    const std::string name = upper(section.name);
+void TeimOrbitReader::finish_foreign(const std::map<std::string, std::vector<std::string>>& checked) const {
+  for (const auto& [checked_section, listed] : checked) {
+    const TeimOrbitSection* section = file_.section(checked_section);
+    if (!section) continue;
+    const std::string name = upper(section->name);
     std::vector<std::string> used;
     for (const auto& [known_section, key] : known_)
       if (known_section == name && key.front() != '(') used.push_back(key);
-    for (const TeimOrbitValue& value : section.values) {
+    for (const TeimOrbitValue& value : section->values) {
       const std::string key = upper(value.key);
-      if (known_.count({name, key}) || unused.count({name, key})) continue;
+      if (known_.count({name, key}) || std::find(listed.begin(), listed.end(), key) != listed.end()) continue;
       const std::string suggestion = did_you_mean(key, used);
       if (!suggestion.empty())
-        fail(value.line, "[" + section.name + "] unknown key '" + value.key + "' (" + suggestion +
+        fail(value.line, "[" + section->name + "] unknown key '" + value.key + "' (" + suggestion +
                              " tirefe reads that one; a key tirefe does not read is passed over)");
     }
   }

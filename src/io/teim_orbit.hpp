@@ -31,6 +31,7 @@
 // names the file and line.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -142,11 +143,11 @@ class TeimOrbitReader {
   /// Throws for the first section, key or table of the file that was never asked for,
   /// or for a repeated key anywhere.
   void finish() const;
-  /// For a file of another program's schema: throws only for a key of a section the
-  /// caller read that is not among the keys it read or 'unused' lists, and that is
-  /// spelt like one it read (a misspelling of a key it uses, with the closest name).
-  /// Everything else is that program's and passed over.
-  void finish_foreign(const std::set<std::pair<std::string, std::string>>& unused) const;
+  /// For a file of another program's schema: throws only for a key of a section of
+  /// 'checked' that is neither read nor listed there, and that is spelt like a key read (a
+  /// misspelling of a key tirefe uses, with the closest name). Everything else is that
+  /// program's and passed over.
+  void finish_foreign(const std::map<std::string, std::vector<std::string>>& checked) const;
 
   const TeimOrbitFile& file() const { return file_; }
   const UnitSystem& units() const { return units_; }
