@@ -183,6 +183,10 @@ class TeimOrbitWriter {
 
 /// Names and keywords of TeimOrbit files compare without case ('ASCII', 'ascii').
 bool same_name(const std::string& a, const std::string& b);
+/// The text in upper case (ASCII letters), as names compare.
+std::string upper(std::string text);
+/// The text without the blanks around it (spaces, tabs, a carriage return).
+std::string trimmed(const std::string& text);
 
 /// The shortest decimal text that reads back as exactly 'value'.
 std::string round_trip_number(double value);
