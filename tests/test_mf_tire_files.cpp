@@ -38,9 +38,11 @@ MfTireFile parse_standard(const std::string& text) {
   return MfTireFile::read(file, reader);
 }
 
-std::map<std::string, double> ring_of(const MfTireFile& tire, std::optional<double> pressure = std::nullopt) {
+std::map<std::string, double> ring_of(const MfTireFile& tire, std::optional<double> pressure = std::nullopt,
+                                      std::optional<double> tread_width = std::nullopt) {
   std::map<std::string, double> out;
-  for (const RingParameter& parameter : ring_parameters(tire, pressure)) out[parameter.key] = parameter.value;
+  for (const RingParameter& parameter : ring_parameters(tire, pressure, tread_width))
+    out[parameter.key] = parameter.value;
   return out;
 }
 
@@ -151,7 +153,11 @@ TEST_CASE("standard tire file errors name the file, the line and what to fix", "
     CHECK_THROWS_WITH(parse_standard(text), Contains(message));
   }
   CHECK_THROWS_WITH(ring_parameters(parse_standard(replaced(kMinimal, "WIDTH = 0.2", "WIDTH =")), std::nullopt),
-                    Contains("t.tir:7: no value of [DIMENSION] WIDTH"));
+                    Contains("t.tir:7: no value of [DIMENSION] WIDTH") && Contains("or read_tire a 'tread_width'"));
+  // With a tread width given, the section width is taken as 4/3 of it.
+  const auto narrow = ring_of(parse_standard(replaced(kMinimal, "WIDTH = 0.2", "WIDTH =")), std::nullopt, 0.15);
+  CHECK(narrow.at("tread_width") == 0.15);
+  CHECK(narrow.at("tread_EA") == Approx(ring_of(parse_standard(kMinimal)).at("tread_EA")).epsilon(1e-15));
   // Keys and sections of the Magic Formula's force model are passed over, misspelt or not.
   CHECK_NOTHROW(parse_standard(kMinimal + "[LATERAL_COEFFICIENTS]\nPCY1 = 1.3\nPCY2 =\nXYZ = 'a'\n[VENDOR]\nA = 1\n"));
 }

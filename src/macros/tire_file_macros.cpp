@@ -81,6 +81,8 @@ void push_ring_parameters(lua_State* L, const io::TeimOrbitReader& reader, const
   lua_createtable(L, 0, static_cast<int>(ring.size()));
   for (const RingParameter& parameter : ring) {
     const ParameterSpec& spec = tire_parameter(parameter.key);
+    if (!std::isfinite(parameter.value))
+      reader.fail(0, parameter.key + " (" + parameter.origin + ") is not finite: the file's sizes are out of scale");
     if (const auto problem = range_problem(spec, parameter.value))
       reader.fail(0, parameter.key + " (" + parameter.origin + ") " + *problem);
     if (spec.type == VT::Integer)

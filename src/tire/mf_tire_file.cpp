@@ -224,11 +224,13 @@ std::vector<RingParameter> ring_parameters(const MfTireFile& tire, std::optional
                              ": the file states no inflation pressure ([OPERATING_CONDITIONS] INFLPRES "
                              "or NOMPRES, [TIRE_CONDITIONS] IP): give read_tire a 'pressure'");
   const std::string dimension = tire.path + ":" + std::to_string(tire.dimension_line) + ": ";
-  if (!tire.width)
+  // Without the section width, a given tread width stands for three quarters of it.
+  if (!tire.width && !tread_width)
     throw io::TeimOrbitError(dimension +
-                             "no value of [DIMENSION] WIDTH (the section width, a length): the tread's "
-                             "width is three quarters of it");
-  const double r0 = tire.unloaded_radius, section_width = *tire.width;
+                             "no value of [DIMENSION] WIDTH (the section width, a length): give it, or read_tire a "
+                             "'tread_width' (the width the pressure acts on, about 3/4 of it)");
+  const double r0 = tire.unloaded_radius;
+  const double section_width = tire.width ? *tire.width : *tread_width / kTreadWidthPerSectionWidth;
   double rim_radius = 0.0;
   std::string rim_origin = "[DIMENSION] RIM_RADIUS";
   if (tire.rim_radius) {
