@@ -167,6 +167,9 @@ TEST_CASE("tire property file errors name the deck line, the file, its line and 
     INFO(c.message);
     CHECK_THAT(run.error, Contains("deck.lua:2: macro 'read_tire': ") && Contains(c.message));
   }
+  // The standard [DIMENSION] keys beside the ring's own are taken and not used.
+  folder.write("bad.tir", replaced(shipped, "[DIMENSION]\n", "[DIMENSION]\nWIDTH = 0.145\nASPECT_RATIO = 0.82\n"));
+  CHECK(testing::run_deck_in_process(deck, folder.path("out")).error.empty());
   const auto missing_file = testing::run_deck_in_process(
       folder.write("none.lua", "tirefe.read_tire{ file = \"none.tir\" }\n"), folder.path("out"));
   CHECK_THAT(missing_file.error, Contains("none.lua:1:") && Contains("none.tir: cannot open the file"));
