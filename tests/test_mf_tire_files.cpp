@@ -183,6 +183,8 @@ tirefe.check{ name = "longer sidewall", value = narrow.sidewall_length > tp.side
       folder.write("own.lua", "tirefe.read_tire{ file = \"" + shipped("145SR12.tir") + "\", tread_width = 0.1 }\n"),
       folder.path("out"));
   CHECK_THAT(own.error, Contains("'tread_width' applies to a standard file"));
+  // Hosts (the C API, the FMU) load a standard file the same way, as the unfitted ring.
+  CHECK(macros::load_tire_parameters(shipped("HMMWV_Pac02Tire.tir")).outer_diameter == 2 * 0.4699);
 }
 
 TEST_CASE("inputs/identify_tir.lua: rings fitted to five standard files reproduce their stiffness and modes",
