@@ -230,6 +230,45 @@ void curve_data(const uint8_t* data, size_t size) {
   }
 }
 
+namespace {
+
+/// An accepted profile: at least two finite points, x never decreasing.
+void require_profile(const std::vector<Eigen::Vector2d>& points) {
+  require(points.size() >= 2, "a profile of fewer than two points was accepted");
+  for (size_t i = 0; i < points.size(); ++i) {
+    require(points[i].allFinite(), "a non-finite road point was accepted");
+    require(i == 0 || points[i].x() >= points[i - 1].x(), "a decreasing x was accepted");
+  }
+}
+
+}  // namespace
+
+void road_file(const uint8_t* data, size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  struct Reading {
+    const char* name;
+    std::optional<RoadTrack> track;
+    std::optional<double> v;
+  };
+  const Reading readings[] = {{"road.csv", std::nullopt, std::nullopt},
+                              {"road.csv", RoadTrack::Left, std::nullopt},
+                              {"road.csv", RoadTrack::Right, std::nullopt},
+                              {"road.crg", std::nullopt, std::nullopt},
+                              {"road.crg", std::nullopt, 0.37},
+                              {"road.crg", std::nullopt, -1e300},
+                              {"road.txt", std::nullopt, std::nullopt}};
+  for (const Reading& reading : readings) {
+    const fs::path file = write_file(reading.name, text);
+    try {
+      require_profile(read_road_profile(file.string(), reading.track, reading.v));
+    } catch (const ModelError& error) {
+      require_names_file(error, file);
+    } catch (const fitting::CurveDataError& error) {
+      require_names_file(error, file);
+    }
+  }
+}
+
 void property_file(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   const fs::path tire = write_file("tire.tir", text);

@@ -32,7 +32,11 @@ std::string sequence_deck(const uint8_t* data, size_t size);
 void road_profile(const uint8_t* data, size_t size);
 /// A CSV data file (header with unit suffixes, rows of numbers).
 void curve_data(const uint8_t* data, size_t size);
-/// A TeimOrbit file read as a tire property file (.tir) and as a road data file (.rdf).
+/// A TeimOrbit file read as a tire property file (.tir: tirefe's own or a standard MF-Tyre
+/// file) and as a road data file (.rdf).
 void property_file(const uint8_t* data, size_t size);
+/// A road profile file read by name as CSV (.csv, each track), OpenCRG (.crg, three lateral
+/// positions) and 'x y' text (src/contact/road_file.hpp).
+void road_file(const uint8_t* data, size_t size);
 
 }  // namespace tirefe::fuzz

@@ -17,32 +17,14 @@ local reference = tirefe.read_csv{ file = "145SR12_vertical_208kPa.csv" }
 
 -- Vertical spindle forces [N] of the inflated tire pressed on a flat, frictionless road by
 -- prescribed spindle deflections [m] (measured from first touch), in quasi-static steps
--- of step_mm that carry the solution from one deflection to the next.
+-- of step_mm that carry the solution from one deflection to the next (lua/tire_identify.lua).
+local identify = require("tire_identify")
 local function flat_road_forces(k_sw, k_sw_sign, pressure, deflections)
-  collectgarbage()                                    -- close the previous evaluation's file
-  local model = tirefe.model{ title = "145 SR-12 on a flat road" }
   local tire_parameters = require("tires.145SR12")
   tire_parameters.elements = p.elements
   tire_parameters.pressure = pressure
   tire_parameters.k_sw, tire_parameters.k_sw_sign = k_sw, k_sw_sign
-  tire_parameters.pressure_load_function = "inflate"
-  model:load_function{ name = "inflate", points = { { 0, 0 }, { 1, 1 }, { 3, 1 } } }
-  local tire = model:tire(tire_parameters)
-  model:fix{ node = tire.spindle }
-  local path = require("press").path(model, tire.spindle, "press")
-  model:output{ file = "fit_ksw_145SR12_evaluation.h5" }
-  model:solve{ to = 1.0, dt = 0.25 }                  -- inflate on the held hub
-
-  -- The road touches the lowest tread node of the inflated tire.
-  local lowest = math.huge
-  for i, node in ipairs(tire.tread) do
-    local angle = 2 * math.pi * (i - 1) / #tire.tread
-    lowest = math.min(lowest, 0.5 * tire_parameters.outer_diameter * math.sin(angle) + model:value{ node = node, dof = "uy" })
-  end
-  model:surface{ name = "road", type = "flat", point = { 0, lowest } }
-  model:tire_contact{ surface = "road" }
-
-  return path:load_curve(deflections, p.step_mm * 1e-3)
+  return identify.vertical_loads(tire_parameters, deflections, p.step_mm * 1e-3)
 end
 
 -- Vertical stiffness of a curve: the least-squares slope through the origin [N/m].

@@ -127,8 +127,8 @@ TEST_CASE("the commands of docs/restart.md run, and the restarted run's file equ
 }
 
 TEST_CASE("the examples of docs/tire.md, docs/contact.md and docs/output.md run and pass their checks", "[docs]") {
-  CHECK(run_examples("docs/tire.md") == 3);
-  CHECK(run_examples("docs/contact.md") == 2);
+  CHECK(run_examples("docs/tire.md") == 4);
+  CHECK(run_examples("docs/contact.md") == 4);
   CHECK(run_examples("docs/output.md") == 1);
 }
 

@@ -34,4 +34,5 @@ TEST_CASE("the fuzz corpus replays cleanly through every parser", "[reliability]
   CHECK(replay("road_profile", tirefe::fuzz::road_profile) >= 3);
   CHECK(replay("curve_data", tirefe::fuzz::curve_data) >= 3);
   CHECK(replay("property_file", tirefe::fuzz::property_file) >= 4);
+  CHECK(replay("road_file", tirefe::fuzz::road_file) >= 4);
 }

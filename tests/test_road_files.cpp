@@ -13,6 +13,7 @@
 
 using namespace tirefe;
 using Catch::Matchers::Contains;
+using tirefe::testing::replaced;
 using tirefe::testing::TempDir;
 
 namespace {
@@ -73,10 +74,13 @@ TEST_CASE("CSV road profiles: units in the header, names of the columns, left an
       {"x_m,z_N\n0,0\n1,1\n", "column 'z_N' is in N, not a length"},
       {"x_m,z_m\n0,0\n2,0\n# dip\n1,0\n", "bad.csv:5: x = 1 m comes after x = 2 m (x must not decrease)"},
       {"x [furlong],z [mm]\n0,0\n1,1\n", "bad.csv:1: column 'x [furlong]': write the unit as 'name [unit]'"},
-      {"z_m\n0\n1\n", "no position column (x or distance"},
+      {"z_m\n0\n1\n", "no position column (x, s or distance"},
       {"x_m,z_m,z_left_m,z_right_m\n0,0,0,0\n1,1,1,1\n", "give one height column (z or height) or one per track"},
       {"x_m,z_m,height_m\n0,0,0\n1,1,1\n", "columns 'z_m' and 'height_m' say the same"},
       {"x_m,z_m\n0,0\n", "at least two distinct points"},
+      {"Distance (furlong);Height (m)\n0;0\n1;1\n", "bad.csv:1: column 'Distance (furlong)': write the unit as"},
+      {"x_m;z_m\n0;0\n1,5;0,1;2\n", "bad.csv:3: expected 2 values (x_m, z_m), found 3"},
+      {"x_m,z_m\n0,0\n1;0\n", "bad.csv:3: expected 2 values (x_m, z_m), found 1"},
   };
   for (const auto& [text, message] : errors) {
     INFO(text);
@@ -281,7 +285,7 @@ tirefe.check{ name = "normal", value = p.normal[2], expected = 1, tolerance = 1e
       {"model:surface{ name = \"s\", type = \"profile\", points = {{0, 0}, {1, 0}}, start = 1 }",
        "'start' places a road read from a 'file'"},
       {"model:surface{ name = \"s\", type = \"profile\", file = \"road.txt\", track = \"left\" }",
-       "'track' needs a file with tracks"},
+       "'track' picks the track of a file with two (.csv, .rdf); '" + folder.path("road.txt") + "' has one"},
       {"model:surface{ name = \"s\", type = \"profile\", file = \"road.csv\" }", "give track = \"left\" or \"right\""},
       {"model:surface{ name = \"s\", file = \"drum.rdf\", diameter = 2 }", "'diameter' is given by the file"},
       {"model:surface{ name = \"s\", file = \"drum.rdf\", offset = 1 }", "'offset' does not apply to a drum surface"},
@@ -311,4 +315,157 @@ TEST_CASE("inputs/road_files.lua: the chuckhole read from .rdf and .csv equals t
           "[contact][road_file][decks]") {
   TempDir folder;
   testing::check_deck_passes(std::string(TIREFE_SOURCE_DIR) + "/inputs/road_files.lua", folder.path("out"), 5);
+}
+
+TEST_CASE("CSV road profiles as spreadsheets write them: semicolons or tabs, decimal commas, 'Distance (m)'",
+          "[contact][road_file]") {
+  TempDir folder;
+  // A European spreadsheet: semicolons between the fields, commas in the numbers.
+  const std::string semicolons = folder.write("semicolons.csv",
+                                              "Distance (m);Elevation (mm)\n"
+                                              "0;0\n"
+                                              "1,5;12,5\n"
+                                              "3;-2,25\n");
+  check_points(read_road_csv(semicolons, std::nullopt), {{0, 0}, {1.5, 0.0125}, {3, -0.00225}}, 1e-17);
+  const std::string tabs =
+      folder.write("tabs.csv", "S [m]\tZ_Left [mm]\tZ_Right [mm]\n0\t0\t0\n2.5\t10\t-10\n5\t0\t0\n");
+  check_points(read_road_csv(tabs, RoadTrack::Right), {{0, 0}, {2.5, -0.01}, {5, 0}});
+  // A decimal comma with commas between the fields is a field too many, with the line.
+  CHECK_THROWS_WITH(read_road_csv(folder.write("mixed.csv", "x_m,z_m\n0,0\n1,5,0\n"), std::nullopt),
+                    Contains("mixed.csv:3: expected 2 values (x_m, z_m), found 3"));
+}
+
+TEST_CASE("road data files as real ones come: no [MDI_HEADER], 'sec' and 'degree', column names as a comment",
+          "[contact][road_file]") {
+  TempDir folder;
+  const std::string path = folder.write("plateau.rdf",
+                                        "!\n! road data file\n!\n"
+                                        "$---------------------------------------------------------------UNITS\n"
+                                        "[UNITS]\nLENGTH = 'meter'\nFORCE = 'newton'\nANGLE = 'degree'\nMASS = 'kg'\n"
+                                        "TIME = 'sec'\n"
+                                        "[MODEL]\nMETHOD = '2D'\nROAD_TYPE = 'poly_line'\n"
+                                        "[PARAMETERS]\nMU = 1.0   $ peak friction scaling\nOFFSET = 0\n"
+                                        "ROTATION_ANGLE_XY_PLANE = 0\n$\n$   X_road   Z_left   Z_right\n(XZ_DATA)\n"
+                                        "   -100.000   0.000   0.000\n   0.000   0.000   0.000\n"
+                                        "   3.500   0.036   0.030\r\n   7.000   0.137   0.120\n");
+  check_points(read_road_data_file(path, RoadTrack::Left).points, {{-100, 0}, {0, 0}, {3.5, 0.036}, {7, 0.137}});
+  check_points(read_road_data_file(path, RoadTrack::Right).points, {{-100, 0}, {0, 0}, {3.5, 0.030}, {7, 0.120}});
+  CHECK_THROWS_WITH(read_road_data_file(path, std::nullopt),
+                    Contains("plateau.rdf:20: (XZ_DATA) holds a left and a right track: give track"));
+}
+
+namespace {
+
+// An LRFI file: the heading, the reference line's slope and banking, three long sections
+// 0.5 m apart centred on the reference line, a row of 10 cm steps along u.
+std::string opencrg(const std::string& road_keys, const std::string& extra_sections, const std::string& data) {
+  return "$CT\na test road\n$\n$ROAD_CRG\n" + road_keys + "$\n" + extra_sections +
+         "$KD_DEFINITION\n#:LRFI\nD:reference line phi,rad\nD:reference line slope,m/m\n"
+         "D:reference line banking,m/m\nD:long section 1,m\nD:long section 2,m\nD:long section 3,m\n$\n"
+         "$$$$$$$$$$\n" +
+         data;
+}
+
+const std::string kCrgKeys = "REFERENCE_LINE_INCREMENT = 0.1\nLONG_SECTION_V_INCREMENT = 0.5   ! centred\n";
+//                          phi       slope     banking   v = -0.5  v = 0     v = 0.5
+const std::string kCrgData =
+    " *missing* *missing* 0.0000000 0.0000000 0.0010000 0.0020000\n"
+    " 0.0000000 0.0100000 0.0200000-0.0010000 0.0030000 0.0050000\n"
+    " 0.0000000-0.0200000 0.0000000 *missing* 0.0040000 0.0060000\n";
+
+}  // namespace
+
+TEST_CASE("OpenCRG files: a track along the reference line from the long sections, slope and banking",
+          "[contact][road_file][opencrg]") {
+  TempDir folder;
+  const std::string path =
+      folder.write("road.crg", opencrg(kCrgKeys, "$ROAD_CRG_OPTS\nBORDER_MODE_U = 2\n$\n", kCrgData));
+  // v = 0: the middle section, raised by the reference line's height from its slope (the
+  // first row's slope leads nowhere): 0, +0.01 * 0.1, then -0.02 * 0.1.
+  check_points(read_opencrg(path, 0.0), {{0, 0.001}, {0.1, 0.001 + 0.003}, {0.2, -0.001 + 0.004}}, 1e-15);
+  // v = 0.25: halfway to the left section, plus the banking times v.
+  check_points(read_opencrg(path, 0.25), {{0, 0.0015}, {0.1, 0.001 + 0.004 + 0.02 * 0.25}, {0.2, -0.001 + 0.005}},
+               1e-15);
+  // A track through a missing value is refused with its line; one outside the road too.
+  CHECK_THROWS_WITH(read_opencrg(path, -0.5),
+                    Contains("road.crg:23: no height at u = 0.2 m (a missing value): the track at v = -0.5 m"));
+  CHECK_THROWS_WITH(read_opencrg(path, 0.6),
+                    Contains("v = 0.6 m lies outside the road's long sections (v from -0.5 to 0.5 m)"));
+  // LDFI: 20 characters a value, 4 values a record, so a row of six goes on in a second record.
+  const std::string ldfi = folder.write(
+      "double.crg", replaced(opencrg(kCrgKeys, "", ""), "#:LRFI", "#:LDFI") +
+                        "                   0                   0                   0                   0\n"
+                        "               0.001               0.002\n"
+                        "                   0                   0                   0                   0\n"
+                        "               0.003               0.004\n");
+  check_points(read_opencrg(ldfi, 0.0), {{0, 0.001}, {0.1, 0.003}}, 1e-15);
+}
+
+TEST_CASE("the public OpenCRG sample: its reference line and a track between two sections",
+          "[contact][road_file][opencrg]") {
+  const std::string path = std::string(TIREFE_SOURCE_DIR) + "/inputs/roads/handmade_straight.crg";
+  const std::vector<Eigen::Vector2d> centre = read_opencrg(path, 0.0);
+  REQUIRE(centre.size() == 23);
+  CHECK(centre[1] == Eigen::Vector2d(1.0, 0.0111111));
+  CHECK(centre[19] == Eigen::Vector2d(19.0, 0.0333333));
+  CHECK(centre.back() == Eigen::Vector2d(22.0, 0.0));
+  // Sections 5 and 6 are at v = 0.5 and 1.0 (7 sections, 0.5 m apart, from -1.5 m).
+  CHECK(read_opencrg(path, 0.75)[19].y() == Approx(0.5 * (0.0222222 + 0.0111111)).epsilon(1e-14));
+  CHECK_THROWS_WITH(read_opencrg(path, 1.25), Contains("handmade_straight.crg:85: no height at u = 7 m"));
+}
+
+TEST_CASE("OpenCRG errors name the file, the line and what to do", "[contact][road_file][opencrg]") {
+  TempDir folder;
+  const std::pair<std::string, std::string> cases[] = {
+      {replaced(opencrg(kCrgKeys, "", kCrgData), "#:LRFI", "#:KRBI"),
+       "bad.crg:8: the road data are binary (#:KRBI): tirefe reads the text formats LRFI and LDFI"},
+      {replaced(opencrg(kCrgKeys, "", kCrgData), "#:LRFI\n", ""), "the road data are binary (#:KRBI)"},
+      {opencrg(kCrgKeys, "$ROAD_CRG_MODS\nREFLINE_OFFSET_Z = 1\n$\n", kCrgData),
+       "bad.crg:9: $ROAD_CRG_MODS: tirefe does not apply modifiers"},
+      {opencrg(kCrgKeys + "REFERENCE_LINE_INCREMNT = 1\n", "", kCrgData),
+       "bad.crg:7: $ROAD_CRG: unknown key REFERENCE_LINE_INCREMNT (did you mean 'REFERENCE_LINE_INCREMENT'?)"},
+      {opencrg(kCrgKeys + "REFERENCE_LINE_START_SLOPE = 0.01\n", "", kCrgData),
+       "bad.crg:7: $ROAD_CRG REFERENCE_LINE_START_SLOPE = 0.01: a banking or slope from start to end values is not"},
+      {replaced(opencrg(kCrgKeys, "", kCrgData), "D:reference line phi,rad", "D:friction,-"),
+       "bad.crg:10: channel 'D:friction,-': tirefe reads"},
+      {opencrg(kCrgKeys, "", replaced(kCrgData, "0.0030000", "0.003O000")),
+       "bad.crg:19: value 5 '0.003O000' is not a number (#:LRFI: 8 fields of 10 characters a line"},
+      {opencrg(kCrgKeys, "", kCrgData + " 0.0000000\n"),
+       "bad.crg:21: expected 6 values of 10 characters (#:LRFI), got ' 0.0000000'"},
+      {opencrg(kCrgKeys, "", kCrgData.substr(0, kCrgData.find('\n') + 1)), "at least two rows of data"},
+      {opencrg("LONG_SECTION_V_INCREMENT = 0.5\n", "", kCrgData), "$ROAD_CRG needs REFERENCE_LINE_INCREMENT"},
+      {opencrg(kCrgKeys + "REFERENCE_LINE_END_U = 1\n", "", kCrgData),
+       "bad.crg:7: $ROAD_CRG REFERENCE_LINE_END_U = 1, but 3 rows of REFERENCE_LINE_INCREMENT end at 0.2"},
+      {replaced(opencrg(kCrgKeys, "", kCrgData), "$$$$$$$$$$\n", ""),
+       "bad.crg:18: '0.0000000 0.0100000 0.0200000-0.0010000 0.0030000 0.0050000' outside a section ($CT, $ROAD_CRG, $KD_DEFINITION, ...; the road data follow a line of $$$$)"},
+      {"[UNITS]\nLENGTH = 'meter'\n", "bad.crg:1: '[UNITS]' outside a section"},
+      {"$CT\n$\n$KD_DEFINITION\n#:LRFI\nD:long section 1,m\n$\n", "bad.crg: no road data"},
+  };
+  for (const auto& [text, message] : cases) {
+    INFO(text);
+    CHECK_THROWS_WITH(read_opencrg(folder.write("bad.crg", text), 0.0), Contains(message));
+  }
+}
+
+TEST_CASE("a profile file is read by its name, and one that is something else is refused as what it looks like",
+          "[contact][road_file]") {
+  TempDir folder;
+  const std::pair<std::string, std::string> cases[] = {
+      {opencrg(kCrgKeys, "", kCrgData), "road.txt: not two columns 'x y': the file looks like an OpenCRG file"},
+      {"[MDI_HEADER]\nFILE_TYPE = 'rdf'\n",
+       "looks like a road data file (TeimOrbit sections): give it the extension .rdf"},
+      {"Distance (m);Height (m)\n0;0\n", "looks like a CSV file with a header: give it the extension .csv"},
+      {"0 0\n1 oops\n", "road profile '" + folder.path("road.txt") + "', line 2: expected two numbers"},
+  };
+  for (const auto& [text, message] : cases) {
+    INFO(text);
+    CHECK_THROWS_WITH(read_road_profile(folder.write("road.txt", text), std::nullopt, std::nullopt), Contains(message));
+  }
+  check_points(read_road_profile(folder.write("road.txt", "0 0\n1e-3 2E-3\n"), std::nullopt, std::nullopt),
+               {{0, 0}, {1e-3, 2e-3}});
+  CHECK_THROWS_WITH(
+      read_road_profile(folder.write("road.crg", opencrg(kCrgKeys, "", kCrgData)), RoadTrack::Left, std::nullopt),
+      Contains("road.crg' has one track at each lateral position: give 'lateral' = v"));
+  CHECK_THROWS_WITH(read_road_profile(folder.path("road.txt"), std::nullopt, 0.5),
+                    Contains("'lateral' picks the track of an OpenCRG file (.crg)"));
 }

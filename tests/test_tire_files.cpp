@@ -141,6 +141,7 @@ TEST_CASE("tire property file errors name the deck line, the file, its line and 
   const std::string missing = replaced(shipped, "RIM_RADIUS", "$RIM_RADIUS");
   const std::string format = replaced(shipped, "'TIREFE'", "'PAC2002'");
   const std::string units = replaced(shipped, "'kg'", "'kilo'");
+  const std::string nul = replaced(shipped, "= 208000 ", std::string("= 208") + '\0' + "000 ");
   const Case cases[] = {
       {misspelt, "bad.tir:" + line_of(misspelt, "BENDING_STIFNESS") +
                      ": [TREAD] unknown key 'BENDING_STIFNESS' (did you mean 'BENDING_STIFFNESS'?"},
@@ -154,7 +155,9 @@ TEST_CASE("tire property file errors name the deck line, the file, its line and 
       {fraction, "bad.tir:" + line_of(fraction, "100.5") + ": [MODEL] ELEMENTS must be a whole number"},
       {missing, "bad.tir:" + line_of(missing, "[DIMENSION]") +
                     ": missing [DIMENSION] RIM_RADIUS (half of rim_diameter: effective rim diameter, a length)"},
-      {format, "bad.tir:" + line_of(format, "PAC2002") + ": [MODEL] PROPERTY_FILE_FORMAT = 'PAC2002': tirefe reads"},
+      {format, "bad.tir:" + line_of(format, "PAC2002") +
+                   ": [MODEL] PROPERTY_FILE_FORMAT = 'PAC2002', but [TREAD] is a section of tirefe's ring tire"},
+      {nul, "bad.tir:" + line_of(nul, "INFLPRES") + ": a NUL byte in the line"},
       {units, "bad.tir:" + line_of(units, "'kilo'") + ": [UNITS] MASS = 'kilo' is not a known mass unit"},
   };
   const std::string deck = folder.write("deck.lua", "local x = 1\nlocal tp = tirefe.read_tire{ file = \"bad.tir\" }\n");
@@ -164,6 +167,9 @@ TEST_CASE("tire property file errors name the deck line, the file, its line and 
     INFO(c.message);
     CHECK_THAT(run.error, Contains("deck.lua:2: macro 'read_tire': ") && Contains(c.message));
   }
+  // The standard [DIMENSION] keys beside the ring's own are taken and not used.
+  folder.write("bad.tir", replaced(shipped, "[DIMENSION]\n", "[DIMENSION]\nWIDTH = 0.145\nASPECT_RATIO = 0.82\n"));
+  CHECK(testing::run_deck_in_process(deck, folder.path("out")).error.empty());
   const auto missing_file = testing::run_deck_in_process(
       folder.write("none.lua", "tirefe.read_tire{ file = \"none.tir\" }\n"), folder.path("out"));
   CHECK_THAT(missing_file.error, Contains("none.lua:1:") && Contains("none.tir: cannot open the file"));

@@ -1,6 +1,7 @@
-// Road files: the 2D roads of ADAMS road data files (.rdf, TeimOrbit format) and road
-// profiles measured into CSV files, read as the shapes of tirefe's rigid surfaces
-// (docs/contact.md gives the keys and the mapping).
+// Road files: the 2D roads of ADAMS road data files (.rdf, TeimOrbit format), road profiles
+// measured into CSV files and the ASCII OpenCRG road surfaces of ASAM (.crg), read as the
+// shapes of tirefe's rigid surfaces (docs/contact.md, "Road files", gives the keys and the
+// mapping).
 //
 // A road data file's [MODEL] METHOD = '2D' road types map onto the surfaces:
 //   flat                    a flat road at height OFFSET
@@ -9,9 +10,16 @@
 //                           cut by 45 degree bevels BEVEL_EDGE_LENGTH long
 //   pot_hole                a profile: a rectangular hole DEPTH deep from START over LENGTH
 //   drum                    a drum of DIAMETER with at most one cleat
-// Heights are relative to the road's OFFSET. A CSV profile has a position column (x or
-// distance) and a height column (z or height), or one per track (z_left and z_right), each
-// with a length unit in its header (x_mm, "z [in]"; none: metres).
+// Heights are relative to the road's OFFSET. A CSV profile has a position column (x, s or
+// distance) and a height column (z, height or elevation), or one per track (z_left and
+// z_right, ...), names in any case, each with a length unit in its header (x_mm, "z [in]",
+// "Distance (m)"; none: metres), separated by commas, semicolons or tabs.
+//
+// An OpenCRG file (ASAM OpenCRG, the text formats LRFI and LDFI) holds a grid of heights
+// over a reference line: long sections at lateral positions v, one row per step along the
+// line's length u. The plane model takes one track: the heights along u at one v (the
+// reference line, v = 0, by default; between two sections linearly), plus the reference
+// line's own height from its slope channel and the banking channel times v.
 //
 // Left and right tracks: a file with two picks one by 'track'; a file with one serves
 // both. A point equal to the one before is skipped (one track may stand still while the
@@ -47,5 +55,16 @@ RoadShape read_road_data_file(const std::string& path, std::optional<RoadTrack> 
 /// A road profile from a CSV file with a header; ModelError (or fitting::CurveDataError)
 /// naming the file and line otherwise.
 std::vector<Eigen::Vector2d> read_road_csv(const std::string& path, std::optional<RoadTrack> track);
+
+/// The track at lateral position v [m] (left positive) of an ASCII OpenCRG file, as (u, z)
+/// points; ModelError naming the file and line for a bad file, a binary one, a modifier
+/// tirefe does not apply, or a v outside the road or where the file has no heights.
+std::vector<Eigen::Vector2d> read_opencrg(const std::string& path, double v);
+
+/// A profile file by its name: .csv, .crg, or the two-column 'x y' text of RoadProfile;
+/// a text file that is none of these (an OpenCRG, road data or CSV file under another
+/// name) is refused with what it looks like. 'track' applies to CSV files, 'v' to OpenCRG.
+std::vector<Eigen::Vector2d> read_road_profile(const std::string& path, std::optional<RoadTrack> track,
+                                               std::optional<double> v);
 
 }  // namespace tirefe

@@ -1,5 +1,6 @@
 #include "fitting/curve_data.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
@@ -19,14 +20,22 @@ std::string trimmed(const std::string& text) {
   return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
 }
 
-std::vector<std::string> split_fields(const std::string& line) {
+std::vector<std::string> split_fields(const std::string& line, char separator) {
   std::vector<std::string> fields;
   size_t start = 0;
-  for (size_t comma = line.find(',');; comma = line.find(',', start)) {
-    fields.push_back(trimmed(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (comma == std::string::npos) return fields;
-    start = comma + 1;
+  for (size_t at = line.find(separator);; at = line.find(separator, start)) {
+    fields.push_back(trimmed(line.substr(start, at == std::string::npos ? std::string::npos : at - start)));
+    if (at == std::string::npos) return fields;
+    start = at + 1;
   }
+}
+
+/// The separator of a file, from its header: a tab or a semicolon when the header holds
+/// one (as spreadsheets write where the comma is the decimal mark), else the comma.
+char separator_of(const std::string& header) {
+  if (header.find('\t') != std::string::npos) return '\t';
+  if (header.find(';') != std::string::npos) return ';';
+  return ',';
 }
 
 const UnitSuffix* known_unit(const std::string& unit) {
@@ -35,19 +44,21 @@ const UnitSuffix* known_unit(const std::string& unit) {
   return nullptr;
 }
 
-/// "name [unit]" (the unit must be known), "name_unit" (a known suffix) or a bare name.
+/// "name [unit]" or "name (unit)" (the unit must be known), "name_unit" (a known suffix)
+/// or a bare name.
 DataColumn column_from_header(const std::string& header, const std::string& where) {
   DataColumn column{header, header, "", "", {}};
-  const auto bracket = header.find('[');
+  const auto bracket = header.find_first_of("[(");
   if (bracket != std::string::npos) {
+    const char close = header[bracket] == '[' ? ']' : ')';
     const std::string unit = trimmed(header.substr(bracket + 1, header.size() - bracket - 2));
     column.name = trimmed(header.substr(0, bracket));
     const UnitSuffix* known = known_unit(unit);
-    if (header.back() != ']' || column.name.empty() || !known) {
+    if (header.back() != close || column.name.empty() || !known) {
       std::string units;
       for (const UnitSuffix& suffix : unit_suffixes()) units += (units.empty() ? "" : " ") + std::string(suffix.suffix);
-      throw CurveDataError(where + "column '" + header + "': write the unit as 'name [unit]' with a known unit (" +
-                           units + ")");
+      throw CurveDataError(where + "column '" + header + "': write the unit as 'name [unit]' or 'name (unit)' with a " +
+                           "known unit (" + units + ")");
     }
     column.unit = unit;
     column.si_unit = known->si_unit;
@@ -117,12 +128,14 @@ CurveData CurveData::read_csv(const std::string& path) {
   CurveData data;
   data.path_ = path;
   std::string line;
+  char separator = ',';
   for (int number = 1; std::getline(in, line); ++number) {
     if (number == 1 && line.rfind(kUtf8ByteOrderMark, 0) == 0) line.erase(0, kUtf8ByteOrderMark.size());
     const std::string content = trimmed(line.substr(0, line.find('#')));
     if (content.empty()) continue;
     const std::string where = path + ":" + std::to_string(number) + ": ";
-    const std::vector<std::string> fields = split_fields(content);
+    if (data.columns_.empty()) separator = separator_of(content);
+    const std::vector<std::string> fields = split_fields(content, separator);
     if (data.columns_.empty()) {                                  // the header
       std::unordered_map<std::string, const std::string*> names;  // name -> header: linear in the columns
       for (const std::string& header : fields) {
@@ -143,7 +156,10 @@ CurveData CurveData::read_csv(const std::string& path) {
                            header_list(data.columns_) + "), found " + std::to_string(fields.size()));
     for (size_t c = 0; c < fields.size(); ++c) {
       DataColumn& column = data.columns_[c];
-      const std::optional<double> value = decimal_number(fields[c]);
+      // With ';' or tab between the fields a comma is the decimal mark (1,5 is 1.5).
+      std::string field = fields[c];
+      if (separator != ',') std::replace(field.begin(), field.end(), ',', '.');
+      const std::optional<double> value = decimal_number(field);
       if (!value)
         throw CurveDataError(where + "column '" + column.header + "': '" + shown(fields[c]) +
                              "' is not a finite number (write decimals like 12.5 or -3e-4)");

@@ -4,9 +4,11 @@
 //   deflection_mm, force_N, pressure_kPa
 //   5.0, 960, 208
 //
-// The first line that is not blank or a comment is the header: comma-separated column
-// names, each usually ending in a unit suffix (_mm, _N, _kPa, ...; unit_suffixes()) or
-// followed by the unit in brackets ("x [mm]"). Every value is converted to SI on reading
+// The first line that is not blank or a comment is the header: column names separated by
+// commas, semicolons or tabs (the header's separator is the file's; with a semicolon or a
+// tab a comma in a number is the decimal mark, as spreadsheets write it), each usually
+// ending in a unit suffix (_mm, _N, _kPa, ...; unit_suffixes()) or followed by the unit in
+// brackets or parentheses ("x [mm]", "Distance (m)"). Every value is converted to SI on reading
 // and the column is known by its name without the unit (deflection_mm -> "deflection" in
 // m); a header without a known suffix is taken as is, without conversion, while a unit in
 // brackets must be a known one. A row with the wrong number of values or a value that is

@@ -19,17 +19,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string upper(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
-
-std::string trimmed(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
-}
-
 bool is_name(const std::string& text) {
   return !text.empty() && std::all_of(text.begin(), text.end(),
                                       [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
@@ -84,8 +73,23 @@ std::optional<std::vector<std::string>> split_tokens(const std::string& text) {
 std::optional<double> parse_number(const std::string& text) {
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value)) return std::nullopt;
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+bool is_number_row(const std::vector<std::string>& tokens) {
+  return !tokens.empty() && std::all_of(tokens.begin(), tokens.end(),
+                                        [](const std::string& token) { return parse_number(token).has_value(); });
+}
+
+/// The first control byte of a line other than tab and carriage return: a NUL cuts a value
+/// short in every C string routine, so a file holding one is refused rather than misread.
+std::optional<unsigned char> control_byte(const std::string& line) {
+  for (const char c : line) {
+    const auto byte = static_cast<unsigned char>(c);
+    if ((byte < 0x20 && byte != '\t' && byte != '\r') || byte == 0x7f) return byte;
+  }
+  return std::nullopt;
 }
 
 // ---- units -------------------------------------------------------------------------
@@ -165,6 +169,17 @@ std::string format_dimension(const Dimension& dimension, bool si, const char* on
 }
 
 }  // namespace
+
+std::string upper(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+std::string trimmed(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  return text.substr(first, text.find_last_not_of(" \t\r") - first + 1);
+}
 
 bool same_name(const std::string& a, const std::string& b) { return upper(a) == upper(b); }
 
@@ -252,6 +267,12 @@ const TeimOrbitSection* TeimOrbitFile::section(const std::string& name) const {
   return nullptr;
 }
 
+const TeimOrbitTable* TeimOrbitSection::own_table() const {
+  for (const auto& table : tables)
+    if (table.name.empty()) return &table;
+  return nullptr;
+}
+
 TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& path) {
   TeimOrbitFile file;
   file.path_ = path;
@@ -259,9 +280,15 @@ TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& p
   std::string raw;
   TeimOrbitSection* section = nullptr;
   TeimOrbitTable* table = nullptr;
-  bool columns_allowed = false;  // right after a table's (NAME) line
+  bool columns_allowed = false;  // right after a table's (NAME) line or a section's header
   for (int number = 1; std::getline(in, raw); ++number) {
     const auto fail = [&](const std::string& message) { throw TeimOrbitError(file.where(number) + message); };
+    if (const auto byte = control_byte(raw)) {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "0x%02x", *byte);
+      fail(std::string(*byte == 0 ? "a NUL byte" : "a control byte (" + std::string(hex) + ")") +
+           " in the line: the file is damaged or not text (write it again as plain text)");
+    }
     const size_t comment = find_unquoted(raw, '$');
     const std::string line = trimmed(comment == std::string::npos ? raw : raw.substr(0, comment));
     if (line.empty() || line.front() == '!') continue;
@@ -281,6 +308,7 @@ TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& p
         file.sections_.push_back({name, number, {}, {}});
         section = &file.sections_.back();
         table = nullptr;
+        columns_allowed = true;  // the column names of the section's own table
       } else {
         if (!section) fail("table (" + name + ") outside a section (start one with [NAME])");
         for (const auto& existing : section->tables)
@@ -294,10 +322,15 @@ TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& p
       continue;
     }
     if (line.front() == '{') {
-      if (!was_columns_allowed) fail("column names { ... } belong on the line after a table's (NAME)");
+      if (!was_columns_allowed)
+        fail("column names { ... } belong on the line after a table's (NAME) or a section's [NAME]");
       if (line.back() != '}') fail("column names are written { name name ... }");
       const auto columns = split_tokens(line.substr(1, line.size() - 2));
       if (!columns) fail("unterminated string in the column names");
+      if (!table) {  // the section's own table
+        section->tables.push_back({"", number, {}, {}, {}});
+        table = &section->tables.back();
+      }
       table->columns = *columns;
       continue;
     }
@@ -306,9 +339,8 @@ TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& p
       if (!section) fail("'" + line + "' outside a section (start one with [NAME])");
       const std::string key = trimmed(line.substr(0, equals)), value = trimmed(line.substr(equals + 1));
       if (!is_name(key)) fail("'" + key + "' is not a key name (letters, digits and _)");
-      if (value.empty()) fail("[" + section->name + "] " + key + " has no value");
-      TeimOrbitValue entry{key, value, false, number};
-      if (is_quote(value.front())) {
+      TeimOrbitValue entry{key, value, false, number, 0};
+      if (!value.empty() && is_quote(value.front())) {
         const size_t close = value.find(value.front(), 1);
         if (close == std::string::npos) fail("[" + section->name + "] " + key + ": unterminated string " + value);
         if (close != value.size() - 1)
@@ -319,18 +351,23 @@ TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& p
         fail("[" + section->name + "] " + key + " = " + value + ": one value expected (quote a string: '...')");
       }
       for (const auto& existing : section->values)
-        if (same_name(existing.key, key))
-          fail("[" + section->name + "] " + key + " is given twice (first at line " + std::to_string(existing.line) +
-               ")");
+        if (same_name(existing.key, key) && !existing.first_line) entry.first_line = existing.line;
       section->values.push_back(entry);
       table = nullptr;
       continue;
     }
-    if (!table) fail("expected [SECTION], (TABLE), KEY = value or a table row, got '" + line + "'");
     const auto row = split_tokens(line);
     if (!row) fail("unterminated string in the row '" + line + "'");
+    if (!table && section && was_columns_allowed && is_number_row(*row)) {  // the section's own table, no names
+      section->tables.push_back({"", number, {}, {}, {}});
+      table = &section->tables.back();
+    }
+    if (!table) fail("expected [SECTION], (TABLE), KEY = value or a table row, got '" + line + "'");
     table->rows.push_back(*row);
     table->row_lines.push_back(number);
+    // A section's own table continues while its rows are numbers.
+    if (table->name.empty() && !is_number_row(*row))
+      fail("[" + section->name + "] row '" + line + "': the rows of a section's table are numbers");
   }
   return file;
 }
@@ -338,17 +375,13 @@ TeimOrbitFile TeimOrbitFile::parse(const std::string& text, const std::string& p
 // ---- reading by schema ---------------------------------------------------------------
 
 TeimOrbitReader::TeimOrbitReader(const TeimOrbitFile& file, const std::string& file_type) : file_(file) {
-  const std::string example = "FILE_TYPE = '" + file_type + "', FILE_VERSION = 1.0, FILE_FORMAT = 'ASCII'";
-  const TeimOrbitSection* header = file.section("MDI_HEADER");
-  if (!header) fail(0, "no [MDI_HEADER] section (" + example + ")");
-  const auto type = string("MDI_HEADER", "FILE_TYPE");
-  if (!type) fail(header->line, "[MDI_HEADER] has no FILE_TYPE (" + example + ")");
-  if (!same_name(*type, file_type))
+  // The header is optional (many tire files start at [UNITS]); what it says must fit.
+  if (const auto type = string("MDI_HEADER", "FILE_TYPE"); type && !same_name(*type, file_type))
     fail(line("MDI_HEADER", "FILE_TYPE"), "FILE_TYPE = '" + *type + "': this reader takes '" + file_type + "' files");
-  required_number("MDI_HEADER", "FILE_VERSION", {}, "the format's version, e.g. 1.0");
-  const auto format = string("MDI_HEADER", "FILE_FORMAT");
-  if (!format || !same_name(*format, "ASCII"))
-    fail(format ? line("MDI_HEADER", "FILE_FORMAT") : header->line, "[MDI_HEADER] needs FILE_FORMAT = 'ASCII'");
+  number("MDI_HEADER", "FILE_VERSION");
+  if (const auto format = string("MDI_HEADER", "FILE_FORMAT"); format && !same_name(*format, "ASCII"))
+    fail(line("MDI_HEADER", "FILE_FORMAT"),
+         "[MDI_HEADER] FILE_FORMAT = '" + *format + "': tirefe reads text files (FILE_FORMAT = 'ASCII')");
   table("MDI_HEADER", "COMMENTS");
 
   const TeimOrbitSection* units = file.section("UNITS");
@@ -366,12 +399,25 @@ void TeimOrbitReader::fail(int line, const std::string& message) const {
   throw TeimOrbitError(file_.where(line) + message);
 }
 
+namespace {
+
+std::string repeat_message(const TeimOrbitSection& section, const TeimOrbitValue& value) {
+  return "[" + section.name + "] " + value.key + " is given twice (first at line " + std::to_string(value.first_line) +
+         ")";
+}
+
+}  // namespace
+
 const TeimOrbitValue* TeimOrbitReader::find(const std::string& section, const std::string& key) const {
   const TeimOrbitSection* found = file_.section(section);
   if (!found) return nullptr;
-  for (const auto& value : found->values)
-    if (same_name(value.key, key)) return &value;
-  return nullptr;
+  const TeimOrbitValue* first = nullptr;
+  for (const auto& value : found->values) {
+    if (!same_name(value.key, key)) continue;
+    if (value.first_line) fail(value.line, repeat_message(*found, value));
+    first = &value;
+  }
+  return first;
 }
 
 int TeimOrbitReader::line(const std::string& section, const std::string& key) const {
@@ -392,7 +438,7 @@ std::optional<double> TeimOrbitReader::number(const std::string& section, const 
                                               const Dimension& dimension) {
   known_.insert({upper(section), upper(key)});
   const TeimOrbitValue* value = find(section, key);
-  if (!value) return std::nullopt;
+  if (!value || (value->text.empty() && !value->quoted)) return std::nullopt;  // absent or blank
   return to_number(section, *value, dimension);
 }
 
@@ -401,14 +447,18 @@ double TeimOrbitReader::required_number(const std::string& section, const std::s
   if (const auto value = number(section, key, dimension)) return *value;
   const TeimOrbitSection* found = file_.section(section);
   const std::string unit = dimension_name(dimension);
-  fail(found ? found->line : 0,
-       "missing [" + section + "] " + key + " (" + meaning + (dimension.dimensionless() ? "" : ", a " + unit) + ")");
+  const TeimOrbitValue* blank = find(section, key);
+  fail(blank   ? blank->line
+       : found ? found->line
+               : 0,
+       (blank ? "[" + section + "] " + key + " has no value" : "missing [" + section + "] " + key) + " (" + meaning +
+           (dimension.dimensionless() ? "" : ", a " + unit) + ")");
 }
 
 std::optional<std::string> TeimOrbitReader::string(const std::string& section, const std::string& key) {
   known_.insert({upper(section), upper(key)});
   const TeimOrbitValue* value = find(section, key);
-  if (!value) return std::nullopt;
+  if (!value || (value->text.empty() && !value->quoted)) return std::nullopt;  // absent or blank
   return value->text;
 }
 
@@ -464,16 +514,39 @@ void TeimOrbitReader::finish() const {
       report(section.line, "unknown section [" + section.name + "]" + hint("[" + name + "]", bracketed, "sections"));
       continue;
     }
-    for (const TeimOrbitValue& value : section.values)
+    for (const TeimOrbitValue& value : section.values) {
       if (!known_.count({name, upper(value.key)}))
         report(value.line, "[" + section.name + "] unknown key '" + value.key + "'" +
                                hint(upper(value.key), known_in(name, false), "keys"));
+      else if (value.first_line)
+        report(value.line, repeat_message(section, value));
+    }
     for (const TeimOrbitTable& table : section.tables)
       if (!known_.count({name, "(" + upper(table.name) + ")"}))
-        report(table.line, "[" + section.name + "] unknown table (" + table.name + ")" +
-                               hint(upper(table.name), known_in(name, true), "tables"));
+        report(table.line, table.name.empty() ? "[" + section.name + "] holds rows of values, which it does not take"
+                                              : "[" + section.name + "] unknown table (" + table.name + ")" +
+                                                    hint(upper(table.name), known_in(name, true), "tables"));
   }
   if (!first_message.empty()) fail(first_line, first_message);
+}
+
+void TeimOrbitReader::finish_foreign(const std::map<std::string, std::vector<std::string>>& checked) const {
+  for (const auto& [checked_section, listed] : checked) {
+    const TeimOrbitSection* section = file_.section(checked_section);
+    if (!section) continue;
+    const std::string name = upper(section->name);
+    std::vector<std::string> used;
+    for (const auto& [known_section, key] : known_)
+      if (known_section == name && key.front() != '(') used.push_back(key);
+    for (const TeimOrbitValue& value : section->values) {
+      const std::string key = upper(value.key);
+      if (known_.count({name, key}) || std::find(listed.begin(), listed.end(), key) != listed.end()) continue;
+      const std::string suggestion = did_you_mean(key, used);
+      if (!suggestion.empty())
+        fail(value.line, "[" + section->name + "] unknown key '" + value.key + "' (" + suggestion +
+                             " tirefe reads that one; a key tirefe does not read is passed over)");
+    }
+  }
 }
 
 // ---- writing -----------------------------------------------------------------------

@@ -10,18 +10,28 @@
 //   (XZ_DATA)                                                  <- a table in the section
 //   { x  z_l  z_r }                                            <- optional column names
 //   0  0  0                                                    <- rows of values
+//   [SHAPE]
+//   { radial width }                                           <- a section's own table:
+//   1.0  0.0                                                      rows right after its header
 //
 // Section, table and key names are case-insensitive (messages show them as written); a
-// line starting with '!' is a comment too. Numbers are converted to SI on reading by the
-// dimension the reader states for each key and the units of the file's [UNITS] section
-// (UnitSystem): one parser and one units table for every file type.
+// line starting with '!' is a comment too. A key without a value (KEY =) counts as absent,
+// as the Magic Formula files that leave a parameter blank mean it. Numbers are converted
+// to SI on reading by the dimension the reader states for each key and the units of the
+// file's [UNITS] section (UnitSystem): one parser and one units table for every file type.
+// A NUL or other control byte (other than tab) anywhere is an error: such a file is damaged
+// or not text, and a NUL would cut a value short.
 //
 // TeimOrbitReader reads a file the way its caller's schema asks and refuses the rest:
 // every key and table the caller asked for (present or not) is known; once the caller has
 // read everything it knows, finish() reports the first section, key or table of the file
-// that nobody asked for, with the closest known name. Every error names the file and line.
+// that nobody asked for, with the closest known name. A file of another program's schema
+// (a Magic Formula tire) is read with finish_foreign() instead, which passes over what the
+// caller lists as not used. A key given twice is an error where it is read. Every error
+// names the file and line.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -69,13 +79,14 @@ class UnitSystem {
 
 struct TeimOrbitValue {
   std::string key;   // as written
-  std::string text;  // without the quotes of a string
+  std::string text;  // without the quotes of a string; empty after a bare 'KEY ='
   bool quoted = false;
   int line = 0;
+  int first_line = 0;  // a repeat of the key: the line of its first value (0: none)
 };
 
 struct TeimOrbitTable {
-  std::string name;  // as written, without the parentheses
+  std::string name;  // as written, without the parentheses; "" for the section's own table
   int line = 0;
   std::vector<std::string> columns;  // from the optional { ... } line
   std::vector<std::vector<std::string>> rows;
@@ -85,8 +96,10 @@ struct TeimOrbitTable {
 struct TeimOrbitSection {
   std::string name;  // as written, without the brackets
   int line = 0;
-  std::vector<TeimOrbitValue> values;
+  std::vector<TeimOrbitValue> values;  // repeats of a key included (first_line set)
   std::vector<TeimOrbitTable> tables;
+  /// The section's own table (rows right after its header, as [SHAPE] holds), or nullptr.
+  const TeimOrbitTable* own_table() const;
 };
 
 /// A parsed file: its sections in file order.
@@ -108,33 +121,40 @@ class TeimOrbitFile {
 
 class TeimOrbitReader {
  public:
-  /// Checks [MDI_HEADER] (FILE_TYPE = file_type, FILE_VERSION, FILE_FORMAT = 'ASCII',
-  /// optional (COMMENTS)) and reads [UNITS] (LENGTH, FORCE, ANGLE, MASS, TIME, optional
-  /// PRESSURE).
+  /// Checks the optional [MDI_HEADER] (FILE_TYPE = file_type, FILE_VERSION a number,
+  /// FILE_FORMAT = 'ASCII', a (COMMENTS) table; each optional, a wrong one an error) and
+  /// reads [UNITS] (LENGTH, FORCE, ANGLE, MASS, TIME, optional PRESSURE).
   TeimOrbitReader(const TeimOrbitFile& file, const std::string& file_type);
 
-  /// The number at [section] key in SI, or nothing when the key is absent.
+  /// The number at [section] key in SI, or nothing when the key is absent or blank.
   std::optional<double> number(const std::string& section, const std::string& key, const Dimension& dimension = {});
   /// As number(), with 'meaning' in the message when the key is missing.
   double required_number(const std::string& section, const std::string& key, const Dimension& dimension,
                          const std::string& meaning);
-  /// A string value (quoted, or a bare word), or nothing when the key is absent.
+  /// A string value (quoted, or a bare word), or nothing when the key is absent or blank.
   std::optional<std::string> string(const std::string& section, const std::string& key);
   /// The line of a key (0 when absent), for messages about its value.
   int line(const std::string& section, const std::string& key) const;
-  /// A table, or nullptr when absent.
+  /// A table, or nullptr when absent; name "" is the section's own table.
   const TeimOrbitTable* table(const std::string& section, const std::string& name);
   /// A table's row converted to numbers in SI (every entry of 'dimension').
   std::vector<double> row_numbers(const TeimOrbitTable& table, size_t row, const Dimension& dimension) const;
 
-  /// Throws for the first section, key or table of the file that was never asked for.
+  /// Throws for the first section, key or table of the file that was never asked for,
+  /// or for a repeated key anywhere.
   void finish() const;
+  /// For a file of another program's schema: throws only for a key of a section of
+  /// 'checked' that is neither read nor listed there, and that is spelt like a key read (a
+  /// misspelling of a key tirefe uses, with the closest name). Everything else is that
+  /// program's and passed over.
+  void finish_foreign(const std::map<std::string, std::vector<std::string>>& checked) const;
 
   const TeimOrbitFile& file() const { return file_; }
   const UnitSystem& units() const { return units_; }
   [[noreturn]] void fail(int line, const std::string& message) const;
 
  private:
+  /// The key's value; a key given twice is an error naming both lines.
   const TeimOrbitValue* find(const std::string& section, const std::string& key) const;
   double to_number(const std::string& section, const TeimOrbitValue& value, const Dimension& dimension) const;
 
@@ -163,6 +183,10 @@ class TeimOrbitWriter {
 
 /// Names and keywords of TeimOrbit files compare without case ('ASCII', 'ascii').
 bool same_name(const std::string& a, const std::string& b);
+/// The text in upper case (ASCII letters), as names compare.
+std::string upper(std::string text);
+/// The text without the blanks around it (spaces, tabs, a carriage return).
+std::string trimmed(const std::string& text);
 
 /// The shortest decimal text that reads back as exactly 'value'.
 std::string round_trip_number(double value);

@@ -74,15 +74,17 @@ std::optional<RoadTrack> track_of(const MacroArguments& arguments) {
   return arguments.string("track") == "left" ? RoadTrack::Left : RoadTrack::Right;
 }
 
-/// A profile's points from its file: a road data file's, a CSV file's or 'x y' text's,
-/// placed on the road by 'start' (along x) and 'offset' (up).
+/// A profile's points from its file (src/contact/road_file.hpp), placed on the road by
+/// 'start' (along x) and 'offset' (up).
 std::vector<Eigen::Vector2d> file_profile(const std::string& file, const std::optional<RoadShape>& road,
                                           const MacroArguments& arguments) {
-  std::vector<Eigen::Vector2d> points = road                          ? road->points
-                                        : has_extension(file, ".csv") ? read_road_csv(file, track_of(arguments))
-                                                                      : RoadProfile::read_points(file);
-  if (!road && !has_extension(file, ".csv") && arguments.has("track"))
-    throw ModelError("'track' needs a file with tracks (.csv or .rdf); '" + file + "' has one profile");
+  if (road && arguments.has("lateral"))
+    throw ModelError("'lateral' picks the track of an OpenCRG file (.crg); '" + file + "' is a road data file");
+  std::vector<Eigen::Vector2d> points =
+      road ? road->points
+           : read_road_profile(
+                 file, track_of(arguments),
+                 arguments.has("lateral") ? std::optional<double>(arguments.number("lateral")) : std::nullopt);
   const Eigen::Vector2d shift(arguments.number("start"), arguments.number("offset"));
   for (Eigen::Vector2d& point : points) point += shift;
   return points;
@@ -165,7 +167,10 @@ std::shared_ptr<const RigidSurface> build_drum(const MacroArguments& arguments, 
 std::shared_ptr<const RigidSurface> build_profile(const MacroArguments& arguments, const std::optional<RoadShape>& road,
                                                   const std::string& file, const MotionFunction& motion) {
   static const SurfaceKeys keys{
-      "profile", {"file", "start", "offset", "track", "points", "pothole", "cleat", "level", "edge_radius"}, {}, {}};
+      "profile",
+      {"file", "start", "offset", "track", "lateral", "points", "pothole", "cleat", "level", "edge_radius"},
+      {},
+      {}};
   check_surface_keys(arguments, keys, road, file);
   const int sources =
       arguments.has("file") + arguments.has("points") + arguments.has("pothole") + arguments.has("cleat");
@@ -204,7 +209,7 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
                      surface_type(road->kind) + "')");
   const MotionFunction motion = motion_of(deck, arguments);
   if (!arguments.has("file")) {
-    for (const char* key : {"start", "offset", "track"})
+    for (const char* key : {"start", "offset", "track", "lateral"})
       if (arguments.has(key)) throw ModelError(std::string("'") + key + "' places a road read from a 'file'");
   }
   if (type == "flat") return build_flat(arguments, road, file, motion);
@@ -334,9 +339,9 @@ void add_contact_macros(MacroTable& table) {
   add({"surface",
        "Defines a named rigid surface for contact (docs/contact.md): a flat road, a drum (optionally with a cleat) "
        "or a road profile (points, a file, a pothole or a cleat on a level road). A road file is a two-column "
-       "'x y' text, a CSV file with a header (x_m, z_mm, ...) or an ADAMS road data file (.rdf: flat, poly_line, "
-       "plank, pot_hole or drum, which sets the type); 'start' and 'offset' place it, 'track' picks the left or "
-       "right track of a file with two. The solid lies on the right when walking along the surface (below a "
+       "'x y' text, a CSV file with a header (x_m, z_mm, ...), an ASCII OpenCRG file (.crg) or an ADAMS road data "
+       "file (.rdf: flat, poly_line, plank, pot_hole or drum, which sets the type); 'start' and 'offset' place it, "
+       "'track' picks the left or right track of a file with two, 'lateral' the track of an OpenCRG file. The solid lies on the right when walking along the surface (below a "
        "road, inside a drum). Roads and profiles translate along x, drums turn about their centre: by 'speed' "
        "(ramped from rest over 'ramp_time' from 'start_time') or by 'amplitude' times a load function.",
        {{"name", VT::String, true, "", "surface name"},
@@ -359,8 +364,8 @@ void add_contact_macros(MacroTable& table) {
         {"cleat_angle", VT::Number, false, "rad", "drum: angular position of the cleat's middle at rest, from +x",
          std::string("1.5707963267948966")},
         {"file", VT::String, false, "",
-         "profile: two-column text file 'x y' ('#' comments) or CSV file (.csv) with a header; any type: a road "
-         "data file (.rdf); relative to the deck's folder"},
+         "profile: two-column text file 'x y' ('#' comments), CSV file (.csv) with a header or ASCII OpenCRG file "
+         "(.crg); any type: a road data file (.rdf); relative to the deck's folder"},
         {"start", VT::Number, false, "m", "file: where the file's x = 0 lies along the road", std::string("0")},
         {"offset", VT::Number, false, "m", "file: height added to the file's road", std::string("0")},
         {"track",
@@ -371,6 +376,9 @@ void add_contact_macros(MacroTable& table) {
          std::nullopt,
          Range::Any,
          {"left", "right"}},
+        {"lateral", VT::Number, false, "m",
+         "OpenCRG file: the lateral position v of the track, left of the reference line positive (default 0: the "
+         "reference line)"},
         {"points", VT::NumberMatrix, false, "m", "profile: {x, y} points, x not decreasing"},
         {"pothole", VT::NumberList, false, "m", "profile: a pothole {start, length, depth} in a level road"},
         {"cleat", VT::NumberList, false, "m", "profile: a cleat {start, length, height} on a level road"},

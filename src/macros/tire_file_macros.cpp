@@ -1,11 +1,14 @@
 // Tire property files (.tir, TeimOrbit format: src/io/teim_orbit.hpp): tirefe.read_tire{...}
 // returns the model:tire parameter table a file holds, tirefe.write_tire{...} writes one
-// (docs/tire.md). The table below is the whole mapping: each file key, the dimension its
-// value is converted by, and the model:tire key it becomes; ranges, defaults and meanings
-// are those of model:tire's own spec.
+// (docs/tire.md). A file of tirefe's own ring ([MODEL] PROPERTY_FILE_FORMAT = 'TIREFE') is
+// read through the table below, the whole mapping: each file key, the dimension its value
+// is converted by, and the model:tire key it becomes; ranges, defaults and meanings are
+// those of model:tire's own spec. Any other file is a standard (Magic Formula) one, read by
+// src/tire/mf_tire_file.hpp into a ring of its size, with what it states beside it.
 #include <cmath>
 
 #include "io/teim_orbit.hpp"
+#include "tire/mf_tire_file.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/macro_table.hpp"
 
@@ -73,8 +76,84 @@ const ParameterSpec& tire_parameter(const std::string& key) {
 
 std::string file_key(const TireFileKey& key) { return std::string("[") + key.section + "] " + key.key; }
 
+/// A standard file's parameter table, checked by model:tire's ranges as the own format's is.
+void push_ring_parameters(lua_State* L, const io::TeimOrbitReader& reader, const std::vector<RingParameter>& ring) {
+  lua_createtable(L, 0, static_cast<int>(ring.size()));
+  for (const RingParameter& parameter : ring) {
+    const ParameterSpec& spec = tire_parameter(parameter.key);
+    if (!std::isfinite(parameter.value))
+      reader.fail(0, parameter.key + " (" + parameter.origin + ") is not finite: the file's sizes are out of scale");
+    if (const auto problem = range_problem(spec, parameter.value))
+      reader.fail(0, parameter.key + " (" + parameter.origin + ") " + *problem);
+    if (spec.type == VT::Integer)
+      lua_pushinteger(L, static_cast<lua_Integer>(parameter.value));
+    else
+      lua_pushnumber(L, parameter.value);
+    lua_setfield(L, -2, parameter.key.c_str());
+  }
+}
+
+void set_number(lua_State* L, const char* key, const std::optional<double>& value) {
+  if (!value) return;
+  lua_pushnumber(L, *value);
+  lua_setfield(L, -2, key);
+}
+
+/// What a standard file states, in SI (docs/tire.md, "Your tire from a standard file").
+void push_stated(lua_State* L, const MfTireFile& tire, const std::vector<RingParameter>& ring) {
+  double pressure = 0.0;
+  for (const RingParameter& parameter : ring)
+    if (parameter.key == "pressure") pressure = parameter.value;
+  lua_newtable(L);
+  lua_pushstring(L, tire.path.c_str());
+  lua_setfield(L, -2, "file");
+  lua_pushstring(L, tire.format.c_str());
+  lua_setfield(L, -2, "format");
+  lua_pushstring(L, tire.deflection_load.empty() ? "VERTICAL_STIFFNESS" : "DEFLECTION_LOAD_CURVE");
+  lua_setfield(L, -2, "vertical_law");
+  set_number(L, "pressure", pressure);
+  set_number(L, "nominal_load", tire.nominal_load);
+  if (tire.nominal_load) {
+    const auto deflection = tire.stated_deflection(*tire.nominal_load, pressure);
+    set_number(L, "nominal_deflection", deflection);
+    if (deflection && *deflection > 0.0) {
+      set_number(L, "vertical_stiffness", *tire.nominal_load / *deflection);
+      set_number(L, "half_load", tire.stated_load(0.5 * *deflection, pressure));
+    }
+  }
+  set_number(L, "longitudinal_stiffness", tire.longitudinal_stiffness);
+  set_number(L, "longitudinal_frequency", tire.longitudinal_frequency);
+  set_number(L, "windup_frequency", tire.windup_frequency);
+  set_number(L, "longitudinal_damping", tire.longitudinal_damping);
+  set_number(L, "windup_damping", tire.windup_damping);
+  set_number(L, "mass", tire.mass);
+  set_number(L, "polar_inertia", tire.polar_inertia);
+  if (tire.belt_mass)
+    set_number(L, "belt_mass", tire.belt_mass);
+  else if (tire.pac2002_belt_mass && *tire.pac2002_belt_mass > 0.0)
+    set_number(L, "belt_mass", tire.pac2002_belt_mass);
+  set_number(L, "belt_polar_inertia", tire.belt_polar_inertia);
+  lua_createtable(L, 0, static_cast<int>(ring.size()));
+  for (const RingParameter& parameter : ring) {
+    lua_pushstring(L, parameter.origin.c_str());
+    lua_setfield(L, -2, parameter.key.c_str());
+  }
+  lua_setfield(L, -2, "origins");
+}
+
+/// Pushes the model:tire table of a file of tirefe's own ring.
+void push_own_tire_file(lua_State* L, const io::TeimOrbitFile& file, io::TeimOrbitReader& reader);
+/// Pushes the model:tire table of any tire property file, and with 'stated' what a standard
+/// file states (nil for one of tirefe's own). Returns the number of values pushed.
+int push_tire_file(lua_State* L, const std::string& path, std::optional<double> pressure,
+                   std::optional<double> tread_width, bool stated);
+
 int read_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& arguments) {
-  return push_tire_property_file(L, deck_relative(session, arguments.string("file")));
+  const auto optional_number = [&](const char* key) {
+    return arguments.has(key) ? std::optional<double>(arguments.number(key)) : std::nullopt;
+  };
+  return push_tire_file(L, deck_relative(session, arguments.string("file")), optional_number("pressure"),
+                        optional_number("tread_width"), true);
 }
 
 /// The parameter table validated as model:tire's, refusing the keys that are not properties.
@@ -123,19 +202,45 @@ int write_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& a
 
 }  // namespace
 
-int push_tire_property_file(lua_State* L, const std::string& path) {
+namespace {
+
+int push_tire_file(lua_State* L, const std::string& path, std::optional<double> pressure,
+                   std::optional<double> tread_width, bool stated) {
   const io::TeimOrbitFile file = io::TeimOrbitFile::read(path);
   io::TeimOrbitReader reader(file, "tir");
   const auto format = reader.string("MODEL", "PROPERTY_FILE_FORMAT");
-  if (!format)
-    reader.fail(file.section("MODEL") ? file.section("MODEL")->line : 0,
-                std::string("missing [MODEL] PROPERTY_FILE_FORMAT = '") + kFormat + "'");
-  if (!io::same_name(*format, kFormat))
-    reader.fail(reader.line("MODEL", "PROPERTY_FILE_FORMAT"), "[MODEL] PROPERTY_FILE_FORMAT = '" + *format +
-                                                                  "': tirefe reads the data of its own ring tire ('" +
-                                                                  kFormat + "'), not of another tire model");
+  if (!format || !io::same_name(*format, kFormat)) {
+    // tirefe's own sections in a file that does not name the format: a mix-up, not a standard file.
+    for (const char* own : {"TREAD", "SIDEWALL", "TREAD_LAYER", "RIM"})
+      if (file.section(own))
+        reader.fail(format ? reader.line("MODEL", "PROPERTY_FILE_FORMAT") : file.section(own)->line,
+                    (format ? "[MODEL] PROPERTY_FILE_FORMAT = '" + *format + "', but " : std::string()) + "[" + own +
+                        "] is a section of tirefe's ring tire: name its format, [MODEL] PROPERTY_FILE_FORMAT = '" +
+                        kFormat + "'");
+    const MfTireFile tire = MfTireFile::read(file, reader);
+    const std::vector<RingParameter> ring = ring_parameters(tire, pressure, tread_width);
+    push_ring_parameters(L, reader, ring);
+    if (!stated) return 1;
+    push_stated(L, tire, ring);
+    return 2;
+  }
+  if (tread_width)
+    reader.fail(reader.line("MODEL", "PROPERTY_FILE_FORMAT"),
+                "'tread_width' applies to a standard file; this one holds [TREAD] WIDTH itself");
+  push_own_tire_file(L, file, reader);
+  if (pressure) {
+    lua_pushnumber(L, *pressure);
+    lua_setfield(L, -2, "pressure");
+  }
+  return 1;
+}
+
+void push_own_tire_file(lua_State* L, const io::TeimOrbitFile& file, io::TeimOrbitReader& reader) {
   std::vector<std::optional<double>> values;
   for (const TireFileKey& key : kTireFileKeys) values.push_back(reader.number(key.section, key.key, key.dimension));
+  // The standard file's other dimensions may stand beside the ring's: they describe the
+  // size, [TREAD] WIDTH is the width the pressure acts on.
+  for (const char* key : {"WIDTH", "ASPECT_RATIO", "RIM_WIDTH"}) reader.number("DIMENSION", key);
   reader.finish();  // a misspelt key is reported as such, not as a missing one
 
   lua_createtable(L, 0, static_cast<int>(values.size()));
@@ -164,7 +269,12 @@ int push_tire_property_file(lua_State* L, const std::string& path) {
     }
     lua_setfield(L, -2, key.parameter);
   }
-  return 1;
+}
+
+}  // namespace
+
+int push_tire_property_file(lua_State* L, const std::string& path) {
+  return push_tire_file(L, path, std::nullopt, std::nullopt, false);
 }
 
 std::string tire_property_file_reference() {
@@ -183,12 +293,23 @@ std::string tire_property_file_reference() {
 void add_tire_file_macros(MacroTable& table) {
   table.module_macros.push_back(
       {{"read_tire",
-        "Reads a tire property file (.tir, TeimOrbit format as ADAMS/Tire, MF-Tyre and FTire read: [UNITS], "
-        "[MODEL] PROPERTY_FILE_FORMAT = 'TIREFE', [DIMENSION], [TREAD], ...; docs/tire.md lists every key) and "
-        "returns its model:tire parameter table in SI, converted from the file's [UNITS]. Keys the file leaves "
-        "out take model:tire's defaults; an unknown section or key, a missing or unknown unit, a repeated key or "
-        "a value that is not a number stops the deck with the file, line and key.",
-        {{"file", VT::String, true, "", "tire property file, relative to the deck's folder"}},
+        "Reads a tire property file (.tir, TeimOrbit format as ADAMS/Tire, MF-Tyre and FTire read; docs/tire.md "
+        "lists every key) and returns its model:tire parameter table in SI, converted from the file's [UNITS]. "
+        "A file of tirefe's ring ([MODEL] PROPERTY_FILE_FORMAT = 'TIREFE') holds the table itself: keys it "
+        "leaves out take model:tire's defaults. Any other file is a standard MF-Tyre / MF-Swift (PAC2002, 5.2 "
+        "to 6.2) file: the table is a ring of its size, pressure and masses, and a second value holds what the "
+        "file states (vertical stiffness at FNOMIN, in-plane modes, the origin of each parameter), for "
+        "lua/tire_identify.lua to fit the ring to. A malformed file, a missing or unknown unit, a repeated key "
+        "tirefe reads or a value that is not a number stops the deck with the file, line and key.",
+        {{"file", VT::String, true, "", "tire property file, relative to the deck's folder"},
+         {"pressure", VT::Number, false, "Pa",
+          "inflation pressure to build the tire at (default: the file's; required for a standard file that states "
+          "none)",
+          std::nullopt, Range::Positive},
+         {"tread_width", VT::Number, false, "m",
+          "standard file: the width the pressure acts on (default 3/4 of [DIMENSION] WIDTH; the sidewall's length "
+          "follows it); lua/tire_identify.lua fits it",
+          std::nullopt, Range::Positive}},
         "local tp = tirefe.read_tire{ file = \"tires/145SR12.tir\" }\ntp.pressure = 0.243e6\n"
         "local tire = model:tire(tp)"},
        read_tire_macro});
