@@ -158,42 +158,34 @@ TEST_CASE("a vehicle step that fails names the corner whose tire failed", "[deck
         std::string::npos);
 }
 
-TEST_CASE("drum-cleat deck, short version: holding the contacts in a solve's first evaluation saves iterations only",
-          "[decks][drum][hold]") {
-  // The same run with the contact law from each solve's first evaluation on: the patch's
-  // nodes that the predictor lifts off then cost an increment a step (docs/contact.md).
+TEST_CASE("drum-cleat deck, short version: where the tread meets the cleat moves its peaks by 1 % at most",
+          "[decks][drum][phase]") {
+  // The cleat moved by quarters of a node spacing (17.06 mm on the tire, 1.150 degrees of the
+  // 1.7 m drum): the tread contact samples every chord, so the peak-to-peak forces of the
+  // passage hold within the +- 2 % (Fx) and +- 1 % (Fz) of docs/drum_cleat.md's eight phases.
   const std::string deck = (fs::path(TIREFE_SOURCE_DIR) / "inputs" / "drum_cleat.lua").string();
-  struct Reading {
-    double iterations_per_step, fx, fz;
-    std::vector<double> frequencies;
-  };
-  auto run = [&](const std::string& hold) {
-    const std::string name = "drum_hold_" + hold + ".h5";
-    const RunResult result =
-        run_tirefe(deck + " spin_up_time=0.5 end_time=3.0 contact_hold=" + hold + " output=" + name);
+  const double spacing_deg = 0.543 * M_PI / 100 / 0.85 * 180 / M_PI;
+  std::vector<double> fx, fz;
+  for (int quarter = 0; quarter < 4; ++quarter) {
+    const std::string name = "drum_phase_" + std::to_string(quarter) + ".h5";
+    char start[64];
+    std::snprintf(start, sizeof start, "%.6f", -90.0 + 0.25 * quarter * spacing_deg);
+    const RunResult result = run_tirefe(deck + " spin_up_time=0.5 end_time=3.0 cleat_start_deg=" + start +
+                                        " output=" + name);
     INFO("errors: " << result.errors);
     REQUIRE(result.exit_status == 0);
     const auto hdf5 = tirefe::io::Hdf5File::open_read_only((run_folder() / name).string());
-    auto result_value = [&](const std::string& key) { return hdf5.read_double_attribute("/results", key); };
-    Reading reading{result_value("dynamic_newton_iterations") / result_value("dynamic_steps"),
-                    result_value("fx_peak_to_peak"),
-                    result_value("fz_peak_to_peak"),
-                    {}};
-    for (const char* window : {"fz_on_top", "fz_leaving", "fx_from_hit", "fx_leaving"})
-      reading.frequencies.push_back(result_value(std::string(window) + "_spectrum_Hz"));
-    for (const char* window : {"fz_on_top", "fz_leaving", "fx_from_hit", "fx_leaving"})
-      reading.frequencies.push_back(result_value(std::string(window) + "_pencil_Hz"));
-    return reading;
+    fx.push_back(hdf5.read_double_attribute("/results", "fx_peak_to_peak"));
+    fz.push_back(hdf5.read_double_attribute("/results", "fz_peak_to_peak"));
+  }
+  auto half_spread = [](const std::vector<double>& values) {
+    const auto [low, high] = std::minmax_element(values.begin(), values.end());
+    return 0.5 * (*high - *low) / (0.5 * (*high + *low));
   };
-  const Reading held = run("true"), plain = run("false");
-  // Measured: 2.42 against 3.13 iterations a step.
-  CHECK(held.iterations_per_step < 0.85 * plain.iterations_per_step);
-  // The converged states differ within Newton's tolerance: the readings agree to far below
-  // the sensitivity of docs/drum_cleat.md (peaks 2 %, frequencies 0.5 Hz).
-  CHECK(held.fx == Approx(plain.fx).epsilon(1e-3));
-  CHECK(held.fz == Approx(plain.fz).epsilon(1e-3));
-  for (size_t k = 0; k < held.frequencies.size(); ++k)
-    CHECK(held.frequencies[k] == Approx(plain.frequencies[k]).margin(0.05));
+  INFO("Fx " << fx[0] << " " << fx[1] << " " << fx[2] << " " << fx[3] << " N; Fz " << fz[0] << " " << fz[1] << " "
+             << fz[2] << " " << fz[3] << " N");
+  CHECK(half_spread(fx) <= 0.02);
+  CHECK(half_spread(fz) <= 0.01);
 }
 
 TEST_CASE("drum-cleat deck, short version: checks, history, parameters, XDMF index and plots", "[decks][drum]") {

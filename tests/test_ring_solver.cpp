@@ -56,7 +56,10 @@ struct InflatedTire {
 
   InflatedTire(int fixed, bool ring_solver, const char* tire_set = kTires[0], bool satellite = false) {
     tire = build_tire(model, macros::load_tire_parameters(tire_set), LoadFunction::table({{0.0, 0.0}, {1.0, 1.0}}));
-    if (satellite) this->satellite = hang_satellite(model, tire.tread_nodes[30]);
+    if (satellite) {
+      this->satellite = hang_satellite(model, tire.tread_nodes[30]);
+      model.fix(this->satellite, kRz);  // its translations only, as a contact node's
+    }
     model.condense_node(tire.spindle);
     for (int c = 0; c < kDofsPerNode; ++c) model.fix(tire.spindle, c);
     analysis = std::make_unique<Analysis>(model);

@@ -202,11 +202,13 @@ TEST_CASE("quarter car: static ride height is weight over stiffness, the tire ca
 
 TEST_CASE("quarter car: the wheel-hop frequency is that of the linearised two-mass system", "[vehicle][quarter]") {
   PressedTire tire;
-  // The tire's vertical stiffness k_t around the static load, from two quasi-static presses.
+  // The tire's vertical stiffness k_t at the static load: the static deflection from two
+  // quasi-static presses 10 mm apart, then the slope of two presses 2 mm either side of it.
   const double f1 = tire.press(0.010), f2 = tire.press(0.020);
-  const double k_tire = (f1 - f2) / 0.010;
   const double weight = (kBodyMass + kCarrierMass) * kGravity;
-  const double static_deflection = 0.010 + (weight + f1) / k_tire;
+  const double static_deflection = 0.010 + (weight + f1) / ((f1 - f2) / 0.010);
+  const double below = tire.press(static_deflection - 0.002), above = tire.press(static_deflection + 0.002);
+  const double k_tire = (below - above) / 0.004;
   tire.press(static_deflection - 0.001);  // let go 1 mm short of equilibrium: a small hop
   tire.drive(0.0);
   TireGroup tires({tire.spindle}, false);

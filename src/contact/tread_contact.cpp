@@ -42,8 +42,8 @@ void open_sample(const TreadSample& base, double step, TreadSample& trial) {
   trial.material = base.material;
   trial.shear = 0.0;
   trial.normal_force = trial.tangential_force = trial.sliding_velocity = 0.0;
-  trial.normal_dashpot = trial.tangential_dashpot = 0.0;
   trial.force.setZero();
+  trial.dashpot.setZero();
   trial.surface_power = 0.0;
   trial.surface_work = base.surface_work + 0.5 * step * base.surface_power;
   trial.dissipated = base.dissipated;
@@ -90,21 +90,27 @@ Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen
   const double k_t = share_ * rubber_.tangential_stiffness, c_t = damped ? share_ * rubber_.tangential_damping : 0.0;
   const double penetration = -p.gap;
   const double engaged = std::min(1.0, penetration / kDampingDepth);  // the dashpot's build-up (header)
-  const double normal_force = k_n * penetration - engaged * c_n * v_n;
+  const double closing = std::max(0.0, -v_n);                          // it acts while the rubber is compressed
+  const double normal_force = k_n * penetration + engaged * c_n * closing;
   const bool landing = base.state == ContactState::Open;  // sticks where it lands, unsheared
+  // The sample's travel relative to the surface in this step: from the material point where
+  // it was projected when the step began (none known for one that was far then).
+  const bool traced = !(base.gap > rubber_.search_distance);
   const Eigen::Vector2d travel =
-      landing ? Eigen::Vector2d::Zero() : Eigen::Vector2d(x - motion.to_space(base.material, pose));
+      traced ? Eigen::Vector2d(x - motion.to_space(base.material, pose)) : Eigen::Vector2d::Zero();
   if (!(penetration > 0.0 && normal_force > 0.0)) {
     // Clear of the surface, or leaving it faster than the rubber springs back: the layer's
-    // far side lifts off, and lands again where it next touches. A layer that was in
-    // contact lets go of what it stored, less the work the belt did on it meanwhile (the
-    // trapezoid of its forces; its dashpots take the rest).
+    // far side lifts off, and lands again where it next touches. Lifted off still
+    // compressed, the layer's dashpot takes what its spring still held; its dashpots' work
+    // over the step is the trapezoid's first half.
     open_sample(base, h, trial);
+    trial.material = motion.to_material(x, pose);
     if (!landing) {
-      const double before = -base.gap;
-      trial.dissipated += 0.5 * (k_n * before * before + k_t * base.shear * base.shear) +
-                          0.5 * base.normal_force * (std::max(0.0, penetration) - before) -
-                          0.5 * base.tangential_force * tau.dot(travel);
+      // What the layer's springs still held once the belt's work on them is taken (its
+      // shear's, and its compression's if it lifted off compressed) goes as it relaxes.
+      const double held = std::max(0.0, penetration);
+      trial.dissipated += 0.5 * k_n * held * held + 0.5 * k_t * base.shear * (base.shear + tau.dot(travel)) -
+                          0.5 * base.dashpot.dot(travel);
     }
     return Eigen::Vector2d::Zero();
   }
@@ -112,7 +118,7 @@ Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen
   // The rubber's shear d. Sticking, its rate is the sample's sliding velocity; sliding, the
   // layer relaxes toward the friction it carries, k_T d + c_T (d - d_n) / h = -t_T
   // (backward Euler: its own viscosity keeps acting while its far side slides).
-  const double trial_shear = landing ? 0.0 : base.shear + tau.dot(travel);
+  const double trial_shear = landing ? 0.0 : base.shear + tau.dot(travel);  // (a landing's base shear is 0)
   const double trial_traction = -k_t * trial_shear - c_t * v_t;
   const double limit = rubber_.friction * normal_force;
   const bool stick = rubber_.friction > 0.0 && std::abs(trial_traction) <= limit;
@@ -130,26 +136,26 @@ Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen
   trial.tangential_force = tangential_force;
   trial.sliding_velocity = v_t;
   trial.force = force;
-  trial.normal_dashpot = -engaged * c_n * v_n;
-  trial.tangential_dashpot = stick ? -c_t * v_t : -viscous * shear_step;
+  trial.dashpot = (engaged * c_n * closing) * nu + (stick ? -c_t * v_t : 0.0) * tau;
   trial.surface_power = force.dot(surface_velocity);
   trial.surface_work = base.surface_work + 0.5 * h * (base.surface_power + trial.surface_power);
-  // The dashpots' forces over the compression's and the travel's increments (sliding, the
-  // tangential one's c_T (d - d_n)^2 / h), and the friction over the slip.
-  const double compressed = penetration - std::max(0.0, -base.gap);
-  const double sheared = stick ? -0.5 * (base.tangential_dashpot + trial.tangential_dashpot) * tau.dot(travel)
-                               : viscous * shear_step * shear_step;
-  trial.dissipated = base.dissipated + 0.5 * (base.normal_dashpot + trial.normal_dashpot) * compressed + sheared +
-                     std::abs(tangential_force) * std::abs(trial_shear - shear);
+  // The dashpots' forces over the travel (sliding, the tangential one's c_T (d - d_n)^2 / h),
+  // and the friction over the slip.
+  // A sample that went on sliding the same way books the mean of its two frictions.
+  const bool slid_on = !stick && base.state == ContactState::Slip && base.tangential_force * tangential_force > 0.0;
+  const double friction = slid_on ? 0.5 * (std::abs(base.tangential_force) + limit) : limit;
+  trial.dissipated = base.dissipated - 0.5 * (base.dashpot + trial.dashpot).dot(travel) +
+                     (stick ? 0.0 : viscous * shear_step * shear_step + friction * std::abs(trial_shear - shear));
   if (!stiffness) return force;
 
   // -df/dx and -df/dv, f = t_N nu + t_T tau (header).
   const double b = p.normal_rate, spin = pose.spin;
   const Eigen::RowVector2d tau_t = tau.transpose(), nu_t = nu.transpose();
-  const double engaging = penetration < kDampingDepth ? -c_n * v_n / kDampingDepth : 0.0;  // of e c_N (-v_n), by -g
+  const double closing_rate = closing > 0.0 ? engaged * c_n : 0.0;                            // d(e c_N closing)/d(-v_n)
+  const double engaging = penetration < kDampingDepth ? c_n * closing / kDampingDepth : 0.0;  // of e c_N closing, by -g
   const Eigen::RowVector2d normal_by_x =
-      -(k_n + engaging) * nu_t + (engaged * c_n * (spin - b * v_t)) * tau_t;  // dt_N/dx
-  const Eigen::RowVector2d normal_by_v = -engaged * c_n * nu_t;                   // dt_N/dv
+      -(k_n + engaging) * nu_t + (closing_rate * (spin - b * v_t)) * tau_t;  // dt_N/dx
+  const Eigen::RowVector2d normal_by_v = -closing_rate * nu_t;               // dt_N/dv
   Eigen::RowVector2d tangential_by_x, tangential_by_v;
   if (stick) {
     const double shear_rate = landing ? 0.0 : k_t * (1.0 - b * nu.dot(travel));

@@ -45,9 +45,10 @@
 // Energy (EnergyBalance): the layer stores l_q (k_N g^2 + k_T d^2) / 2; a sample books,
 // per step of size h, the work the moving surface does on the tire, (P_n + P_n+1) h / 2
 // with P = f.v_surface; the dashpots' dissipation as the trapezoid of their forces over the
-// compression's and the travel's increments (as the integrator sums the work of forces;
-// sliding, the tangential one's l_q c_T (d - d_n)^2 / h); and the friction's, |t_T| |d* - d|,
-// the slip.
+// sample's travel relative to the surface, -(f_d,n + f_d,n+1)/2 . (x_q - Y), as the
+// integrator sums the work of forces (sliding, the tangential one's l_q c_T (d - d_n)^2 / h);
+// and the friction's, |t_T| |d* - d|, the slip. A sample that lets go of the surface
+// dissipates what its layer stored, less the work the belt did on it meanwhile.
 #pragma once
 
 #include <Eigen/Dense>
@@ -82,14 +83,13 @@ struct TreadRubber {
 struct TreadSample {
   Eigen::Vector2d force = Eigen::Vector2d::Zero();     // t_N nu + t_T tau on the tire [N]
   Eigen::Vector2d material = Eigen::Vector2d::Zero();  // X: where the sample is, in the surface's own frame [m]
+  Eigen::Vector2d dashpot = Eigen::Vector2d::Zero();   // the dashpots' share of the force, sticking [N]
   double shear = 0.0;                                  // d, the rubber's elastic shear [m]
   double coordinate = std::numeric_limits<double>::quiet_NaN();  // s at the last projection [m]
   double gap = std::numeric_limits<double>::infinity();          // [m]
   double normal_force = 0.0;                                     // t_N [N]
   double tangential_force = 0.0;                                 // t_T [N], along tau
   double sliding_velocity = 0.0;                                 // v_rel.tau [m/s]
-  double normal_dashpot = 0.0;                                   // the dashpot's share of t_N [N]
-  double tangential_dashpot = 0.0;                               // the dashpot's share of t_T [N]
   double surface_power = 0.0;                                    // f.v_surface [W]
   double surface_work = 0.0;                                     // booked since the start [J]
   double dissipated = 0.0;  // friction + dashpots, since the start [J]
@@ -101,7 +101,7 @@ static_assert(sizeof(TreadSample) == 16 * sizeof(double), "TreadSample must have
 class TreadContact : public KernelShape<2, std::array<TreadSample, 8>> {
  public:
   static constexpr int kSamples = 8;
-  static constexpr double kDampingDepth = 4.0e-3;          // d_0 [m]
+  static constexpr double kDampingDepth = 0.5e-3;          // d_0 [m]
   static constexpr bool kReadsAcceleration = false;        // massless
   static constexpr bool kReadsLastTrial = true;            // evaluate() writes every field of 'trial' (no copy of 'base')
   static constexpr bool kBooksEnergy = true;               // its dashpots and friction (energy())
