@@ -58,29 +58,44 @@ install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_
 
 
 # tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/coupling.md), self-
-# contained: the model description, the binary (the library's objects and the FMI
-# functions, nothing else exported) and resources/ with the tire property file and the
-# Lua modules. Its GUID is fixed by the version.
-string(UUID TIREFE_FMU_GUID NAMESPACE 6ba7b811-9dad-11d1-80b4-00c04fd430c8 NAME "tirefe_tire ${PROJECT_VERSION}" TYPE SHA1)
+# contained: the model description; binaries/linux64/ with the binary (the library's
+# objects, SuiteSparse linked in statically, and the FMI functions, nothing else exported)
+# and a copy of every other shared library it loads outside the C and C++ runtimes (Lua,
+# HDF5 and theirs; Debian's static Lua and HDF5 are not position-independent), found
+# through its RPATH $ORIGIN; resources/ with the tire property file, road files and the
+# Lua modules. Its GUID follows the version and the model description.
+file(SHA1 ${CMAKE_SOURCE_DIR}/cmake/modelDescription.xml.in TIREFE_FMU_DESCRIPTION_HASH)
+string(UUID TIREFE_FMU_GUID NAMESPACE 6ba7b811-9dad-11d1-80b4-00c04fd430c8
+       NAME "tirefe_tire ${PROJECT_VERSION} ${TIREFE_FMU_DESCRIPTION_HASH}" TYPE SHA1)
 set(TIREFE_FMU_GUID "{${TIREFE_FMU_GUID}}")
 set(TIREFE_FMU_DIR ${CMAKE_BINARY_DIR}/fmu/tirefe_tire)
 configure_file(cmake/modelDescription.xml.in ${TIREFE_FMU_DIR}/modelDescription.xml @ONLY)
-add_library(tirefe_fmu MODULE src/fmu/tirefe_fmu.cpp $<TARGET_OBJECTS:tirefe_objects>)
+set(TIREFE_FMU_STATIC_LIBRARIES)
+foreach(name klu amd colamd btf suitesparseconfig)  # in link order
+  find_library(TIREFE_STATIC_${name} lib${name}.a REQUIRED)
+  list(APPEND TIREFE_FMU_STATIC_LIBRARIES ${TIREFE_STATIC_${name}})
+endforeach()
+add_library(tirefe_fmu MODULE src/fmu/tirefe_fmu.cpp src/fmu/fmu_files.cpp $<TARGET_OBJECTS:tirefe_objects>)
 target_include_directories(tirefe_fmu PRIVATE src include)
 target_compile_definitions(tirefe_fmu PRIVATE TIREFE_FMU_GUID="${TIREFE_FMU_GUID}")
-target_link_libraries(tirefe_fmu PRIVATE ${TIREFE_DEPENDENCIES})
+target_link_libraries(tirefe_fmu PRIVATE Eigen3::Eigen PkgConfig::LUA PkgConfig::HDF5 ${TIREFE_FMU_STATIC_LIBRARIES}
+  Threads::Threads ${CMAKE_DL_LIBS})
 # Only the fmi2 functions are the FMU's interface: no C++ symbol may clash with a host's.
-target_link_options(tirefe_fmu PRIVATE -Wl,--exclude-libs,ALL
+target_link_options(tirefe_fmu PRIVATE -Wl,--exclude-libs,ALL -Wl,--as-needed -Wl,--disable-new-dtags
   -Wl,--version-script=${CMAKE_SOURCE_DIR}/src/fmu/fmi2_exports.map)
 set_target_properties(tirefe_fmu PROPERTIES OUTPUT_NAME tirefe_tire PREFIX ""
-  LIBRARY_OUTPUT_DIRECTORY ${TIREFE_FMU_DIR}/binaries/linux64)
+  LIBRARY_OUTPUT_DIRECTORY ${TIREFE_FMU_DIR}/binaries/linux64
+  BUILD_WITH_INSTALL_RPATH ON INSTALL_RPATH "$ORIGIN")
 add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/tirefe_tire.fmu
+  COMMAND ${CMAKE_COMMAND} -DBINARY=$<TARGET_FILE:tirefe_fmu> -P ${CMAKE_SOURCE_DIR}/cmake/bundle_libraries.cmake
   COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/lua ${TIREFE_FMU_DIR}/resources/lua
+  COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/inputs/roads ${TIREFE_FMU_DIR}/resources/roads
   COMMAND ${CMAKE_COMMAND} -E copy ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir ${TIREFE_FMU_DIR}/resources/145SR12.tir
   COMMAND ${CMAKE_COMMAND} -E tar cf ${CMAKE_BINARY_DIR}/tirefe_tire.fmu --format=zip
           modelDescription.xml binaries resources
   WORKING_DIRECTORY ${TIREFE_FMU_DIR}
   DEPENDS tirefe_fmu ${TIREFE_FMU_DIR}/modelDescription.xml ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir
+          ${CMAKE_SOURCE_DIR}/cmake/bundle_libraries.cmake
   COMMENT "Packing tirefe_tire.fmu")
 add_custom_target(tirefe_tire_fmu ALL DEPENDS ${CMAKE_BINARY_DIR}/tirefe_tire.fmu)
 install(FILES ${CMAKE_BINARY_DIR}/tirefe_tire.fmu DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe)
