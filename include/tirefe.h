@@ -168,10 +168,10 @@ tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motio
 tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
                                     tirefe_spindle_force* out);
 
-/* Advances the tire along 'path' in steps of its own, each committed as it converges: at
- * most max_step long (> 0), halved when one does not converge and grown back after easy
- * ones, the last landing on the end (the step control of docs/dynamics.md, at most 10
- * cuts). A pending trial step is forgotten first. TIREFE_STEP_FAILED when a step fails
+/* Advances the tire along 'path' in steps of its own, each committed as it converges:
+ * equal, at most max_step long (> 0), the last ending on the end; halved when one does not
+ * converge and grown back after easy ones (the step control of docs/dynamics.md, at most
+ * 10 cuts). A pending trial step is forgotten first. TIREFE_STEP_FAILED when a step fails
  * even at its smallest: the tire then stays at the last step it committed (report->time),
  * and the message says where along the stretch it stopped. 'report' may be NULL. */
 tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path, double max_step,

@@ -1,6 +1,6 @@
 /* The C API's stretches, starting press and roads (include/tirefe.h), checked from C:
- * tirefe_advance lands where and when asked, in the steps asked, and says where it stopped
- * when it cannot go on; a tire opened at start_z holds the static force of that press and
+ * tirefe_advance lands where and when asked, in equal steps of at most the size asked, and
+ * says where it stopped when it cannot go on; a tire opened at start_z holds the static force of that press and
  * keeps it while held there (the spindle handed over at rest); a road file's flat track is
  * the flat road, its hole is where the heading says; bad options are refused naming them.
  * Prints one line per failed check; exits 1 if any failed.
@@ -60,6 +60,36 @@ static void check_start_z(void) {
   snprintf(detail, sizeof detail, "|Fz - static| up to %.3g N", largest);
   check(largest < 1e-9 * expected, "held where it started, the force stays", detail);
   tirefe_close(tire);
+}
+
+/* 2.5 ms in steps of at most 1 ms: three equal steps (not 1, 1 and 0.5 ms: a change of
+ * step size sets a fast rolling tire's contact patch ringing), so the force of three
+ * tirefe_solve steps of 2.5/3 ms to the cubic's points (rest to rest: a smoothstep). */
+static void check_equal_steps(void) {
+  tirefe_tire* advanced = open_with(NULL);
+  tirefe_tire* stepped = open_with(NULL);
+  if (!advanced || !stepped) return;
+  const double depth = -1e-4, duration = 2.5e-3;
+  tirefe_advance_report report;
+  const tirefe_spindle_path path = {duration, {0.0, 0.0, 0.0}, {0.0, depth, 0.0}, {0.0, 0.0, 0.0}};
+  check(tirefe_advance(advanced, &path, 1e-3, &report) == TIREFE_OK && report.steps == 3, "three steps",
+        tirefe_message(advanced));
+  tirefe_spindle_force reply;
+  for (int k = 1; k <= 3; ++k) {
+    const double s = k / 3.0;
+    const tirefe_spindle_motion motion = {duration / 3.0, 0.0, depth * s * s * (3.0 - 2.0 * s), 0.0};
+    check(tirefe_solve(stepped, &motion, &reply) == TIREFE_OK && tirefe_commit(stepped) == TIREFE_OK,
+          "a third of the stretch", tirefe_message(stepped));
+  }
+  tirefe_spindle_state by_advance, by_steps;
+  tirefe_state(advanced, &by_advance);
+  tirefe_state(stepped, &by_steps);
+  char detail[128];
+  snprintf(detail, sizeof detail, "Fz %.17g N stretched, %.17g N stepped", by_advance.force[1], by_steps.force[1]);
+  check(fabs(by_advance.force[1] - by_steps.force[1]) < 1e-9 * fabs(by_steps.force[1]) && by_steps.force[1] != 0.0,
+        "the stretch's steps are equal", detail);
+  tirefe_close(advanced);
+  tirefe_close(stepped);
 }
 
 static void check_stretches(void) {
@@ -181,6 +211,7 @@ int main(int argc, char** argv) {
   }
   check_start_z();
   check_stretches();
+  check_equal_steps();
   check_roads(argv[1]);
   printf("%s\n", failures ? "C API stretches and roads: failed" : "C API stretches and roads: passed");
   return failures ? 1 : 0;

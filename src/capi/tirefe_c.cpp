@@ -42,7 +42,6 @@ struct tirefe_tire {
   tirefe::TireSpindle* spindle = nullptr;
   tirefe::Heading heading = tirefe::Heading::PlusX;  // of the wheel axes every value crosses the API in
   bool has_trial = false;                            // a solved step waits for commit or revert
-  tirefe::StepSizes path_steps{0.0, 0.0};            // of tirefe_advance, carried from stretch to stretch
   std::string message;
 };
 
@@ -514,9 +513,13 @@ tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path,
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's rates and end position must be finite");
     if (t.has_trial) t.spindle->revert();
     t.has_trial = false;
-    if (t.path_steps.nominal != max_step) t.path_steps = {max_step, max_step};
+    // Equal steps that end on the stretch's end: a step's size changing from one to the next
+    // sets the tire's contact patch ringing (rolling fast, its Fx), so every stretch starts
+    // afresh with them, only cut where they do not converge.
+    const double count = std::ceil(path->duration / max_step * (1.0 - 1e-12));
+    StepSizes sizes{path->duration / count, path->duration / count};
     SpindlePath stretch(t, *path);
-    StepController controller(t.path_steps);
+    StepController controller(sizes);
     tirefe_status status = TIREFE_OK;
     try {
       controller.advance_to(stretch, path->duration);
