@@ -6,7 +6,8 @@
 // steps and from the totals), and the cost of a C call that does no work (the lock and
 // the guard). The C++ and C tires are the same code in libtirefe.so and must agree bit
 // for bit, the C++ reaction seen in the C API's ISO wheel axes (heading +x); the FMU's (its
-// own copy of the code, its tire read from its property file, set to Newmark as the others)
+// own copy of the code, its tire read from its property file, set to Newmark and steps of
+// 1 ms as the others)
 // is compared too: its inputs are the start of each step and the rate that ends it where
 // the others are put, so that its one step of the communication step is theirs (to the
 // round-off of its step size, which it takes from its master's times).
@@ -57,10 +58,10 @@ class FmuTire {
     static const fmi2CallbackFunctions callbacks = {nullptr, std::calloc, std::free, nullptr, nullptr};
     component_ = instantiate_("bench", fmi2CoSimulation, TIREFE_FMU_GUID, "file://" TIREFE_FMU_RESOURCES, &callbacks,
                               fmi2False, fmi2False);
-    static const fmi2ValueReference hht_alpha[] = {13};
-    static const fmi2Real newmark[] = {0.0};
+    static const fmi2ValueReference hht_alpha_max_step[] = {13, 15};
+    static const fmi2Real newmark_1ms[] = {0.0, 1e-3};
     if (!component_ || setup_(component_, fmi2False, 0.0, 0.0, fmi2False, 0.0) != fmi2OK ||
-        set_real_(component_, hht_alpha, 1, newmark) != fmi2OK || enter_(component_) != fmi2OK ||
+        set_real_(component_, hht_alpha_max_step, 2, newmark_1ms) != fmi2OK || enter_(component_) != fmi2OK ||
         exit_(component_) != fmi2OK)
       throw std::runtime_error("cannot initialize the FMU");
   }

@@ -66,7 +66,7 @@ const char* phase_name(Phase phase) {
 struct Parameters {
   std::string tire = "145SR12.tir", road, road_track, tire_parameters;
   double pressure = 0.0;  // 0: the tire file's
-  double friction = 0.8, hht_alpha = -0.1, max_step = 1e-3, road_edge_radius = 0.0;
+  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0;
   bool free_spin = true;
 };
 
