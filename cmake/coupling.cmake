@@ -146,7 +146,10 @@ if(pybind11_FOUND)
   install(DIRECTORY ${TIREFE_DIST_INFO_DIR} DESTINATION ${TIREFE_INSTALL_PYTHON_DIR})
   install(CODE "execute_process(COMMAND ${PYTHON_EXECUTABLE} ${CMAKE_SOURCE_DIR}/cmake/write_record.py
     \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${TIREFE_INSTALL_PYTHON_DIR}\" ${TIREFE_DIST_INFO} tirefe
-    COMMAND_ERROR_IS_FATAL ANY)")
+    RESULT_VARIABLE failed)
+  if(failed)
+    message(FATAL_ERROR \"cannot write the RECORD of ${TIREFE_DIST_INFO}\")
+  endif()")
 endif()
 
 # The cost of the C API and the FMU over the C++ interface (docs/coupling.md).

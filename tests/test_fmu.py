@@ -246,6 +246,19 @@ def test_road_file(folder):
     assert np.abs(left["Fz"] - flat["Fz"]).max() > 100.0  # the hole unloads the wheel
 
 
+def test_the_rolling_bench_runs_as_documented(folder):
+    """bench/fmu_rolling.py as docs/coupling.md runs it, shortened: a slow roll onto the cleat
+    at two communication steps prints its table, every run getting through."""
+    run = subprocess.run([sys.executable, os.path.join(SOURCE, "bench/fmu_rolling.py"), unpacked(folder),
+                          os.environ["FMI_MASTER"], os.environ["TIREFE_PYTHON"], "--speed", "1", "--ramp", "0.1",
+                          "--cruise", "0.1", "--cleat", "--start-x", "-0.2", "--steps", "1,10"],
+                         capture_output=True, text=True, timeout=200)
+    assert run.returncode == 0, run.stderr
+    rows = [line for line in run.stdout.splitlines() if re.match(r"\| (1|10) ms \|", line)]
+    assert len(rows) == 2 and not any("discarded" in row for row in rows), run.stdout
+    assert "on the cleat from x = -0.2 m" in run.stdout, run.stdout
+
+
 def test_python_driver(folder):
     """tirefe.Fmu loads the archive and steps it through the same FMI calls: the master's
     outputs bit for bit; its errors are FmuError with what the FMU logged."""
