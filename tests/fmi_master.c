@@ -173,6 +173,7 @@ static void read_inputs(const char* path, const Description* description, Inputs
     ++inputs->count;
   }
   if (inputs->count == 0) fail(2, "%s: no rows", path);
+  free(text);
 }
 
 /* The input of column c at time t: linear between rows, held outside them. */
