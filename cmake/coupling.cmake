@@ -58,47 +58,98 @@ install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_
 
 
 # tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/coupling.md), self-
-# contained: the model description, the binary (the library's objects and the FMI
-# functions, nothing else exported) and resources/ with the tire property file and the
-# Lua modules. Its GUID is fixed by the version.
-string(UUID TIREFE_FMU_GUID NAMESPACE 6ba7b811-9dad-11d1-80b4-00c04fd430c8 NAME "tirefe_tire ${PROJECT_VERSION}" TYPE SHA1)
+# contained: the model description; binaries/linux64/ with the binary (the library's
+# objects, SuiteSparse linked in statically, and the FMI functions, nothing else exported)
+# and a copy of every other shared library it loads outside the C and C++ runtimes (Lua,
+# HDF5 and theirs; Debian's static Lua and HDF5 are not position-independent), found
+# through its RPATH $ORIGIN; resources/ with the tire property file, road files and the
+# Lua modules. Its GUID follows the version and the model description.
+file(SHA1 ${CMAKE_SOURCE_DIR}/cmake/modelDescription.xml.in TIREFE_FMU_DESCRIPTION_HASH)
+string(UUID TIREFE_FMU_GUID NAMESPACE 6ba7b811-9dad-11d1-80b4-00c04fd430c8
+       NAME "tirefe_tire ${PROJECT_VERSION} ${TIREFE_FMU_DESCRIPTION_HASH}" TYPE SHA1)
 set(TIREFE_FMU_GUID "{${TIREFE_FMU_GUID}}")
 set(TIREFE_FMU_DIR ${CMAKE_BINARY_DIR}/fmu/tirefe_tire)
 configure_file(cmake/modelDescription.xml.in ${TIREFE_FMU_DIR}/modelDescription.xml @ONLY)
-add_library(tirefe_fmu MODULE src/fmu/tirefe_fmu.cpp $<TARGET_OBJECTS:tirefe_objects>)
+set(TIREFE_FMU_STATIC_LIBRARIES)
+foreach(name klu amd colamd btf suitesparseconfig)  # in link order
+  find_library(TIREFE_STATIC_${name} lib${name}.a REQUIRED)
+  list(APPEND TIREFE_FMU_STATIC_LIBRARIES ${TIREFE_STATIC_${name}})
+endforeach()
+add_library(tirefe_fmu MODULE src/fmu/tirefe_fmu.cpp src/fmu/fmu_files.cpp $<TARGET_OBJECTS:tirefe_objects>)
 target_include_directories(tirefe_fmu PRIVATE src include)
 target_compile_definitions(tirefe_fmu PRIVATE TIREFE_FMU_GUID="${TIREFE_FMU_GUID}")
-target_link_libraries(tirefe_fmu PRIVATE ${TIREFE_DEPENDENCIES})
+target_link_libraries(tirefe_fmu PRIVATE Eigen3::Eigen PkgConfig::LUA PkgConfig::HDF5 ${TIREFE_FMU_STATIC_LIBRARIES}
+  Threads::Threads ${CMAKE_DL_LIBS})
 # Only the fmi2 functions are the FMU's interface: no C++ symbol may clash with a host's.
-target_link_options(tirefe_fmu PRIVATE -Wl,--exclude-libs,ALL
+target_link_options(tirefe_fmu PRIVATE -Wl,--exclude-libs,ALL -Wl,--as-needed -Wl,--disable-new-dtags
   -Wl,--version-script=${CMAKE_SOURCE_DIR}/src/fmu/fmi2_exports.map)
 set_target_properties(tirefe_fmu PROPERTIES OUTPUT_NAME tirefe_tire PREFIX ""
-  LIBRARY_OUTPUT_DIRECTORY ${TIREFE_FMU_DIR}/binaries/linux64)
+  LIBRARY_OUTPUT_DIRECTORY ${TIREFE_FMU_DIR}/binaries/linux64
+  BUILD_WITH_INSTALL_RPATH ON INSTALL_RPATH "$ORIGIN")
 add_custom_command(OUTPUT ${CMAKE_BINARY_DIR}/tirefe_tire.fmu
+  COMMAND ${CMAKE_COMMAND} -DBINARY=$<TARGET_FILE:tirefe_fmu> -P ${CMAKE_SOURCE_DIR}/cmake/bundle_libraries.cmake
   COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/lua ${TIREFE_FMU_DIR}/resources/lua
+  COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/inputs/roads ${TIREFE_FMU_DIR}/resources/roads
   COMMAND ${CMAKE_COMMAND} -E copy ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir ${TIREFE_FMU_DIR}/resources/145SR12.tir
   COMMAND ${CMAKE_COMMAND} -E tar cf ${CMAKE_BINARY_DIR}/tirefe_tire.fmu --format=zip
           modelDescription.xml binaries resources
   WORKING_DIRECTORY ${TIREFE_FMU_DIR}
   DEPENDS tirefe_fmu ${TIREFE_FMU_DIR}/modelDescription.xml ${CMAKE_SOURCE_DIR}/inputs/tires/145SR12.tir
+          ${CMAKE_SOURCE_DIR}/cmake/bundle_libraries.cmake
   COMMENT "Packing tirefe_tire.fmu")
 add_custom_target(tirefe_tire_fmu ALL DEPENDS ${CMAKE_BINARY_DIR}/tirefe_tire.fmu)
 install(FILES ${CMAKE_BINARY_DIR}/tirefe_tire.fmu DESTINATION ${CMAKE_INSTALL_DATADIR}/tirefe)
 
-# The Python module `import tirefe` (pybind11, Debian's pybind11-dev), over libtirefe.so;
-# built when pybind11 is found. Installed next to the library, found from there.
+# The Python package `import tirefe` (pybind11 over libtirefe.so, Debian's pybind11-dev;
+# built when pybind11 is found): tirefe/ with its compiled part _core, its Python part and
+# type stubs (src/python/tirefe), and the distribution's metadata (numpy required). It is
+# installed where Debian's python3 looks for a prefix's packages,
+# <prefix>/lib/python3.X/dist-packages (for /usr/local and /usr alike), and finds the
+# library from there. In the build tree it is build/python/tirefe.
 if(NOT PYTHON_EXECUTABLE AND EXISTS /usr/bin/python3)
   set(PYTHON_EXECUTABLE /usr/bin/python3)  # Debian's, with numpy (the Python tests name it too)
 endif()
 find_package(pybind11 2.6 CONFIG QUIET)
 if(pybind11_FOUND)
+  execute_process(COMMAND ${PYTHON_EXECUTABLE} -c "import sys; print('%d.%d' % sys.version_info[:2])"
+    OUTPUT_VARIABLE TIREFE_PYTHON_MINOR OUTPUT_STRIP_TRAILING_WHITESPACE)
+  set(TIREFE_INSTALL_PYTHON_DIR lib/python${TIREFE_PYTHON_MINOR}/dist-packages)
+  # PEP 440: the release, and the commit as a local version label (as tirefe.__version__).
+  set(TIREFE_PYTHON_VERSION ${PROJECT_VERSION})
+  if(NOT TIREFE_GIT_COMMIT STREQUAL "unknown")
+    set(TIREFE_PYTHON_VERSION "${PROJECT_VERSION}+g${TIREFE_GIT_COMMIT}")
+  endif()
+  set(TIREFE_DIST_INFO tirefe-${TIREFE_PYTHON_VERSION}.dist-info)
   pybind11_add_module(tirefe_python MODULE NO_EXTRAS src/python/tirefe_module.cpp)
   target_include_directories(tirefe_python PRIVATE src ${CMAKE_BINARY_DIR}/generated ${KLU_INCLUDE_DIR})
-  target_link_libraries(tirefe_python PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA)
-  set_target_properties(tirefe_python PROPERTIES OUTPUT_NAME tirefe
-    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/python INSTALL_RPATH "$ORIGIN/../..")
-  set(TIREFE_INSTALL_PYTHON_DIR ${CMAKE_INSTALL_LIBDIR}/python3/dist-packages)
-  install(TARGETS tirefe_python LIBRARY DESTINATION ${TIREFE_INSTALL_PYTHON_DIR})
+  target_link_libraries(tirefe_python PRIVATE tirefe::tirefe Eigen3::Eigen PkgConfig::LUA ${CMAKE_DL_LIBS})
+  file(RELATIVE_PATH TIREFE_PYTHON_TO_LIBDIR ${CMAKE_INSTALL_PREFIX}/${TIREFE_INSTALL_PYTHON_DIR}/tirefe
+       ${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR})
+  set_target_properties(tirefe_python PROPERTIES OUTPUT_NAME _core
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/python/tirefe INSTALL_RPATH "$ORIGIN/${TIREFE_PYTHON_TO_LIBDIR}")
+  file(GLOB TIREFE_PYTHON_FILES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/src/python/tirefe/*)
+  foreach(file ${TIREFE_PYTHON_FILES})
+    get_filename_component(name ${file} NAME)
+    configure_file(${file} ${CMAKE_BINARY_DIR}/python/tirefe/${name} COPYONLY)
+  endforeach()
+  set(TIREFE_DIST_INFO_DIR ${CMAKE_BINARY_DIR}/python/${TIREFE_DIST_INFO})
+  file(GLOB TIREFE_OLD_DIST_INFO LIST_DIRECTORIES true ${CMAKE_BINARY_DIR}/python/tirefe-*.dist-info)
+  list(REMOVE_ITEM TIREFE_OLD_DIST_INFO ${TIREFE_DIST_INFO_DIR})
+  if(TIREFE_OLD_DIST_INFO)
+    file(REMOVE_RECURSE ${TIREFE_OLD_DIST_INFO})  # of an earlier commit
+  endif()
+  configure_file(cmake/python_METADATA.in ${TIREFE_DIST_INFO_DIR}/METADATA @ONLY)
+  file(WRITE ${TIREFE_DIST_INFO_DIR}/INSTALLER "cmake\n")
+  file(WRITE ${TIREFE_DIST_INFO_DIR}/top_level.txt "tirefe\n")
+  install(TARGETS tirefe_python LIBRARY DESTINATION ${TIREFE_INSTALL_PYTHON_DIR}/tirefe)
+  install(FILES ${TIREFE_PYTHON_FILES} DESTINATION ${TIREFE_INSTALL_PYTHON_DIR}/tirefe)
+  install(DIRECTORY ${TIREFE_DIST_INFO_DIR} DESTINATION ${TIREFE_INSTALL_PYTHON_DIR})
+  install(CODE "execute_process(COMMAND ${PYTHON_EXECUTABLE} ${CMAKE_SOURCE_DIR}/cmake/write_record.py
+    \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${TIREFE_INSTALL_PYTHON_DIR}\" ${TIREFE_DIST_INFO} tirefe
+    RESULT_VARIABLE failed)
+  if(failed)
+    message(FATAL_ERROR \"cannot write the RECORD of ${TIREFE_DIST_INFO}\")
+  endif()")
 endif()
 
 # The cost of the C API and the FMU over the C++ interface (docs/coupling.md).

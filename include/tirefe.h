@@ -53,12 +53,20 @@ typedef struct tirefe_parameter {
 
 /* How the tire is set up. Fill with tirefe_default_options, then change fields. */
 typedef struct tirefe_options {
-  double friction;  /* Coulomb friction coefficient between tread and road (default 0.8) */
-  double hht_alpha; /* the tire's time integrator: 0 Newmark average acceleration (default),
-                       in [-1/3, 0) HHT-alpha; the host should integrate with the same scheme */
-  int free_spin;    /* 1 (default): the wheel turns freely on its bearing (the tire solves the
-                       spin, My = 0); 0: the host gives the spin angle and gets the drive torque */
-  int heading;      /* +1 (default): the wheel heads along +x of the tire's plane; -1: along -x */
+  double friction;         /* Coulomb friction coefficient between tread and road (default 0.8) */
+  double hht_alpha;        /* the tire's time integrator: 0 Newmark average acceleration (default),
+                              in [-1/3, 0) HHT-alpha; the host should integrate with the same scheme */
+  int free_spin;           /* 1 (default): the wheel turns freely on its bearing (the tire solves the
+                              spin, My = 0); 0: the host gives the spin angle and gets the drive torque */
+  int heading;             /* +1 (default): the wheel heads along +x of the tire's plane; -1: along -x */
+  const char* road;        /* NULL (default): a flat road. Else a road file (docs/contact.md): a road data file
+                              (.rdf, a flat or profile road) or a CSV profile (.csv), its x along the heading and
+                              its height 0 at the level the tire touches with the spindle at z = 0 */
+  const char* road_track;  /* "left" or "right": the track of a file with two (NULL: its only one) */
+  double road_start;       /* where the road file's x = 0 lies along the heading [m] (default 0) */
+  double road_edge_radius; /* rounding of the road's convex corners [m] (default 0) */
+  double start_z;          /* where the host takes the spindle over: the tire is pressed quasi-statically from
+                              touching the road to this height [m] (default 0), its spin and x as built */
 } tirefe_options;
 
 /* The spindle at the end of the step to solve: the step h from the committed time and
@@ -80,6 +88,27 @@ typedef struct tirefe_spindle_force {
   double time;           /* at the end of the solved step [s] */
   int newton_iterations; /* of the tire, this call */
 } tirefe_spindle_force;
+
+/* A stretch of steps for tirefe_advance: the spindle moves from its committed position,
+ * with the rates 'start_velocity', to 'position' with 'velocity' at the end of 'duration',
+ * along the cubic in time that meets both ends. Start a stretch with the rates the one
+ * before ended with, so that the spindle's path has no kink where they meet (the tire's
+ * own spindle velocity, tirefe_state's, carries its integrator's ringing, which a path
+ * starting from it would feed back). */
+typedef struct tirefe_spindle_path {
+  double duration;          /* from the committed time [s] */
+  double start_velocity[3]; /* rates of x, z, spin at the start [m/s, m/s, rad/s] */
+  double position[3];       /* x [m], z [m], spin [rad] at the end (spin ignored when free) */
+  double velocity[3];       /* their rates at the end */
+} tirefe_spindle_path;
+
+/* How a stretch went. */
+typedef struct tirefe_advance_report {
+  double time;           /* the committed time when tirefe_advance returned [s] */
+  int steps;             /* steps taken and committed */
+  int cuts;              /* tries that did not converge */
+  int newton_iterations; /* of the steps taken */
+} tirefe_advance_report;
 
 /* The committed state of the spindle. */
 typedef struct tirefe_spindle_state {
@@ -138,6 +167,15 @@ tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motio
  * Jacobian is with respect to the velocities (H beta h / gamma). */
 tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
                                     tirefe_spindle_force* out);
+
+/* Advances the tire along 'path' in steps of its own, each committed as it converges:
+ * equal, at most max_step long (> 0), the last ending on the end; halved when one does not
+ * converge and grown back after easy ones (the step control of docs/dynamics.md, at most
+ * 10 cuts). A pending trial step is forgotten first. TIREFE_STEP_FAILED when a step fails
+ * even at its smallest: the tire then stays at the last step it committed (report->time),
+ * and the message says where along the stretch it stopped. 'report' may be NULL. */
+tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path, double max_step,
+                             tirefe_advance_report* report);
 
 /* Accepts the last solved trial step: the tire advances to it. */
 tirefe_status tirefe_commit(tirefe_tire* tire);

@@ -4,8 +4,8 @@ shape at a few field frames. PNG files are written next to the HDF5 file.
 
     python3 post/plot_results.py results/run.h5
 """
+import argparse
 import os
-import sys
 
 import h5py
 import matplotlib
@@ -68,11 +68,15 @@ def plot_shapes(result, stem, frames=5):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    path = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("result", help="a tirefe result file (.h5)")
+    path = parser.parse_args().result
     stem = os.path.splitext(path)[0]
-    with h5py.File(path, "r") as result:
+    try:
+        result = h5py.File(path, "r")
+    except OSError as error:
+        parser.error(f"{path}: not a readable HDF5 result file ({error})")
+    with result:
         for written in (plot_history(result, stem), plot_shapes(result, stem)):
             if written:
                 print(f"wrote {written}")

@@ -121,7 +121,7 @@ static int check_quoted_sources(const std::string& doc) {
 
 TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs]") {
   CHECK(check_quoted_sources("docs/coupling.md") ==
-        4);  // the consumer project, the C and Python quarter cars, the k_sw fit
+        5);  // the consumer project, the C and Python quarter cars, the k_sw fit, the FMU's check
 }
 
 TEST_CASE("the C++ host quoted in docs/spindle.md is the built and tested file", "[docs]") {

@@ -6,7 +6,11 @@ library, through TIREFE_LUA_PATH, and a clear error when they are missing.
 
     test_install.py TIREFE    (the build tree's tirefe; PRESS_TIRE names its press_tire)
 """
+import base64
+import glob
+import hashlib
 import os
+import re
 import shutil
 import subprocess
 
@@ -86,13 +90,18 @@ def test_moved_prefix(folder):
     assert installed.stdout.startswith("tirefe "), installed.stdout
 
 
+def installed_packages(prefix):
+    """The folder of the installed tirefe package under 'prefix' (lib/python3.X/dist-packages)."""
+    found = glob.glob(os.path.join(prefix, "lib", "python3*", "dist-packages", "tirefe", "__init__.py"))
+    assert len(found) == 1, found
+    return os.path.dirname(os.path.dirname(found[0]))
+
+
 def test_python_module(folder):
-    """The installed module imports from the moved prefix and finds its library and modules."""
-    moved = os.path.join(folder, "moved")
-    packages = os.path.join(moved, "lib/python3/dist-packages")
+    """The installed package imports from the moved prefix and finds its library and modules."""
     if not os.path.isdir(os.path.join(os.path.dirname(TIREFE), "python")):
         return  # built without pybind11
-    env = dict(os.environ, PYTHONPATH=packages)
+    env = dict(os.environ, PYTHONPATH=installed_packages(os.path.join(folder, "moved")))
     env.pop("TIREFE_LUA_PATH", None)
     script = ("import tirefe\n"
               "t = tirefe.Tire('tires.145SR12', {'pressure': 180e3})\n"
@@ -102,6 +111,39 @@ def test_python_module(folder):
               "    t.commit()\n"
               "print(f'Fz {f[1]!r}\\nH_zz {j[1, 1]!r}')\n")
     check_same(run(["/usr/bin/python3", "-c", script], env=env).stdout, reference())
+
+
+def test_python_package_where_debian_looks(folder):
+    """`cmake --install` with the prefixes Debian's python3 knows (/usr/local, the default,
+    and /usr; staged with DESTDIR) puts the package into a folder of its site.getsitepackages(),
+    with the distribution's metadata (the PEP 440 version of tirefe.__version__, numpy
+    required, a RECORD of every file with its sha256), type stubs and py.typed."""
+    if not os.path.isdir(os.path.join(os.path.dirname(TIREFE), "python")):
+        return  # built without pybind11
+    site = run(["/usr/bin/python3", "-c", "import site; print('\\n'.join(site.getsitepackages()))"]).stdout.split()
+    for prefix in ("/usr/local", "/usr"):
+        stage = os.path.join(folder, "stage" + prefix.replace("/", "_"))
+        run(["cmake", "--install", os.path.dirname(TIREFE), "--prefix", prefix], env=dict(os.environ, DESTDIR=stage))
+        packages = installed_packages(stage + prefix)
+        assert packages[len(stage):] in site, (packages[len(stage):], site)
+        for name in ("__init__.py", "fmu.py", "_core.pyi", "py.typed"):
+            assert os.path.isfile(os.path.join(packages, "tirefe", name)), name
+        env = dict(os.environ, PYTHONPATH=packages)
+        env.pop("TIREFE_LUA_PATH", None)
+        script = ("import importlib.metadata as m, tirefe\n"
+                  "print(tirefe.__version__, m.version('tirefe'), m.requires('tirefe'))\n"
+                  "print(tirefe.static_forces('tires.145SR12', {}, [0.01])[0])\n"
+                  "for f in m.files('tirefe'): print('file', f, f.hash.value if f.hash else '-')\n")
+        lines = run(["/usr/bin/python3", "-c", script], env=env).stdout.splitlines()
+        version, metadata_version, requires = lines[0].split(" ", 2)
+        assert version == metadata_version and requires == "['numpy']", lines[0]
+        assert re.fullmatch(r"\d+(\.\d+)*(\+g[0-9a-f]+)?", version), version  # PEP 440, a local label
+        assert 1000 < float(lines[1]) < 2500, lines[1]  # 10 mm: about 1.7 kN
+        recorded = {line.split()[1]: line.split()[2] for line in lines[2:]}
+        assert "tirefe/_core.pyi" in recorded and any(f.startswith("tirefe/_core.cpython") for f in recorded), recorded
+        with open(os.path.join(packages, "tirefe", "fmu.py"), "rb") as f:
+            digest = base64.urlsafe_b64encode(hashlib.sha256(f.read()).digest()).rstrip(b"=").decode()
+        assert recorded["tirefe/fmu.py"] == digest, recorded["tirefe/fmu.py"]
 
 
 def test_lua_path(folder):

@@ -1,14 +1,22 @@
-"""The Python module (import tirefe): the quarter car of examples/quarter_car_drop.py gives
-the C host's numbers digit for digit; tirefe.Tire's arrays, revert and errors; a deck
-run with parameters from Python, its /results read back with h5py; the k_sw fit of
-examples/fit_ksw.py (scipy) against the deck's own fit.
+"""The Python package (import tirefe): the quarter car of examples/quarter_car_drop.py gives
+the C host's numbers digit for digit; tirefe.Tire's arrays, revert, advance and errors
+(with their messages, also for a tire used wrongly); a deck run with parameters from Python,
+its /results read back with h5py, its files its own, Ctrl-C handed back to Python; the static
+curve stopped by Ctrl-C; help texts, stubs and version; the k_sw fit of examples/fit_ksw.py
+(scipy) against the deck's own fit.
 
-    test_python.py MODULE_DIR    (QUARTER_CAR_DROP names the C host, TIREFE_BINARY tirefe)
+    test_python.py PACKAGES_DIR    (QUARTER_CAR_DROP names the C host, TIREFE_BINARY tirefe)
 """
+import ast
 import os
+import pydoc
+import re
 import shutil
+import signal
 import subprocess
 import sys
+import threading
+import time
 
 import h5py
 import numpy as np
@@ -65,8 +73,59 @@ def test_tire_class(folder):
     try:
         tirefe.Tire("tires.145SR12", {"k_sww": 1.0})
         raise AssertionError("a misspelt parameter was taken")
-    except RuntimeError as error:
-        assert "k_sww" in str(error), error
+    except tirefe.ModelError as error:
+        assert isinstance(error, RuntimeError) and "k_sww" in str(error), error
+
+
+def test_errors_say_why(folder):
+    """A commit without a trial says so (the message was read before the call that wrote
+    it: freed memory, RuntimeError('-')); a Tire whose __init__ never ran raises instead of
+    crashing; a closed one says it is closed."""
+    tirefe = module()
+    with tirefe.Tire("tires.145SR12") as tire:
+        tire.solve(1e-3, 0.0, -1e-4)
+        tire.commit()
+        for _ in range(2):
+            try:
+                tire.commit()
+                raise AssertionError("a commit without a trial step was taken")
+            except RuntimeError as error:
+                assert str(error) == "tirefe_commit: no solved trial step to accept", repr(str(error))
+    try:
+        tire.solve(1e-3, 0.0, 0.0)
+        raise AssertionError("a closed tire solved")
+    except ValueError as error:
+        assert "closed" in str(error), error
+    blank = tirefe.Tire.__new__(tirefe.Tire)
+    for call in (lambda: blank.solve(1e-3, 0.0, 0.0), blank.commit, blank.state, blank.close):
+        try:
+            call()
+            raise AssertionError("an uninitialized Tire was used")
+        except TypeError as error:
+            assert "not initialized" in str(error) and "tirefe.Tire(" in str(error), error
+
+
+def test_advance_in_steps_of_its_own(folder):
+    """Tire.advance: a smooth 5 mm press (0.2 s) along cubic stretches of one step each ends
+    where asked, with the force of the same tire stepped through solve to the stretches'
+    ends (the same equations: to round-off); in steps of at most 1 ms, a 10 ms stretch takes
+    ten steps."""
+    tirefe = module()
+    stepped, advanced = tirefe.Tire("tires.145SR12"), tirefe.Tire("tires.145SR12")
+    report, rate = {}, 0.0
+    for k in range(1, 11):
+        s = k / 10
+        z, end_rate = -5e-3 * s * s * (3 - 2 * s), -5e-3 * 6 * s * (1 - s) / 0.2
+        stepped.solve(0.02, 0.0, z)
+        stepped.commit()
+        report = advanced.advance(0.02, [0.0, rate, 0.0], [0.0, z, 0.0], [0.0, end_rate, 0.0], 0.02)
+        rate = end_rate
+    assert report["steps"] == 1 and report["cuts"] == 0, report
+    assert abs(advanced.state()["position"][1] + 5e-3) < 1e-15, advanced.state()
+    load = stepped.state()["force"][1]
+    assert 500 < load < 1500 and abs(advanced.state()["force"][1] - load) < 1e-9 * load, (advanced.state(), load)
+    report = advanced.advance(0.01, [0.0, 0.0, 0.0], [0.0, -5e-3, 0.0], [0.0, 0.0, 0.0], 1e-3)
+    assert report["steps"] == 10 and report["time"] == advanced.state()["time"], report
 
 
 def test_run_deck(folder):
@@ -83,6 +142,86 @@ def test_run_deck(folder):
         assert results["/history/time"][-1] > 1.5
     bad = tirefe.run_deck(deck, {"no_such_parameter": 1}, os.path.join(folder, "out"))
     assert bad["status"] == 1 and "no_such_parameter" in bad["error"], bad
+
+
+def test_run_deck_lists_its_own_files(folder):
+    """An .h5 file written into the output folder just before the run, and not by it, is
+    not one of its files."""
+    tirefe = module()
+    output = os.path.join(folder, "own")
+    os.makedirs(output)
+    with h5py.File(os.path.join(output, "other.h5"), "w") as other:
+        other["x"] = [1.0]
+    run = tirefe.run_deck(os.path.join(SOURCE, "tests/xdmf_deck.lua"), {"end_time": 1.55}, output)
+    assert run["status"] == 0 and [os.path.basename(f) for f in run["files"]] == ["xdmf.h5"], run
+
+
+def test_ctrl_c_after_and_during_a_deck(folder):
+    """After a deck, Ctrl-C raises KeyboardInterrupt again (the run's handlers are gone); one
+    during a deck stops it after its step, its file closed and readable, and raises
+    KeyboardInterrupt; the next deck runs to its end."""
+    tirefe = module()
+    deck = os.path.join(SOURCE, "tests/xdmf_deck.lua")
+    output = os.path.join(folder, "signals")
+    assert tirefe.run_deck(deck, {"end_time": 1.55}, output)["status"] == 0
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    try:
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(1)
+        raise AssertionError("Ctrl-C after a deck raised nothing")
+    except KeyboardInterrupt:
+        pass
+    # From another process: run_deck holds the GIL, so no Python thread of this one runs.
+    interrupter = subprocess.Popen(["sh", "-c", f"sleep 1; kill -INT {os.getpid()}"])
+    started = time.monotonic()
+    try:
+        tirefe.run_deck(deck, {"end_time": 100.0}, output)
+        raise AssertionError("Ctrl-C during a deck raised nothing")
+    except KeyboardInterrupt:
+        pass
+    finally:
+        interrupter.wait()
+    assert time.monotonic() - started < 10  # the whole run takes half a minute
+    with h5py.File(os.path.join(output, "xdmf.h5"), "r") as results:
+        assert 1.0 < results["/history/time"][-1] < 50.0, results["/history/time"][-1]
+    again = tirefe.run_deck(deck, {"end_time": 1.55}, output)
+    assert again["status"] == 0, again
+
+
+def test_static_forces_stop_for_ctrl_c(folder):
+    """A million presses (half an hour) stop within seconds of Ctrl-C."""
+    tirefe = module()
+    timer = threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    started = time.monotonic()
+    try:
+        tirefe.static_forces("tires.145SR12", {}, [0.01] * 1000000)
+        raise AssertionError("a million presses ended before Ctrl-C")
+    except KeyboardInterrupt:
+        pass
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 10, time.monotonic() - started
+
+
+def test_help_stubs_and_version(folder):
+    """help() describes every call with its arguments; the stubs (_core.pyi) name every public
+    name of the compiled part and parse; __version__ is PEP 440 (a release and the commit as
+    a local label)."""
+    tirefe = module()
+    text = pydoc.render_doc(tirefe.Tire, renderer=pydoc.plaintext)
+    for words in ("solve(self: tirefe._core.Tire, time_step: float", "advance(", "StepFailed", "ISO 8855"):
+        assert words in text, words
+    assert "Fmu" in pydoc.render_doc(tirefe, renderer=pydoc.plaintext)
+    assert "start-of-step" in (tirefe.Fmu.step.__doc__ or "")
+    with open(os.path.join(TIREFE, "tirefe", "_core.pyi")) as f:
+        stubs = ast.parse(f.read())
+    stubbed = {node.name for node in stubs.body if isinstance(node, (ast.ClassDef, ast.FunctionDef))}
+    stubbed |= {node.target.id for node in stubs.body if isinstance(node, ast.AnnAssign)}
+    public = {name for name in dir(tirefe._core) if not name.startswith("_")} | {"__version__"}
+    assert public <= stubbed, public - stubbed
+    assert os.path.isfile(os.path.join(TIREFE, "tirefe", "py.typed"))
+    assert re.fullmatch(r"\d+\.\d+\.\d+(\+g[0-9a-f]+)?", tirefe.__version__), tirefe.__version__
 
 
 def test_headings_alike(folder):

@@ -99,6 +99,23 @@ def test_meshio_reads_the_finished_run(folder):
         assert np.abs(u[:, :2]).max() > 0.4 and np.abs(deformation[-1][:, :2]).max() < 0.03
 
 
+def test_plot_results_on_the_finished_run(folder):
+    """post/plot_results.py: --help prints its usage (it took '--help' for a file name), the
+    finished run gives its two plots, a missing file one line that names it."""
+    script = os.path.join(os.path.dirname(HERE), "post", "plot_results.py")
+    usage = subprocess.run([sys.executable, script, "--help"], capture_output=True, text=True)
+    assert usage.returncode == 0 and "usage: plot_results.py" in usage.stdout and "result" in usage.stdout, usage
+    plots = subprocess.run([sys.executable, script, os.path.join(folder, "run", "xdmf.h5")], capture_output=True,
+                           text=True)
+    assert plots.returncode == 0, plots.stderr
+    for suffix in ("_history.png", "_shapes.png"):
+        assert os.path.getsize(os.path.join(folder, "run", "xdmf" + suffix)) > 10000, suffix
+    missing = subprocess.run([sys.executable, script, os.path.join(folder, "no_such.h5")], capture_output=True,
+                             text=True)
+    assert missing.returncode == 2 and "no_such.h5: not a readable HDF5 result file" in missing.stderr, missing
+    assert "Traceback" not in missing.stderr, missing.stderr
+
+
 def test_the_other_grids_show_the_rim_the_contact_nodes_and_the_turning_drum(folder):
     index, h5 = os.path.join(folder, "run", "xdmf.xmf"), os.path.join(folder, "run", "xdmf.h5")
     grids = collections(index)

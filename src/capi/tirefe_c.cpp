@@ -3,15 +3,19 @@
 // a message kept in the handle: nothing unwinds into the C caller.
 #include "tirefe.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <new>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "contact/road_file.hpp"
 #include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/lua_module_dir.hpp"
@@ -134,15 +138,76 @@ TireOnRoad::RoadMaker flat_road() {
   return [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); };
 }
 
-std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
-                                       const tirefe_options& options) {
+/// The road of options.road in the tire's plane: the file's x along the heading from
+/// road_start, its height 0 at 'level' (where the inflated tire touches).
+std::shared_ptr<const RigidSurface> file_road(const tirefe_options& options, double level) {
+  const std::string file = options.road;
+  std::optional<RoadTrack> track;
+  if (options.road_track) {
+    const std::string name = options.road_track;
+    if (name != "left" && name != "right")
+      throw std::invalid_argument("options.road_track must be \"left\", \"right\" or NULL, not \"" + name + "\"");
+    track = name == "left" ? RoadTrack::Left : RoadTrack::Right;
+  }
+  const auto ends_with = [&file](const char* extension) {
+    const std::string tail = file.size() >= 4 ? file.substr(file.size() - 4) : "";
+    std::string lower = tail;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return lower == extension;
+  };
+  RoadShape shape;
+  try {
+    if (ends_with(".rdf"))
+      shape = read_road_data_file(file, track);
+    else if (ends_with(".csv"))
+      shape.points = read_road_csv(file, track);
+    else
+      throw ModelError("road file '" + file + "': name a road data file (.rdf) or a CSV profile (.csv)");
+  } catch (const ModelError&) {
+    throw;
+  } catch (const std::runtime_error& error) {  // the readers' own errors name the file and line
+    throw ModelError(error.what());
+  }
+  if (shape.kind == RoadShape::Kind::Drum)
+    throw ModelError("road file '" + file + "' holds a drum: a tire on a drum is built in a deck (model:surface)");
+  if (shape.kind == RoadShape::Kind::Flat) return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level + shape.level));
+  const double h = options.heading;
+  std::vector<Eigen::Vector2d> points;
+  for (const Eigen::Vector2d& point : shape.points)
+    points.emplace_back(h * (point.x() + options.road_start), level + point.y());
+  if (h < 0.0) std::reverse(points.begin(), points.end());  // x must not decrease along the profile
+  return std::make_shared<RoadProfile>(points, options.road_edge_radius);
+}
+
+void check_options(const tirefe_options& options) {
   if (!(options.friction >= 0.0 && std::isfinite(options.friction)))
     throw std::invalid_argument("options.friction must be a finite number >= 0");
   if (options.heading != 1 && options.heading != -1)
     throw std::invalid_argument("options.heading must be +1 (along +x) or -1 (along -x)");
+  if (!std::isfinite(options.road_start) || !std::isfinite(options.start_z))
+    throw std::invalid_argument("options.road_start and options.start_z must be finite");
+  if (!(options.road_edge_radius >= 0.0 && std::isfinite(options.road_edge_radius)))
+    throw std::invalid_argument("options.road_edge_radius must be a finite number >= 0");
+}
+
+std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
+                                       const tirefe_options& options) {
+  check_options(options);
   const TireParameters parameters = macros::load_tire_parameters(source, overrides);
   auto handle = std::make_unique<tirefe_tire>();
-  handle->tire = std::make_unique<TireOnRoad>(parameters, flat_road(), RoadContact{options.friction});
+  const TireOnRoad::RoadMaker road =
+      options.road && *options.road
+          ? TireOnRoad::RoadMaker([&options](double level) { return file_road(options, level); })
+          : flat_road();
+  handle->tire = std::make_unique<TireOnRoad>(parameters, road, RoadContact{options.friction});
+  if (options.start_z != 0.0) {
+    try {
+      handle->tire->press(-options.start_z);
+    } catch (const StepFailure& failure) {
+      throw ModelError("the tire cannot be pressed to z = " + std::to_string(options.start_z) +
+                       " m: " + failure.what());
+    }
+  }
   const Integrator integrator = Integrator::hht_or_average_acceleration(options.hht_alpha);
   handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
   handle->analysis = &handle->tire->analysis();
@@ -243,6 +308,75 @@ DofState committed_dof(const tirefe_tire& tire, int c) {
   return {state.displacement[dof], state.velocity[dof], state.acceleration[dof]};
 }
 
+/// A stretch of tirefe_advance for the step controller: every step it tries puts the
+/// spindle where the path's cubic is at the step's end, and is committed once it converges.
+/// Its clock starts at 0 with the stretch, so that what it says speaks of the stretch alone.
+class SpindlePath final : public SteppedSystem {
+ public:
+  SpindlePath(tirefe_tire& tire, const tirefe_spindle_path& path)
+      : tire_(tire),
+        start_(tire.spindle->time()),
+        duration_(path.duration),
+        start_position_(plane_motion(tire.spindle->committed_position(), tire.heading)),
+        start_rate_(path.start_velocity),
+        end_(path.position),
+        end_rate_(path.velocity) {}
+
+  double time() const override { return tire_.spindle->time() - start_; }
+
+  bool try_step(double step, double end_time, StepRecord& record) override {
+    const Eigen::Vector3d plane = plane_motion(position_at(end_time), tire_.heading);
+    SpindleInput input{step, plane.x(), plane.y(), plane.z()};
+    input.jacobian = false;  // nobody reads it
+    try {
+      record.newton_iterations = tire_.spindle->solve_step(input).newton_iterations;
+    } catch (const StepFailure&) {
+      failed_at_ = end_time;
+      ++report_.cuts;
+      return false;
+    }
+    report_.newton_iterations += record.newton_iterations;
+    return true;
+  }
+
+  void commit_step(double step, StepRecord& record) override {
+    tire_.spindle->commit();
+    record.time = time();
+    record.step_size = step;
+    ++report_.steps;
+  }
+
+  std::string failure_message(int cuts, double step) const override {
+    std::ostringstream message;
+    message << "the spindle's path could not be followed " << failed_at_ << " s into its " << duration_
+            << " s, even after " << cuts << " cuts (smallest dt = " << step
+            << " s): " << tire_.analysis->last_failure();
+    return message.str();
+  }
+
+  /// The steps and tries so far, at the committed time.
+  tirefe_advance_report report() const {
+    tirefe_advance_report report = report_;
+    report.time = tire_.spindle->time();
+    return report;
+  }
+
+ private:
+  /// Where the cubic that meets the committed motion and the path's end puts the spindle at 'time'.
+  Eigen::Vector3d position_at(double time) const {
+    const double s = std::clamp(time / duration_, 0.0, 1.0), T = duration_;
+    const double h00 = (1.0 + 2.0 * s) * (1.0 - s) * (1.0 - s), h10 = s * (1.0 - s) * (1.0 - s);
+    const double h01 = s * s * (3.0 - 2.0 * s), h11 = s * s * (s - 1.0);
+    return h00 * start_position_ + h10 * T * start_rate_ + h01 * end_ + h11 * T * end_rate_;
+  }
+
+  tirefe_tire& tire_;
+  double start_, duration_;
+  Eigen::Vector3d start_position_, start_rate_, end_, end_rate_;
+  double failed_at_ = 0.0;
+  tirefe_advance_report report_{};
+};
+
 }  // namespace
 
 extern "C" {
@@ -258,6 +392,11 @@ void tirefe_default_options(tirefe_options* options) {
   options->hht_alpha = 0.0;
   options->free_spin = 1;
   options->heading = 1;
+  options->road = nullptr;
+  options->road_track = nullptr;
+  options->road_start = 0.0;
+  options->road_edge_radius = 0.0;
+  options->start_z = 0.0;
 }
 
 tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,
@@ -286,12 +425,9 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
   return without_handle(error, error_size, [&] {
     for (size_t i = 0; i < n; ++i)
       if (!std::isfinite(deflections[i])) throw std::invalid_argument("the deflections must be finite");
-    TireOnRoad tire(macros::load_tire_parameters(source, parameter_values(overrides, count)), flat_road(),
-                    RoadContact{0.0});
-    for (size_t i = 0; i < n; ++i) {
-      const double reaction_y = tire.press(deflections[i]);
-      forces[i] = wheel_load_from_reaction(Eigen::Vector3d(0.0, reaction_y, 0.0), Heading::PlusX).y();
-    }
+    const std::vector<double> curve = static_vertical_forces(
+        macros::load_tire_parameters(source, parameter_values(overrides, count)), {deflections, deflections + n});
+    std::copy(curve.begin(), curve.end(), forces);
   });
 }
 
@@ -364,6 +500,34 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
     }
     const SpindleInput input{h, reference.x() + position[0], reference.y() + position[1], position[2]};
     return solve(t, input, scheme.displacement_per_velocity(h), *out);
+  });
+}
+
+tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path, double max_step,
+                             tirefe_advance_report* report) {
+  return guarded(tire, [&](tirefe_tire& t) {
+    if (!path) return refuse(t, TIREFE_INVALID_ARGUMENT, "path must not be NULL");
+    if (!(path->duration > 0.0 && std::isfinite(path->duration)) || !(max_step > 0.0 && std::isfinite(max_step)))
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's duration and max_step must be finite numbers > 0");
+    if (!finite(path->start_velocity, 3) || !finite(path->position, 3) || !finite(path->velocity, 3))
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's rates and end position must be finite");
+    if (t.has_trial) t.spindle->revert();
+    t.has_trial = false;
+    // Equal steps that end on the stretch's end: a step's size changing from one to the next
+    // sets the tire's contact patch ringing (rolling fast, its Fx), so every stretch starts
+    // afresh with them, only cut where they do not converge.
+    const double count = std::ceil(path->duration / max_step * (1.0 - 1e-12));
+    StepSizes sizes{path->duration / count, path->duration / count};
+    SpindlePath stretch(t, *path);
+    StepController controller(sizes);
+    tirefe_status status = TIREFE_OK;
+    try {
+      controller.advance_to(stretch, path->duration);
+    } catch (const StepFailure& failure) {
+      status = refuse(t, TIREFE_STEP_FAILED, failure.what());
+    }
+    if (report) *report = stretch.report();
+    return status;
   });
 }
 

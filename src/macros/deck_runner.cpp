@@ -178,6 +178,12 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
     }
   }
   if (configure) configure(session);
+  // Every outcome from here on names the files the run wrote.
+  const auto ended = [&session](int status, std::string error) {
+    DeckOutcome outcome{status, std::move(error), {}};
+    for (const auto& file : session.output_purposes) outcome.files.push_back(file.first);
+    return outcome;
+  };
   // Erased before the run's last words (the error, the checks' summary).
   struct ClearProgress {
     ProgressLine& line;
@@ -187,11 +193,11 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
   try {
     lua_dir = lua_module_dir();
   } catch (const std::exception& error) {
-    return {1, "tirefe: " + std::string(error.what()) + "\n"};
+    return ended(1, "tirefe: " + std::string(error.what()) + "\n");
   }
   LuaSandbox sandbox(lua_dir);
   sandbox.set_memory_limit_mib(line.lua_memory_mib);
-  install_stop_handlers();
+  const StopHandlers stop_handlers;
   try {
     install_macros(sandbox, session);
     sandbox.run_file(line.deck, line.overrides);
@@ -202,18 +208,18 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
   } catch (const DeckError& error) {
     std::string text = "tirefe: " + std::string(error.what()) + "\n";
     if (line.verbose && !sandbox.last_traceback().empty()) text += sandbox.last_traceback() + "\n";
-    return {stop_signal().load() ? 128 + stop_signal().load() : 1, text};
+    return ended(stop_signal().load() ? 128 + stop_signal().load() : 1, text);
   } catch (const std::exception& error) {
-    return {1, "tirefe: " + line.deck + ": " + error.what() + "\n"};
+    return ended(1, "tirefe: " + line.deck + ": " + error.what() + "\n");
   }
   session.progress.clear();
   if (!session.checks.empty()) {
     const int failed = session.failed_checks();
     std::printf("%s: %d passed, %d failed\n", line.deck.c_str(), static_cast<int>(session.checks.size()) - failed,
                 failed);
-    if (failed > 0) return {3, ""};
+    if (failed > 0) return ended(3, "");
   }
-  return {};
+  return ended(0, "");
 }
 
 }  // namespace tirefe::macros

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "macros/deck_session.hpp"
 
@@ -18,11 +19,15 @@ struct DeckOutcome {
   /// when SIGINT or SIGTERM stopped the run (after closing its files).
   int status = 0;
   std::string error;  // for stderr, lines ending in '\n'; empty if none
+  /// The files the run wrote (result files, checkpoints, XDMF indexes), by resolved path,
+  /// also when it failed.
+  std::vector<std::string> files = {};
 };
 
 /// Runs the command line; 'configure' (may be empty) adjusts the session before the deck
-/// runs. Standard output gets --help, --list-parameters, --macros, --version, the deck's
-/// own output and the self-check summary; standard error the progress line on a terminal.
+/// runs. SIGINT and SIGTERM stop the run while it runs (their handlers are restored after). Standard output gets
+/// --help, --list-parameters, --macros, --version, the deck's own output and the self-check summary; standard error the
+/// progress line on a terminal.
 DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(DeckSession&)>& configure);
 
 }  // namespace tirefe::macros

@@ -13,12 +13,29 @@ inline std::atomic<int>& stop_signal() {
   return signal;
 }
 
-inline void install_stop_handlers() {
-  struct sigaction action {};
-  action.sa_handler = [](int signal) { stop_signal().store(signal); };
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
+/// SIGINT and SIGTERM ask the run to stop while this lives; the handlers it replaced come
+/// back when it ends, so that a host process running decks (Python) keeps its own. No stop
+/// is asked when it begins or after it ends: the next run starts afresh.
+class StopHandlers {
+ public:
+  StopHandlers() {
+    stop_signal().store(0);
+    struct sigaction action {};
+    action.sa_handler = [](int signal) { stop_signal().store(signal); };
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &replaced_[0]);
+    sigaction(SIGTERM, &action, &replaced_[1]);
+  }
+  ~StopHandlers() {
+    sigaction(SIGINT, &replaced_[0], nullptr);
+    sigaction(SIGTERM, &replaced_[1], nullptr);
+    stop_signal().store(0);
+  }
+  StopHandlers(const StopHandlers&) = delete;
+  StopHandlers& operator=(const StopHandlers&) = delete;
+
+ private:
+  struct sigaction replaced_[2] = {};
+};
 
 }  // namespace tirefe::macros

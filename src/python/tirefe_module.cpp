@@ -1,42 +1,73 @@
-// The Python module `tirefe` (pybind11): a deck run with parameters, and the tire behind
-// its spindle as a class over the C API (include/tirefe.h), forces and Jacobians as
-// numpy arrays (docs/coupling.md).
+// The compiled part of the Python package `tirefe` (pybind11): tirefe._core. The tire
+// behind its spindle as a class over the C API (include/tirefe.h), forces and Jacobians as
+// numpy arrays; a deck run with parameters; the static vertical curve; and the FMI 2.0
+// calls of a co-simulation FMU loaded with dlopen, which tirefe/fmu.py drives
+// (docs/coupling.md).
+#include <dlfcn.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
-#include <filesystem>
+#include <array>
+#include <cmath>
+#include <csignal>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
+#include <optional>
 #include <string>
+#include <tuple>
+#include <unordered_set>
 #include <vector>
 
+#include "fmu/fmi2.h"
 #include "macros/deck_runner.hpp"
+#include "macros/macro_table.hpp"
 #include "tirefe.h"
+#include "tirefe/version.hpp"
+#include "vehicle/tire_on_road.hpp"
 
 namespace py = pybind11;
 
 namespace {
 
-/// Raised for a step the tire could not solve: it stays at its committed state.
+// The package's exceptions (their Python classes are made in the module below).
 PyObject* step_failed_type = nullptr;
+PyObject* model_error_type = nullptr;
 
-void raise_on_failure(tirefe_status status, const char* message) {
-  if (status == TIREFE_OK) return;
-  if (status == TIREFE_STEP_FAILED) {
-    PyErr_SetString(step_failed_type, message);
-    throw py::error_already_set();
-  }
-  if (status == TIREFE_INVALID_ARGUMENT) throw py::value_error(message);
-  throw std::runtime_error(message);
+/// Raises the Python exception of a failed C call; 'message' is read after the call.
+[[noreturn]] void raise_status(tirefe_status status, const std::string& message) {
+  PyObject* type = status == TIREFE_STEP_FAILED        ? step_failed_type
+                   : status == TIREFE_MODEL_ERROR      ? model_error_type
+                   : status == TIREFE_OUT_OF_MEMORY    ? PyExc_MemoryError
+                   : status == TIREFE_INVALID_ARGUMENT ? PyExc_ValueError
+                                                       : PyExc_RuntimeError;
+  PyErr_SetString(type, message.c_str());
+  throw py::error_already_set();
+}
+
+void check(tirefe_status status, const char* message) {
+  if (status != TIREFE_OK) raise_status(status, message);
+}
+
+std::vector<tirefe_parameter> parameter_list(const std::map<std::string, double>& parameters) {
+  std::vector<tirefe_parameter> overrides;
+  for (const auto& [name, value] : parameters) overrides.push_back({name.c_str(), value});
+  return overrides;
+}
+
+py::array_t<double> vector(const double (&values)[3]) {
+  py::array_t<double> array(3);
+  for (int i = 0; i < 3; ++i) array.mutable_at(i) = values[i];
+  return array;
 }
 
 class Tire {
  public:
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
-       bool free_spin, const std::string& heading) {
-    std::vector<tirefe_parameter> overrides;
-    for (const auto& [name, value] : parameters) overrides.push_back({name.c_str(), value});
+       bool free_spin, const std::string& heading, const std::optional<std::string>& road,
+       const std::optional<std::string>& road_track, double road_start, double road_edge_radius, double start_z) {
     tirefe_options options;
     tirefe_default_options(&options);
     options.friction = friction;
@@ -45,13 +76,38 @@ class Tire {
     if (heading != "+x" && heading != "-x")
       throw py::value_error("heading must be \"+x\" or \"-x\", not \"" + heading + "\"");
     options.heading = heading == "+x" ? 1 : -1;
+    options.road = road ? road->c_str() : nullptr;
+    options.road_track = road_track ? road_track->c_str() : nullptr;
+    options.road_start = road_start;
+    options.road_edge_radius = road_edge_radius;
+    options.start_z = start_z;
+    const std::vector<tirefe_parameter> overrides = parameter_list(parameters);
     char error[512] = "";
-    raise_on_failure(
-        tirefe_open(source.c_str(), overrides.data(), overrides.size(), &options, &tire_, error, sizeof error), error);
+    tirefe_status status;
+    {
+      py::gil_scoped_release unlocked;
+      status = tirefe_open(source.c_str(), overrides.data(), overrides.size(), &options, &tire_, error, sizeof error);
+    }
+    check(status, error);
+    constructed().insert(this);
   }
-  ~Tire() { tirefe_close(tire_); }
+  ~Tire() {
+    constructed().erase(this);
+    tirefe_close(tire_);
+  }
+  /// The Tires whose constructor ran: pybind11 hands a method of one made by Tire.__new__
+  /// alone raw memory, which is none of them.
+  static std::unordered_set<const Tire*>& constructed() {
+    static std::unordered_set<const Tire*> tires;
+    return tires;
+  }
   Tire(const Tire&) = delete;
   Tire& operator=(const Tire&) = delete;
+
+  void close() {
+    tirefe_close(tire_);
+    tire_ = nullptr;
+  }
 
   py::tuple solve(double time_step, double x, double z, double spin) {
     const tirefe_spindle_motion motion{time_step, x, z, spin};
@@ -59,9 +115,9 @@ class Tire {
     tirefe_status status;
     {
       py::gil_scoped_release unlocked;  // other Python threads run while the tire solves
-      status = tirefe_solve(tire_, &motion, &out);
+      status = tirefe_solve(open(), &motion, &out);
     }
-    raise_on_failure(status, tirefe_message(tire_));
+    check_call(status);
     return reply(out);
   }
   py::tuple solve_velocity(double time_step, double vx, double vz, double spin_rate) {
@@ -70,16 +126,36 @@ class Tire {
     tirefe_status status;
     {
       py::gil_scoped_release unlocked;
-      status = tirefe_solve_velocity(tire_, time_step, velocity, &out);
+      status = tirefe_solve_velocity(open(), time_step, velocity, &out);
     }
-    raise_on_failure(status, tirefe_message(tire_));
+    check_call(status);
     return reply(out);
   }
-  void commit() { raise_on_failure(tirefe_commit(tire_), tirefe_message(tire_)); }
-  void revert() { raise_on_failure(tirefe_revert(tire_), tirefe_message(tire_)); }
+  py::dict advance(double duration, const std::array<double, 3>& start_velocity, const std::array<double, 3>& position,
+                   const std::array<double, 3>& velocity, double max_step) {
+    tirefe_spindle_path path{duration,
+                             {start_velocity[0], start_velocity[1], start_velocity[2]},
+                             {position[0], position[1], position[2]},
+                             {velocity[0], velocity[1], velocity[2]}};
+    tirefe_advance_report report{};
+    tirefe_status status;
+    {
+      py::gil_scoped_release unlocked;
+      status = tirefe_advance(open(), &path, max_step, &report);
+    }
+    check_call(status);
+    py::dict result;
+    result["time"] = report.time;
+    result["steps"] = report.steps;
+    result["cuts"] = report.cuts;
+    result["newton_iterations"] = report.newton_iterations;
+    return result;
+  }
+  void commit() { check_call(tirefe_commit(open())); }
+  void revert() { check_call(tirefe_revert(open())); }
   py::dict state() {
     tirefe_spindle_state state;
-    raise_on_failure(tirefe_state(tire_, &state), tirefe_message(tire_));
+    check_call(tirefe_state(open(), &state));
     py::dict result;
     result["time"] = state.time;
     result["position"] = vector(state.position);
@@ -89,16 +165,17 @@ class Tire {
   }
   double road_level() {
     double level = 0.0;
-    raise_on_failure(tirefe_road_level(tire_, &level), tirefe_message(tire_));
+    check_call(tirefe_road_level(open(), &level));
     return level;
   }
 
  private:
-  static py::array_t<double> vector(const double (&values)[3]) {
-    py::array_t<double> array(3);
-    for (int i = 0; i < 3; ++i) array.mutable_at(i) = values[i];
-    return array;
+  tirefe_tire* open() const {
+    if (!tire_) throw py::value_error("the tire is closed");
+    return tire_;
   }
+  /// The message is read after the call that set it (it lives in the handle until the next call).
+  void check_call(tirefe_status status) const { check(status, tirefe_message(tire_)); }
   static py::tuple reply(const tirefe_spindle_force& out) {
     py::array_t<double> jacobian({3, 3});
     for (int i = 0; i < 3; ++i)
@@ -109,41 +186,65 @@ class Tire {
   tirefe_tire* tire_ = nullptr;
 };
 
-/// tirefe_static_forces: Fz [N] at each deflection [m] of a quasi-static press.
+/// A method of Tire bound so that a Tire whose __init__ never ran (Tire.__new__(Tire))
+/// raises instead of being followed.
+template <class Result, class... Arguments>
+auto method(Result (Tire::*function)(Arguments...)) {
+  return [function](Tire* self, Arguments... arguments) -> Result {
+    if (!Tire::constructed().count(self))
+      throw py::type_error("this tirefe.Tire was not initialized: make tires with tirefe.Tire(...)");
+    return (self->*function)(arguments...);
+  };
+}
+
+/// The static vertical curve of the C API's tirefe_static_forces, stopping for Ctrl-C
+/// between presses (KeyboardInterrupt).
 py::array_t<double> static_forces(const std::string& source, const std::map<std::string, double>& parameters,
                                   const std::vector<double>& deflections) {
-  std::vector<tirefe_parameter> overrides;
-  for (const auto& [name, value] : parameters) overrides.push_back({name.c_str(), value});
-  py::array_t<double> forces(static_cast<py::ssize_t>(deflections.size()));
-  char error[512] = "";
-  tirefe_status status;
+  for (double deflection : deflections)
+    if (!std::isfinite(deflection)) throw py::value_error("the deflections must be finite");
+  for (const auto& [name, value] : parameters)
+    if (!std::isfinite(value)) throw py::value_error("parameter '" + name + "' is not a finite number");
+  std::vector<tirefe::macros::ParameterValue> overrides(parameters.begin(), parameters.end());
+  std::vector<double> forces;
   {
     py::gil_scoped_release unlocked;
-    status = tirefe_static_forces(source.c_str(), overrides.data(), overrides.size(), deflections.data(),
-                                  deflections.size(), forces.mutable_data(), error, sizeof error);
+    try {
+      forces = tirefe::static_vertical_forces(tirefe::macros::load_tire_parameters(source, overrides), deflections, [] {
+        py::gil_scoped_acquire locked;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      });
+    } catch (const tirefe::ModelError& error) {
+      py::gil_scoped_acquire locked;
+      raise_status(TIREFE_MODEL_ERROR, error.what());
+    } catch (const tirefe::StepFailure& failure) {
+      py::gil_scoped_acquire locked;
+      raise_status(TIREFE_MODEL_ERROR, failure.what());
+    }
   }
-  raise_on_failure(status, error);
-  return forces;
+  return py::array_t<double>(static_cast<py::ssize_t>(forces.size()), forces.data());
 }
 
 /// Runs a deck as `tirefe DECK key=value ... --output-dir DIR --quiet` would, in this
-/// process; the result files are the .h5 files the run wrote in the output folder.
+/// process. Ctrl-C or SIGTERM stop the run after its step (its files closed) and are then
+/// handed on to Python's handlers (KeyboardInterrupt for Ctrl-C).
 py::dict run_deck(const std::string& deck, const std::map<std::string, py::object>& parameters,
                   const std::string& output_dir) {
-  namespace fs = std::filesystem;
   std::vector<std::string> arguments{"tirefe", deck};
   for (const auto& [name, value] : parameters) arguments.push_back(name + "=" + std::string(py::str(value)));
   arguments.insert(arguments.end(), {"--output-dir", output_dir, "--quiet"});
   std::vector<char*> argv;
   for (std::string& argument : arguments) argv.push_back(argument.data());
-  const auto started = fs::file_time_type::clock::now() - std::chrono::seconds(1);
   // The GIL stays held: no two decks write HDF5 files at once (the library is not thread-safe).
   const tirefe::macros::DeckOutcome outcome =
       tirefe::macros::run_deck_command(static_cast<int>(argv.size()), argv.data(), {});
+  if (outcome.status == 128 + SIGINT || outcome.status == 128 + SIGTERM) {
+    std::raise(outcome.status - 128);  // to the handler the run had replaced
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
   std::vector<std::string> files;
-  std::error_code error;
-  for (const auto& entry : fs::directory_iterator(output_dir, error))
-    if (entry.path().extension() == ".h5" && entry.last_write_time() >= started) files.push_back(entry.path().string());
+  for (const std::string& file : outcome.files)
+    if (file.size() > 3 && file.compare(file.size() - 3, 3, ".h5") == 0) files.push_back(file);
   py::dict result;
   result["status"] = outcome.status;
   result["error"] = outcome.error;
@@ -151,40 +252,278 @@ py::dict run_deck(const std::string& deck, const std::map<std::string, py::objec
   return result;
 }
 
+/// The FMI 2.0 co-simulation functions of one FMU binary and one instance of it; its
+/// logger's messages are kept for Python (tirefe.Fmu reads them).
+class FmiInstance {
+ public:
+  FmiInstance(const std::string& binary, const std::string& guid, const std::string& resource_uri,
+              const std::string& name, bool logging) {
+    library_ = dlopen(binary.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!library_) throw std::runtime_error("cannot load the FMU's binary " + binary + ": " + dlerror());
+    load("fmi2Instantiate", instantiate_);
+    load("fmi2FreeInstance", free_instance_);
+    load("fmi2SetupExperiment", setup_experiment_);
+    load("fmi2EnterInitializationMode", enter_initialization_);
+    load("fmi2ExitInitializationMode", exit_initialization_);
+    load("fmi2Terminate", terminate_);
+    load("fmi2Reset", reset_);
+    load("fmi2GetReal", get_real_);
+    load("fmi2SetReal", set_real_);
+    load("fmi2GetInteger", get_integer_);
+    load("fmi2SetInteger", set_integer_);
+    load("fmi2GetBoolean", get_boolean_);
+    load("fmi2SetBoolean", set_boolean_);
+    load("fmi2GetString", get_string_);
+    load("fmi2SetString", set_string_);
+    load("fmi2DoStep", do_step_);
+    load("fmi2GetRealStatus", get_real_status_);
+    load("fmi2GetBooleanStatus", get_boolean_status_);
+    callbacks_ = new fmi2CallbackFunctions{&FmiInstance::logger, std::calloc, std::free, nullptr, this};
+    instance_ = instantiate_(name.c_str(), fmi2CoSimulation, guid.c_str(), resource_uri.c_str(), callbacks_, fmi2False,
+                             logging ? fmi2True : fmi2False);
+    if (!instance_) throw std::runtime_error("fmi2Instantiate failed: " + messages_text());
+  }
+  ~FmiInstance() { free_instance(); }
+  FmiInstance(const FmiInstance&) = delete;
+  FmiInstance& operator=(const FmiInstance&) = delete;
+
+  void free_instance() {
+    if (instance_) free_instance_(instance_);
+    instance_ = nullptr;
+    delete callbacks_;
+    callbacks_ = nullptr;
+    if (library_) dlclose(library_);
+    library_ = nullptr;
+  }
+
+  int setup_experiment(double start, std::optional<double> stop) {
+    return setup_experiment_(live(), fmi2False, 0.0, start, stop ? fmi2True : fmi2False, stop.value_or(0.0));
+  }
+  int enter_initialization_mode() { return enter_initialization_(live()); }
+  int exit_initialization_mode() { return exit_initialization_(live()); }
+  int terminate() { return terminate_(live()); }
+  int reset() { return reset_(live()); }
+  int do_step(double time, double step) {
+    fmi2Component instance = live();
+    py::gil_scoped_release unlocked;
+    return do_step_(instance, time, step, fmi2True);
+  }
+  int set_real(const std::vector<fmi2ValueReference>& references, const std::vector<double>& values) {
+    return set_real_(live(), references.data(), same_size(references, values), values.data());
+  }
+  int set_integer(const std::vector<fmi2ValueReference>& references, const std::vector<int>& values) {
+    return set_integer_(live(), references.data(), same_size(references, values), values.data());
+  }
+  int set_boolean(const std::vector<fmi2ValueReference>& references, const std::vector<bool>& values) {
+    std::vector<fmi2Boolean> booleans(values.begin(), values.end());
+    return set_boolean_(live(), references.data(), same_size(references, values), booleans.data());
+  }
+  int set_string(const std::vector<fmi2ValueReference>& references, const std::vector<std::string>& values) {
+    std::vector<fmi2String> strings;
+    for (const std::string& value : values) strings.push_back(value.c_str());
+    return set_string_(live(), references.data(), same_size(references, values), strings.data());
+  }
+  py::tuple get_real(const std::vector<fmi2ValueReference>& references) {
+    std::vector<double> values(references.size());
+    const int status = get_real_(live(), references.data(), references.size(), values.data());
+    return py::make_tuple(status, values);
+  }
+  py::tuple get_integer(const std::vector<fmi2ValueReference>& references) {
+    std::vector<int> values(references.size());
+    const int status = get_integer_(live(), references.data(), references.size(), values.data());
+    return py::make_tuple(status, values);
+  }
+  py::tuple get_boolean(const std::vector<fmi2ValueReference>& references) {
+    std::vector<fmi2Boolean> values(references.size());
+    const int status = get_boolean_(live(), references.data(), references.size(), values.data());
+    std::vector<bool> booleans(values.begin(), values.end());
+    return py::make_tuple(status, booleans);
+  }
+  py::tuple get_string(const std::vector<fmi2ValueReference>& references) {
+    std::vector<fmi2String> values(references.size(), nullptr);
+    const int status = get_string_(live(), references.data(), references.size(), values.data());
+    std::vector<std::string> strings;
+    for (fmi2String value : values) strings.push_back(value ? value : "");
+    return py::make_tuple(status, strings);
+  }
+  double last_successful_time() {
+    fmi2Real time = 0.0;
+    get_real_status_(live(), fmi2LastSuccessfulTime, &time);
+    return time;
+  }
+  bool terminated() {
+    fmi2Boolean terminated = fmi2False;
+    get_boolean_status_(live(), fmi2Terminated, &terminated);
+    return terminated != fmi2False;
+  }
+  /// The logger's messages since the last call, as (status, category, text).
+  std::vector<std::tuple<int, std::string, std::string>> take_messages() {
+    std::vector<std::tuple<int, std::string, std::string>> taken;
+    taken.swap(messages_);
+    return taken;
+  }
+
+ private:
+  template <class Function>
+  void load(const char* name, Function*& function) {
+    *reinterpret_cast<void**>(&function) = dlsym(library_, name);
+    if (!function) throw std::runtime_error(std::string("the FMU's binary does not export ") + name);
+  }
+  fmi2Component live() const {
+    if (!instance_) throw py::value_error("the FMU instance is freed");
+    return instance_;
+  }
+  template <class A, class B>
+  static size_t same_size(const A& references, const B& values) {
+    if (references.size() != values.size()) throw py::value_error("as many values as value references, please");
+    return references.size();
+  }
+  std::string messages_text() const {
+    std::string text;
+    for (const auto& message : messages_) text += (text.empty() ? "" : "; ") + std::get<2>(message);
+    return text.empty() ? "no message" : text;
+  }
+  static void logger(fmi2ComponentEnvironment environment, fmi2String, fmi2Status status, fmi2String category,
+                     fmi2String message, ...) {
+    va_list arguments, copy;
+    va_start(arguments, message);
+    va_copy(copy, arguments);
+    const int length = std::vsnprintf(nullptr, 0, message, copy);
+    va_end(copy);
+    std::string text(length > 0 ? static_cast<size_t>(length) : 0, '\0');
+    if (length > 0) std::vsnprintf(text.data(), text.size() + 1, message, arguments);
+    va_end(arguments);
+    static_cast<FmiInstance*>(environment)->messages_.emplace_back(status, category ? category : "", text);
+  }
+
+  void* library_ = nullptr;
+  fmi2CallbackFunctions* callbacks_ = nullptr;  // on the heap: the FMU may keep the pointer
+  fmi2Component instance_ = nullptr;
+  std::vector<std::tuple<int, std::string, std::string>> messages_;
+  decltype(&fmi2Instantiate) instantiate_ = nullptr;
+  decltype(&fmi2FreeInstance) free_instance_ = nullptr;
+  decltype(&fmi2SetupExperiment) setup_experiment_ = nullptr;
+  decltype(&fmi2EnterInitializationMode) enter_initialization_ = nullptr;
+  decltype(&fmi2ExitInitializationMode) exit_initialization_ = nullptr;
+  decltype(&fmi2Terminate) terminate_ = nullptr;
+  decltype(&fmi2Reset) reset_ = nullptr;
+  decltype(&fmi2GetReal) get_real_ = nullptr;
+  decltype(&fmi2SetReal) set_real_ = nullptr;
+  decltype(&fmi2GetInteger) get_integer_ = nullptr;
+  decltype(&fmi2SetInteger) set_integer_ = nullptr;
+  decltype(&fmi2GetBoolean) get_boolean_ = nullptr;
+  decltype(&fmi2SetBoolean) set_boolean_ = nullptr;
+  decltype(&fmi2GetString) get_string_ = nullptr;
+  decltype(&fmi2SetString) set_string_ = nullptr;
+  decltype(&fmi2DoStep) do_step_ = nullptr;
+  decltype(&fmi2GetRealStatus) get_real_status_ = nullptr;
+  decltype(&fmi2GetBooleanStatus) get_boolean_status_ = nullptr;
+};
+
+/// PEP 440: the release, and the commit as a local version label.
+std::string python_version() {
+  const std::string commit = tirefe::kGitCommit;
+  return std::string(tirefe::kVersion) + (commit.empty() || commit == "unknown" ? "" : "+g" + commit);
+}
+
 }  // namespace
 
-PYBIND11_MODULE(tirefe, module) {
-  module.doc() = "tirefe: a 2D FE tire behind its spindle, and its deck runner (docs/coupling.md)";
-  module.attr("__version__") = tirefe_version();
-  static py::exception<std::runtime_error> step_failed(module, "StepFailed");
+PYBIND11_MODULE(_core, module) {
+  module.doc() = "The compiled part of tirefe (import tirefe instead).";
+  module.attr("__version__") = python_version();
+  static py::exception<std::runtime_error> step_failed(module, "StepFailed", PyExc_RuntimeError);
+  step_failed.doc() = "A step the tire could not solve; the tire stays at its committed state.";
   step_failed_type = step_failed.ptr();
+  static py::exception<std::runtime_error> model_error(module, "ModelError", PyExc_RuntimeError);
+  model_error.doc() = "A tire that cannot be built: a bad parameter value or file, named in the message.";
+  model_error_type = model_error.ptr();
 
   module.def("run_deck", &run_deck, py::arg("deck"), py::arg("parameters") = std::map<std::string, py::object>{},
              py::arg("output_dir") = "results",
-             "Runs a deck with parameters (overriding tirefe.parameters{...}); returns {status, error, files}: "
-             "the exit status of `tirefe`, its error text, and the result files (.h5) written.");
+             R"(Runs a deck in this process as `tirefe DECK key=value ... --output-dir DIR --quiet` does.
+
+parameters: overrides of the deck's tirefe.parameters{...} by name.
+Returns {"status": the exit status of `tirefe` (0 success, 1 deck error, 2 usage, 3 a failed
+self-check), "error": its error text, "files": the result files (.h5) the run wrote}.
+Ctrl-C stops the run after its step, its files closed, and raises KeyboardInterrupt.)");
 
   module.def("static_forces", &static_forces, py::arg("source"), py::arg("parameters"), py::arg("deflections"),
-             "The tire's static vertical curve on a flat frictionless road: Fz [N] the tire exerts on the wheel at "
-             "each spindle deflection [m] below first touch (positive when pressed).");
+             R"(The tire's static vertical curve on a flat frictionless road.
 
-  py::class_<Tire>(module, "Tire",
-                   "A tire on a flat road driven through its spindle (the C API's tirefe_open), in ISO 8855 wheel "
-                   "axes (x the heading, z up, y the spin axis): motions (x, z, spin) [m, m, rad], forces (Fx, Fz, "
-                   "My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz > 0).")
-      .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool,
-                    const std::string&>(),
+source: a tire property file (.tir) or a shipped parameter module ("tires.145SR12");
+parameters: overrides by name; deflections: spindle deflections below first touch [m],
+pressed in this order. Returns Fz [N] the tire exerts on the wheel at each (positive when
+pressed), a numpy array. Ctrl-C stops it between presses (KeyboardInterrupt).)");
+
+  py::class_<Tire>(module, "Tire", R"(A tire on a road driven through its spindle (the C API's tirefe_open).
+
+ISO 8855 wheel axes (x the heading, z up, y the spin axis): motions (x, z, spin) [m, m, rad],
+forces (Fx, Fz, My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz > 0).
+Usable as a context manager; close() frees it.)")
+      .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool, const std::string&,
+                    const std::optional<std::string>&, const std::optional<std::string>&, double, double, double>(),
            py::arg("source") = "tires.145SR12", py::arg("parameters") = std::map<std::string, double>{},
            py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true,
-           py::arg("heading") = "+x")
-      .def("solve", &Tire::solve, py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
-           "Trial step to the wheel centre's position: (force[3], jacobian[3, 3]) with jacobian[i, j] = d force_i / d "
-           "(x, z, spin)_j.")
-      .def("solve_velocity", &Tire::solve_velocity, py::arg("time_step"), py::arg("vx"), py::arg("vz"),
+           py::arg("heading") = "+x", py::arg("road") = py::none(), py::arg("road_track") = py::none(),
+           py::arg("road_start") = 0.0, py::arg("road_edge_radius") = 0.0, py::arg("start_z") = 0.0,
+           R"(Builds, inflates and puts the tire on its road.
+
+source: a tire property file (.tir) or a shipped parameter module; parameters: overrides by
+name (keys of model:tire); friction: Coulomb coefficient; hht_alpha: 0 Newmark, [-1/3, 0)
+HHT; free_spin: the wheel turns freely (My = 0) or the spin is given; heading: "+x" or "-x";
+road: None (flat) or a road file (.rdf, .csv), its x along the heading from road_start and
+its height 0 where the tire touches at z = 0, road_track "left" or "right" for a file with
+two, its convex corners rounded by road_edge_radius [m]; start_z: the spindle's height [m]
+when handed over (pressed quasi-statically from touching).
+Raises ModelError for a tire that cannot be built, ValueError for bad arguments.)")
+      .def("solve", method(&Tire::solve), py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
+           R"(Solves the trial step of time_step [s] to the wheel centre's position (x, z, spin).
+
+Returns (force, jacobian): force = (Fx, Fz, My), jacobian[i, j] = d force_i / d (x, z, spin)_j.
+Raises StepFailed when it does not converge (the tire stays at its committed state).)")
+      .def("solve_velocity", method(&Tire::solve_velocity), py::arg("time_step"), py::arg("vx"), py::arg("vz"),
            py::arg("spin_rate") = 0.0,
-           "Trial step to the end-of-step spindle velocities; the Jacobian is d force / d v.")
-      .def("commit", &Tire::commit, "Accepts the last trial step.")
-      .def("revert", &Tire::revert, "Forgets the last trial step.")
-      .def("state", &Tire::state, "The committed time and spindle position, velocity and force.")
-      .def("road_level", &Tire::road_level, "Height of the road below the spindle's design position [m].");
+           R"(Solves the trial step to the end-of-step velocities (vx, vz, spin rate).
+
+Returns (force, jacobian) with jacobian[i, j] = d force_i / d (vx, vz, spin rate)_j.)")
+      .def("advance", method(&Tire::advance), py::arg("duration"), py::arg("start_velocity"), py::arg("position"),
+           py::arg("velocity"), py::arg("max_step"),
+           R"(Advances the tire by duration [s] in committed steps of its own of at most max_step.
+
+The spindle moves from its committed position with the rates start_velocity (those the
+path before ended with) to position (x, z, spin) with velocity at the end, along the cubic
+that meets both ends; steps that do not converge are halved and grow back. Returns {"time", "steps", "cuts", "newton_iterations"}.
+Raises StepFailed when a step fails even at its smallest: the tire stays at the last step
+it committed.)")
+      .def("commit", method(&Tire::commit), "Accepts the last trial step: the tire advances to it.")
+      .def("revert", method(&Tire::revert), "Forgets the last trial step.")
+      .def("state", method(&Tire::state),
+           R"(The committed state: {"time" [s], "position" (x, z, spin), "velocity", "force" (Fx, Fz, My)}.)")
+      .def("road_level", method(&Tire::road_level), "Height of the road below the spindle's design position [m].")
+      .def("close", method(&Tire::close), "Frees the tire; later calls raise ValueError.")
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__", [](Tire* self, py::args) { method (&Tire::close)(self); });
+
+  py::class_<FmiInstance>(module, "FmiInstance",
+                          "The FMI 2.0 co-simulation calls of one instance of an FMU binary (tirefe.Fmu uses it).")
+      .def(py::init<const std::string&, const std::string&, const std::string&, const std::string&, bool>(),
+           py::arg("binary"), py::arg("guid"), py::arg("resource_uri"), py::arg("name"), py::arg("logging"))
+      .def("setup_experiment", &FmiInstance::setup_experiment, py::arg("start"), py::arg("stop") = py::none())
+      .def("enter_initialization_mode", &FmiInstance::enter_initialization_mode)
+      .def("exit_initialization_mode", &FmiInstance::exit_initialization_mode)
+      .def("terminate", &FmiInstance::terminate)
+      .def("reset", &FmiInstance::reset)
+      .def("free", &FmiInstance::free_instance)
+      .def("do_step", &FmiInstance::do_step, py::arg("time"), py::arg("step"))
+      .def("set_real", &FmiInstance::set_real)
+      .def("set_integer", &FmiInstance::set_integer)
+      .def("set_boolean", &FmiInstance::set_boolean)
+      .def("set_string", &FmiInstance::set_string)
+      .def("get_real", &FmiInstance::get_real)
+      .def("get_integer", &FmiInstance::get_integer)
+      .def("get_boolean", &FmiInstance::get_boolean)
+      .def("get_string", &FmiInstance::get_string)
+      .def("last_successful_time", &FmiInstance::last_successful_time)
+      .def("terminated", &FmiInstance::terminated)
+      .def("take_messages", &FmiInstance::take_messages);
 }

@@ -74,6 +74,8 @@ class Analysis : private StepEquations, private SteppedSystem {
   /// Reactions at prescribed DOFs (zero elsewhere), from the last converged step.
   const Eigen::VectorXd& reactions() const { return carried_.reactions; }
   const Eigen::VectorXd& external_forces() const { return external_new_; }
+  /// Why the last step that failed did not converge (Newton's or the linear solver's words).
+  const std::string& last_failure() const { return last_failure_; }
   /// Energy balance as of the last accepted step (all zero before the first).
   const EnergyRecord& energy() const { return energy_.record(); }
   /// Starts the balance afresh at the current state (after a static preload, say):

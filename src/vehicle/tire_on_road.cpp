@@ -2,6 +2,8 @@
 
 #include <limits>
 
+#include "tire/wheel_axes.hpp"
+
 namespace tirefe {
 
 TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, const RoadContact& contact) {
@@ -39,7 +41,28 @@ double TireOnRoad::press(double deflection) {
 TireSpindle& TireOnRoad::drive(const Integrator& integrator, SpinMode spin) {
   analysis_->set_integrator(integrator);
   spindle_ = std::make_unique<TireSpindle>(*analysis_, tire_.spindle, spin);
+  // The host takes the spindle over at rest and holds it there: the tire starts with the
+  // accelerations of its equilibrium and the spindle's zero, not those of a rim let go
+  // under its load (which the first held steps would turn into a ringing of the force).
+  analysis_->initialize_acceleration();
+  for (int c = 0; c < (spin == SpinMode::Free ? 2 : kDofsPerNode); ++c)
+    analysis_->mutable_state().acceleration[dof_index(tire_.spindle, c)] = 0.0;
   return *spindle_;
+}
+
+std::vector<double> static_vertical_forces(const TireParameters& parameters, const std::vector<double>& deflections,
+                                           const std::function<void()>& between_presses) {
+  TireOnRoad tire(
+      parameters, [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); },
+      RoadContact{0.0});
+  std::vector<double> forces;
+  forces.reserve(deflections.size());
+  for (double deflection : deflections) {
+    if (between_presses) between_presses();
+    const double reaction_y = tire.press(deflection);
+    forces.push_back(wheel_load_from_reaction(Eigen::Vector3d(0.0, reaction_y, 0.0), Heading::PlusX).y());
+  }
+  return forces;
 }
 
 }  // namespace tirefe

@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 #include "contact/tread_contact.hpp"
 #include "contact/rigid_surface.hpp"
@@ -37,7 +38,8 @@ class TireOnRoad {
   /// below its design position [m]; returns the vertical spindle force then [N] (the
   /// force on the tire: negative when pressed).
   double press(double deflection);
-  /// Switches the tire to 'integrator' (dynamic) and hands its spindle to a TireSpindle.
+  /// Switches the tire to 'integrator' (dynamic) and hands its spindle to a TireSpindle, at
+  /// rest: the spindle's acceleration is zero, the tire's others in equilibrium with it.
   TireSpindle& drive(const Integrator& integrator, SpinMode spin = SpinMode::Free);
   TireSpindle& spindle() { return *spindle_; }
 
@@ -56,5 +58,13 @@ class TireOnRoad {
   const TreadContactBlock* contact_ = nullptr;
   std::unique_ptr<TireSpindle> spindle_;
 };
+
+/// The static vertical force-deflection curve of the tire of 'parameters' on a flat
+/// frictionless road: inflated on its held hub, its spindle pressed quasi-statically to each
+/// of the 'deflections' [m] below first touch in turn; returns the vertical force the tire
+/// exerts on the wheel at each [N] (positive: it carries the wheel). 'between_presses' (may
+/// be empty) runs before every press: a host that is asked to stop throws from it.
+std::vector<double> static_vertical_forces(const TireParameters& parameters, const std::vector<double>& deflections,
+                                           const std::function<void()>& between_presses = {});
 
 }  // namespace tirefe
