@@ -1,16 +1,22 @@
 #!/usr/bin/env python3
-"""Sensitivity of the drum-cleat results to the discretisation and the integrator.
+"""Studies of the drum-cleat results (docs/drum_cleat.md), each a set of runs of
+inputs/drum_cleat.lua whose readings of the full-speed cleat passage it tabulates:
 
-Runs inputs/drum_cleat.lua in variants (the reference, time steps halved, 150 elements,
-Newmark instead of HHT) and prints the ringing frequencies and peak-to-peak forces of the
-full-speed cleat passage with their change from the reference, plus the cost of each run.
-By default the short protocol (0.5 s spin-up: the same full-speed impact, docs/drum_cleat.md);
---full runs the 8 s protocol.
+  sensitivity  the reference against time steps halved, 150 elements, Newmark instead of
+               HHT: each reading's change from the reference;
+  phases       the cleat moved by eighths of a node spacing, so that the tread meets it in
+               eight places: the spread of every reading (half the range over the mean);
+  rim          the rim's rotary inertia over its estimated range, 0.12-0.16 kg m^2
+               (docs/calibration.md): each reading's band.
 
-    /usr/bin/python3 bench/drum_cleat_study.py [--full] [--jobs 2] [extra key=value ...]
+By default the short protocol (0.5 s spin-up: the same full-speed impact); --full runs the
+8 s protocol.
+
+    /usr/bin/python3 bench/drum_cleat_study.py phases [--full] [--jobs 2] [extra key=value ...]
 """
 import argparse
 import concurrent.futures
+import math
 import os
 import subprocess
 import sys
@@ -20,13 +26,18 @@ import h5py
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHORT = ["spin_up_time=0.5", "end_time=3.0"]
-VARIANTS = {
-    "reference": [],
-    "dt / 2": ["dt=2.5e-4", "dt_cleat=1.25e-4"],
-    "150 elements": ["elements=150"],
-    "150 el, dt / 2": ["elements=150", "dt=2.5e-4", "dt_cleat=1.25e-4"],
-    "Newmark g=0.6": ["integrator=newmark", "newmark_gamma=0.6"],
-    "Newmark g=0.5": ["integrator=newmark", "newmark_gamma=0.5"],
+# A node spacing of the 100-element 145 SR-12 (0.543 m) seen on the 1.7 m drum [deg].
+SPACING_DEG = math.degrees(math.pi * 0.543 / 100 / 0.85)
+STUDIES = {
+    "sensitivity": {
+        "reference": [],
+        "dt / 2": ["dt=2.5e-4", "dt_cleat=1.25e-4"],
+        "150 elements": ["elements=150"],
+        "150 el, dt / 2": ["elements=150", "dt=2.5e-4", "dt_cleat=1.25e-4"],
+        "Newmark g=0.6": ["integrator=newmark", "newmark_gamma=0.6"],
+    },
+    "phases": {f"phase {k}/8": [f"cleat_start_deg={-90 + k / 8 * SPACING_DEG:.6f}"] for k in range(8)},
+    "rim": {"0.12 kg m^2": ["rim_inertia=0.12"], "0.15 kg m^2 (the set's)": [], "0.16 kg m^2": ["rim_inertia=0.16"]},
 }
 QUANTITIES = [("fz_on_top_Hz", "Fz on top [Hz]"), ("fz_leaving_Hz", "Fz leaving [Hz]"),
               ("fx_from_hit_Hz", "Fx from hit [Hz]"), ("fx_leaving_Hz", "Fx leaving [Hz]"),
@@ -34,7 +45,7 @@ QUANTITIES = [("fz_on_top_Hz", "Fz on top [Hz]"), ("fz_leaving_Hz", "Fz leaving 
 
 
 def run(name, arguments, output_dir):
-    file_name = name.replace(" ", "_").replace("/", "") + ".h5"
+    file_name = "".join(c if c.isalnum() else "_" for c in name) + ".h5"
     command = [os.path.join(ROOT, "build", "tirefe"), os.path.join(ROOT, "inputs", "drum_cleat.lua"), "--quiet",
                "--output-dir", output_dir, f"output={file_name}"] + arguments
     start = time.monotonic()
@@ -50,32 +61,42 @@ def run(name, arguments, output_dir):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("study", choices=sorted(STUDIES), nargs="?", default="sensitivity")
     parser.add_argument("--full", action="store_true", help="the 8 s protocol instead of the short one")
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--output-dir", default=os.path.join(ROOT, "results", "drum_cleat_study"))
-    parser.add_argument("extra", nargs="*", help="key=value for every variant")
+    parser.add_argument("extra", nargs="*", help="key=value for every run")
     options = parser.parse_args()
     os.makedirs(options.output_dir, exist_ok=True)
     protocol = [] if options.full else SHORT
+    variants = STUDIES[options.study]
     with concurrent.futures.ThreadPoolExecutor(options.jobs) as pool:
         futures = [pool.submit(run, name, protocol + options.extra + arguments, options.output_dir)
-                   for name, arguments in VARIANTS.items()]
+                   for name, arguments in variants.items()]
         results = dict(future.result() for future in futures)
 
-    reference = results["reference"]
-    print(f"{'variant':14s}" + "".join(f"{label:>22s}" for _, label in QUANTITIES) +
-          f"{'steps':>8s}{'it/step':>8s}{'wall s':>8s}")
-    for name in VARIANTS:
+    failed = [name for name in variants if "error" in results[name]]
+    for name in failed:
+        print(f"{name}: failed: {results[name]['error']}")
+    if failed:
+        return 1
+    first = results[next(iter(variants))]
+    print(f"{'run':24s}" + "".join(f"{label:>22s}" for _, label in QUANTITIES) + f"{'steps':>8s}{'it/step':>8s}"
+          f"{'wall s':>8s}")
+    for name in variants:
         values = results[name]
-        if "error" in values:
-            print(f"{name:14s}  failed: {values['error']}")
-            continue
         cells = ""
         for key, _ in QUANTITIES:
-            change = 100.0 * (values[key] / reference[key] - 1.0)
-            cells += f"{values[key]:>13.1f}" + (f" ({change:+5.1f}%)" if name != "reference" else " " * 9)
+            change = 100.0 * (values[key] / first[key] - 1.0)
+            cells += f"{values[key]:>13.1f}" + (f" ({change:+5.1f}%)" if options.study == "sensitivity" else " " * 9)
         steps, iterations = values["dynamic_steps"], values["dynamic_newton_iterations"]
-        print(f"{name:14s}{cells}{steps:8.0f}{iterations / steps:8.2f}{values['wall']:8.1f}")
+        print(f"{name:24s}{cells}{steps:8.0f}{iterations / steps:8.2f}{values['wall']:8.1f}")
+    if options.study != "sensitivity":
+        cells = ""
+        for key, _ in QUANTITIES:
+            low, high = min(results[n][key] for n in variants), max(results[n][key] for n in variants)
+            cells += f"{low:>8.1f}-{high:<8.1f}" + f"{100 * (high - low) / (high + low):4.1f}%"
+        print(f"{'range, +- half of it':24s}{cells}")
     return 0
 
 

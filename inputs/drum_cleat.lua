@@ -22,6 +22,7 @@
 local p = tirefe.parameters{
   tire = { "tires.145SR12_tread_layer", "parameter set in lua/tires/ (tires.145SR12: the paper's model)" },
   elements = { 100, "wedges around the tire" },
+  rim_inertia = { 0.0, "rotary inertia of what turns with the tire (0: the tire set's)", unit = "kg m^2" },
   pressure_kpa = { 208, "inflation pressure", unit = "kPa" },
   load = { 3800, "spindle load on the drum", unit = "N" },
   drum_diameter = { 1.7, "drum diameter", unit = "m" },
@@ -50,7 +51,7 @@ tirefe.progress{ end_time = p.end_time }
 local guard = require("guard")
 guard.positive(p, { "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time", "dt",
                     "dt_max", "dt_cleat", "ring_time", "fields_interval" })
-guard.non_negative(p, { "cleat_height" })
+guard.non_negative(p, { "cleat_height", "rim_inertia" })
 if p.end_time <= 2.0 + p.dt then error("parameter end_time must be later than the 2 s of inflation and pressing") end
 
 -- The rig (lua/drum.lua): the drum's turn, the cleat's passages under the tire and the
@@ -69,6 +70,7 @@ local time_step = rig:time_step{ passages = passages, dt = p.dt, dt_max = p.dt_m
 local model = tirefe.model{ title = "drum-cleat test, " .. p.tire }
 local tire_parameters = require(p.tire)
 tire_parameters.elements = p.elements
+if p.rim_inertia > 0 then tire_parameters.rim_rotary_inertia = p.rim_inertia end
 tire_parameters.pressure = p.pressure_kpa * 1e3
 tire_parameters.pressure_load_function = "inflation"
 tire_parameters.y = rig.radius + tire_parameters.outer_diameter / 2
@@ -130,8 +132,24 @@ if p.check then
   tirefe.check{ name = "pressed to the load [N]", value = spindle_fz_at_start, expected = p.load, tolerance = 1e-3 * p.load }
   tirefe.check{ name = "a full-speed cleat passage was run", value = summary.passage and 1 or 0, expected = 1,
                 tolerance = 0 }
-  tirefe.check{ name = "rolling radius = contact ring circumference / 2 pi [m]", value = summary.rolling_radius,
+  tirefe.check{ name = "rolling radius = tread ring circumference / 2 pi [m]", value = summary.rolling_radius,
                 expected = summary.belt_radius, tolerance = 2e-3 * summary.belt_radius }
+  -- The energy balance of the dynamic run: what the scheme created or lost against what
+  -- friction and the dashpots took (docs/dynamics.md), and the drum's contact force from
+  -- step to step through the passages (docs/drum_cleat.md, Impact).
+  local time, since = history("time"), nil
+  for i, t in ipairs(time) do if not since and t >= rig.start then since = i end end
+  local function grown(name) local v = history(name); return v[#v] - v[since] end
+  local dissipated = grown("contact_dissipated") + grown("energy_damping")
+  tirefe.check{ name = "energy: balance error / friction and damping's dissipation", value =
+                grown("energy_balance_error") / dissipated, expected = 0, tolerance = 0.01 }
+  local normal, peak, jump = history("drum_fy"), 0, 0
+  for i = since + 1, #normal do
+    peak = math.max(peak, math.abs(normal[i]))
+    jump = math.max(jump, math.abs(normal[i] - normal[i - 1]))
+  end
+  tirefe.check{ name = "contact: the largest step-to-step change of the drum's force / its peak", value = jump / peak,
+                expected = 0, tolerance = 0.1 }
   if p.tire == "tires.145SR12_tread_layer" and summary.measured then
     cleat_ringing.check_calibrated(summary.ringing, summary.measured)  -- against the measured ringing
     if summary.before then cleat_ringing.check_calibrated(summary.before.ringing, summary.measured, "passage before") end

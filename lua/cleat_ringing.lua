@@ -49,7 +49,10 @@ end
 
 -- The frequencies measured on the drum (the paper's section 3.1, docs/model.md section 7)
 -- and the test they were measured in: they say nothing about other speeds, loads or cleats.
-M.measured_frequencies = { fz_on_top = 88, fz_leaving = 85, fx_from_hit = 35, fx_leaving = 35 }
+-- Fx from the first hit has none: the paper's one longitudinal frequency (35 Hz) is the
+-- ringing after the tire leaves the cleat; the first hit's window holds the passage's own
+-- content as well (docs/drum_cleat.md), this project's reading, reported and not scored.
+M.measured_frequencies = { fz_on_top = 88, fz_leaving = 85, fx_leaving = 35 }
 M.test_conditions = { speed_kmh = 51.3, load = 3800, pressure_kpa = 208, cleat_height = 0.025, cleat_length = 0.66,
                       drum_diameter = 1.7 }
 M.test_note = "measured values are for 51.3 km/h, 3800 N, 208 kPa, 25 mm x 660 mm cleat on the 1.7 m drum"
@@ -73,7 +76,9 @@ function M.table_lines(readings, measured)
     local r = readings[window.name]
     local line = string.format("  %-32s %6.1f Hz %6.1f Hz  (%5.3f)   %5.1f +- %4.1f Hz", r.what, r.spectrum_frequency,
                                r.pencil_frequency, r.damping_ratio, r.frequency, r.uncertainty)
-    if measured then line = line .. string.format("   %g Hz", measured[window.name]) end
+    if measured then
+      line = line .. (measured[window.name] and string.format("   %g Hz", measured[window.name]) or "   (none)")
+    end
     lines[#lines + 1] = line
   end
   if not measured then lines[#lines + 1] = "  (" .. M.test_note .. ")" end
@@ -98,24 +103,23 @@ function M.report(model, readings, measured, prefix)
 end
 
 -- Checks the calibrated tire's readings against the measured ringing (docs/calibration.md):
--- each window's reading within 5 % of the measured frequency, and its two estimators within
--- 5 % of each other. Fx from the first hit is not one mode's ringing (the passage's own
--- content and the restart of the ringing as the tire leaves the cleat, docs/drum_cleat.md):
--- it is checked against the model's documented reading instead. 'label' (optional) names
--- the passage in the checks' names.
+-- each measured window's reading within 5 % of the measurement, and its two estimators
+-- within 5 % of each other. Fx from the first hit has no measurement (above): its spectrum
+-- reading is checked against this model's own earlier reading, a regression check.
+-- 'label' (optional) names the passage in the checks' names.
 function M.check_calibrated(readings, measured, label)
   local of = label and (" (" .. label .. ")") or ""
   for _, window in ipairs(M.windows) do
     local reading = readings[window.name]
-    if window.name ~= "fx_from_hit" then
-      tirefe.check{ name = window.what .. of .. " vs measured " .. measured[window.name] .. " Hz",
+    if measured[window.name] then
+      tirefe.check{ name = "measured: " .. window.what .. of .. " vs " .. measured[window.name] .. " Hz",
                     value = reading.frequency, expected = measured[window.name], relative = 0.05 }
-      tirefe.check{ name = window.what .. of .. ": matrix pencil vs spectrum", value = reading.pencil_frequency,
-                    expected = reading.spectrum_frequency, relative = 0.05 }
+      tirefe.check{ name = "estimators: " .. window.what .. of .. ", matrix pencil vs spectrum",
+                    value = reading.pencil_frequency, expected = reading.spectrum_frequency, relative = 0.05 }
     end
   end
-  tirefe.check{ name = "Fx from the first hit" .. of .. ", the model's documented reading [Hz]",
-                value = readings.fx_from_hit.frequency, expected = 31.5, relative = 0.05 }
+  tirefe.check{ name = "regression: Fx from the first hit" .. of .. ", spectrum vs this model's 31.0 Hz",
+                value = readings.fx_from_hit.spectrum_frequency, expected = 31.0, relative = 0.03 }
 end
 
 return M

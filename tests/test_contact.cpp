@@ -469,6 +469,8 @@ TEST_CASE("a node beyond the search distance gets the full projection's answer w
   ContactHistory open;
   open.coordinate = 0.4;  // projected at an earlier step
   const Eigen::Vector2d up(0.0, 1.0);
+  const double middle = cleat.angle + turned;
+  const Eigen::Vector2d cleat_direction(std::cos(middle), std::sin(middle));
   // On the fillet of the cleat's top edge at angle + L/(2R), where it is at this time,
   // 0.1 mm inside: the fillet's centre lies r below the top and r from the side face.
   const double r = cleat.edge_radius, side = cleat.angle + 0.5 * cleat.arc_length / 0.85 + turned;
@@ -482,9 +484,13 @@ TEST_CASE("a node beyond the search distance gets the full projection's answer w
     ContactHistory base;
     bool skipped;
   } nodes[] = {
-      {"just beyond the search distance", centre + (top + 0.05 * (1.0 + 1e-9)) * up, open, true},
+      // Above the drum's top, far from the cleat: the clearance is the drum's own.
+      {"just beyond the search distance", centre + (0.85 + 0.05 * (1.0 + 1e-9)) * up, open, true},
       {"far beyond it", centre + (top + 0.3) * up, open, true},
-      {"just within it", centre + (top + 0.05 * (1.0 - 1e-9)) * up, open, false},
+      {"just within it", centre + (0.85 + 0.05 * (1.0 - 1e-9)) * up, open, false},
+      // Above the cleat's top (where the cleat is at this time): the clearance is the cleat's.
+      {"just beyond it above the cleat", centre + (top + 0.05 * (1.0 + 1e-9)) * cleat_direction, open, true},
+      {"just within it above the cleat", centre + (top + 0.05 * (1.0 - 1e-9)) * cleat_direction, open, false},
       {"touching down on the drum", centre + (0.85 - 2e-4) * up, open, false},
       {"sticking on the drum", centre + (0.85 - 2e-4) * up, touching(500.0, 20.0, 0.5 * kPi * 0.85), false},
       {"on the cleat's edge", edge, touching(300.0, -10.0, 0.0), false},
@@ -520,10 +526,10 @@ TEST_CASE("a node beyond the search distance gets the full projection's answer w
   ContactHistory trial;
   NodeSurfaceContact::Vector residual;
   NodeSurfaceContact::Matrix tangent;
-  evaluate(skipping_kernel, nodes[5].x, nodes[5].base, trial, residual, tangent);
+  evaluate(skipping_kernel, nodes[7].x, nodes[7].base, trial, residual, tangent);
   CHECK(trial.state != ContactState::Open);
-  CHECK(drum->project(nodes[5].x, time).curvature == Approx(1.0 / 0.005));
-  for (int k : {3, 4}) {
+  CHECK(drum->project(nodes[7].x, time).curvature == Approx(1.0 / 0.005));
+  for (int k : {5, 6}) {
     evaluate(skipping_kernel, nodes[k].x, nodes[k].base, trial, residual, tangent);
     CHECK(trial.state != ContactState::Open);
   }

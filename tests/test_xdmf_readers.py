@@ -59,10 +59,11 @@ def test_meshio_reads_the_finished_run(folder):
     with meshio.xdmf.TimeSeriesReader(index) as reader, h5py.File(h5, "r") as f:
         points, cells = reader.read_points_cells()
         reference = f["mesh/coordinates"][:]
-        assert points.shape == reference.shape == (1 + 40 + 40, 2), points.shape
+        assert points.shape == reference.shape == (1 + 40, 2), points.shape
         assert np.array_equal(points, reference)
-        # The drawn blocks in order (the pressure repeats the tread: drawn once), per block.
-        drawn = [("line", "tire_tread"), ("triangle", "tire_sidewall"), ("line", "tire_tread_layer")]
+        # The drawn blocks in order (the pressure and the tread contact repeat the tread: drawn
+        # once), per block.
+        drawn = [("line", "tire_tread"), ("triangle", "tire_sidewall")]
         assert [(c.type, len(c.data)) for c in cells] == [(kind, 40) for kind, _ in drawn], cells
         for block, (kind, name) in zip(cells, drawn):
             assert np.array_equal(block.data, f["mesh/blocks/" + name][:]), name
@@ -77,13 +78,13 @@ def test_meshio_reads_the_finished_run(folder):
         # The last frame: 3-component vectors with z = 0, the rotation as a scalar, exactly the rows.
         assert set(point_data) == {"displacement", "velocity", "rotation", "deformation"}, set(point_data)
         for name, rows in (("displacement", displacement), ("velocity", velocity), ("deformation", deformation)):
-            assert point_data[name].shape == (81, 3), (name, point_data[name].shape)
+            assert point_data[name].shape == (41, 3), (name, point_data[name].shape)
             assert np.array_equal(point_data[name][:, :2], rows[-1][:, :2]), name
             assert not point_data[name][:, 2].any(), name
         assert np.array_equal(point_data["rotation"], displacement[-1][:, 2])
         node = 17  # one tread node, by value: u_x of the last frame
         assert point_data["displacement"][node, 0] == displacement[-1, node, 0] != 0.0
-        assert [list(np.unique(b)) for b in cell_data["block"]] == [[0], [1], [2]], cell_data["block"]
+        assert [list(np.unique(b)) for b in cell_data["block"]] == [[0], [1]], cell_data["block"]
 
         # The deformation by its definition: x - x_s - R(theta_s) (X - X_s), theta - theta_s.
         spindle = int(f["mesh/node_sets/tire_spindle"][0])
@@ -116,17 +117,14 @@ def test_plot_results_on_the_finished_run(folder):
     assert "Traceback" not in missing.stderr, missing.stderr
 
 
-def test_the_other_grids_show_the_rim_the_contact_nodes_and_the_turning_drum(folder):
+def test_the_other_grids_show_the_rim_and_the_turning_drum(folder):
     index, h5 = os.path.join(folder, "run", "xdmf.xmf"), os.path.join(folder, "run", "xdmf.h5")
     grids = collections(index)
-    assert [name for name, _ in grids] == ["tire_rim", "tire_contact", "drum", "mesh"], grids
+    assert [name for name, _ in grids] == ["tire_rim", "drum", "mesh"], grids
     assert all(len(frames) == 44 for _, frames in grids)
     frames = dict(grids)
     with h5py.File(h5, "r") as f:
         times = f["fields/time"][:]
-        contact = frames["tire_contact"][-1].find("Topology")
-        assert (contact.get("TopologyType"), contact.get("NumberOfElements")) == ("Polyvertex", "40")
-        assert dataset_path(contact.find("DataItem")) == "/mesh/node_sets/tire_contact"
         rim = frames["tire_rim"][0].find("Topology")
         assert (rim.get("TopologyType"), dataset_path(rim.find("DataItem"))) == ("Polyvertex", "/mesh/blocks/tire_rim")
         # The drum at every frame where its angle puts it (the first frame, at rest, turned).

@@ -1,4 +1,4 @@
--- A small tire with a tread layer on a spinning drum with a cleat, whose result file and
+-- A small calibrated tire on a spinning drum with a cleat, whose result file and
 -- XDMF index tests/test_xdmf_readers.py reads back (with meshio among others). Inflated on
 -- a held hub (0-1 s), pressed onto the drum (1-1.5 s), then the drum spins up and the
 -- tire, its spin free, rolls; the cleat is still on its way round when the run ends.
@@ -7,7 +7,7 @@
 local p = tirefe.parameters{ elements = 40, end_time = 1.8, dt = 2e-3, depth = 0.015, speed = 5.0,
                               fields_interval = 0.01, output = "xdmf.h5" }
 
-local model = tirefe.model{ title = "tire with a tread layer on a drum (XDMF readers)" }
+local model = tirefe.model{ title = "calibrated tire on a drum (XDMF readers)" }
 local drum_radius = 0.85
 local tire_parameters = {}
 for key, value in pairs(require("tires.145SR12_tread_layer")) do tire_parameters[key] = value end

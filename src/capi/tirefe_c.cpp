@@ -354,6 +354,12 @@ class SpindlePath final : public SteppedSystem {
     return message.str();
   }
 
+  std::string where() const override {
+    std::ostringstream text;
+    text << time() << " s into its " << duration_ << " s";
+    return text.str();
+  }
+
   /// The steps and tries so far, at the committed time.
   tirefe_advance_report report() const {
     tirefe_advance_report report = report_;

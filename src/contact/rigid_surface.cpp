@@ -70,6 +70,10 @@ double FlatRoad::clearance(const Eigen::Vector2d& x, double time) const {
 // ---- Drum --------------------------------------------------------------------------
 
 namespace {
+constexpr double kNearCleat = 0.1;  // [rad]: the angular margin of Drum::clearance beyond the cleat
+}
+
+namespace {
 
 /// The drum's outline, clockwise (solid on the right): the bare drum from the cleat's foot
 /// at angle - half round to its foot at angle + half, up that side, back along the top
@@ -98,7 +102,11 @@ SurfaceCurve drum_curve(double radius, const Eigen::Vector2d& centre, const Clea
 Drum::Drum(double diameter, const Eigen::Vector2d& centre, MotionFunction angle, const Cleat& cleat)
     : RigidSurface("drum", drum_curve(0.5 * diameter, centre, cleat), RigidMotion::rotation(std::move(angle), centre)),
       radius_(0.5 * diameter),
-      cleat_(cleat) {}
+      cleat_(cleat),
+      cleat_middle_(std::cos(cleat.angle), std::sin(cleat.angle)) {
+  const double reach = 0.5 * cleat.arc_length / radius_ + kNearCleat;
+  if (cleat.height > 0.0 && reach < kPi) near_cleat_cos_ = std::cos(reach);
+}
 
 // ---- RoadProfile -------------------------------------------------------------------
 
@@ -172,9 +180,16 @@ std::vector<Eigen::Vector2d> RoadProfile::cleat_points(double start, double leng
   return {{start, level}, {start, level + height}, {start + length, level + height}, {start + length, level}};
 }
 
-double Drum::clearance(const Eigen::Vector2d& x, double /*time*/) const {
-  // A drum turns about its fixed axis (its motion is a rotation alone): no pose to look up.
-  return (x - centre()).norm() - (radius_ + std::max(cleat_.height, 0.0));
+double Drum::clearance(const Eigen::Vector2d& x, double time) const {
+  // A drum turns about its fixed axis (its motion is a rotation alone).
+  const Eigen::Vector2d arm = x - centre();
+  const double distance = arm.norm();
+  if (near_cleat_cos_ > -1.0 && arm.dot(motion().pose(time).rotation * cleat_middle_) < near_cleat_cos_ * distance) {
+    // More than kNearCleat beyond the cleat's span in angle: no nearer to the cleat than
+    // 2 R sin(kNearCleat / 2) (two points at radii >= R that far apart in angle).
+    return std::min(distance - radius_, 2.0 * radius_ * std::sin(0.5 * kNearCleat));
+  }
+  return distance - (radius_ + std::max(cleat_.height, 0.0));
 }
 
 }  // namespace tirefe

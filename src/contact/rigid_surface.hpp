@@ -93,13 +93,16 @@ class Drum : public RigidSurface {
   Drum(double diameter, const Eigen::Vector2d& centre, MotionFunction angle, const Cleat& cleat = {});
   double radius() const { return radius_; }
   const Eigen::Vector2d& centre() const { return motion().centre(); }
-  /// Distance from x to the circle through the cleat's top: no trigonometry.
+  /// Distance from x to the drum's circle, or to the circle through the cleat's top where
+  /// x is within 0.1 rad of the cleat's angular span: no trigonometry.
   double clearance(const Eigen::Vector2d& x, double time) const override;
   const Cleat& cleat() const { return cleat_; }
 
  private:
   double radius_;
   Cleat cleat_;
+  Eigen::Vector2d cleat_middle_;  // at rest, unit
+  double near_cleat_cos_ = -1.0;  // cos of the cleat's half span + 0.1 rad (-1: every direction)
 };
 
 class RoadProfile : public RigidSurface {

@@ -172,6 +172,8 @@ class ElementBlock {
   /// of dissipation and of the work of a moving surface (ElementEnergy::supplied, dissipated).
   virtual bool stores_energy() const = 0;
   virtual bool has_dashpots() const = 0;
+  /// Whether an evaluation leaves the block's state alone (it keeps no history).
+  virtual bool history_free() const = 0;
   /// Adds the block's inertia forces M a at 'state' to 'global' (one entry per DOF) and
   /// returns true; false, adding nothing, when the kernel cannot say (it reads the
   /// acceleration but has no mass_times).
@@ -412,6 +414,7 @@ class ElementBlockOf final : public ElementBlock {
   }
 
   bool stores_energy() const override { return detail::StoresEnergy<Kernel>::value; }
+  bool history_free() const override { return std::is_empty_v<History>; }
   bool has_dashpots() const override {
     return detail::ReadsVelocity<Kernel>::value && !detail::BooksEnergy<Kernel>::value;
   }

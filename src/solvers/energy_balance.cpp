@@ -66,22 +66,22 @@ void EnergyBalance::block_forces(const State& state, Eigen::VectorXd& dashpots, 
   context.time = state.time;
   context.want_tangent = false;
   AssemblyTarget target;
-  bool evaluated = false;
+  bool history_written = false;
   for (const auto& block : model_.blocks()) {
-    if (block->has_dashpots()) {
+    const bool damped = block->has_dashpots(), unstored_forces = !block->stores_energy();
+    if (damped) {
       context.factors = IntegratorFactors::damping_force();
       target.residual = &dashpots;
       block->assemble(context, state, target);
-      evaluated = true;
     }
-    if (!block->stores_energy()) {
+    if (unstored_forces) {
       context.factors = IntegratorFactors::stiffness_force();
       target.residual = &unstored;
       block->assemble(context, state, target);
-      evaluated = true;
     }
+    history_written = history_written || ((damped || unstored_forces) && !block->history_free());
   }
-  if (evaluated) model_.revert_history();  // an evaluation writes trial history: back to the committed
+  if (history_written) model_.revert_history();  // back to the committed history
 }
 
 }  // namespace tirefe

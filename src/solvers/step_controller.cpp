@@ -68,6 +68,12 @@ void StepController::advance_span(SteppedSystem& system, double target) {
   }
 }
 
+std::string SteppedSystem::where() const {
+  std::ostringstream text;
+  text << "at t = " << time();
+  return text.str();
+}
+
 void StepController::notify(const StepRecord& record) const {
   for (const Observer& observer : observers_) observer(record);
   if (closing_observer_) closing_observer_(record);
@@ -79,7 +85,7 @@ void StepController::check_step_budget(const SteppedSystem& system, int steps_ta
   const double allowed = control_.step_budget * (std::ceil(nominal_steps - 1e-9) + 1.0);
   if (steps_taken < allowed) return;
   std::ostringstream message;
-  message << "the step budget ran out at t = " << system.time() << ": " << steps_taken
+  message << "the step budget ran out " << system.where() << ": " << steps_taken
           << " steps where dt = " << sizes_.nominal << " asks for " << std::ceil(nominal_steps - 1e-9)
           << " (the last dt = " << step
           << "); steps that converge only far below dt point to a model out of balance or too light "

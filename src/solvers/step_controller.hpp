@@ -65,6 +65,8 @@ class SteppedSystem {
   virtual void commit_step(double step, StepRecord& record) = 0;
   /// Why the step from the committed time fails even after 'cuts' cuts, the last of size 'step'.
   virtual std::string failure_message(int cuts, double step) const = 0;
+  /// Where the committed time lies, for a message: "at t = ..." on the system's own clock.
+  virtual std::string where() const;
 };
 
 class StepController {
