@@ -195,13 +195,13 @@ for _, wheel in ipairs({ { "left-front", LF }, { "left-rear", LR } }) do
                   expected = 0, tolerance = 0.5 }
   end
 end
--- The converged strikes (docs/vehicle.md, the study at dt_pothole = 62.5 us): time [s],
+-- The converged strikes (docs/vehicle.md, the study at dt_pothole = 50 us): time [s],
 -- Fz peak, Fx low, Fx high, and the same low-passed [N], for each shipped tire.
 local converged = {
-  ["tires.145SR12"] = { LF = { 9.0482, 15270, -5188, 5005, 15152, -5112, 4784 },
-                        LR = { 9.2514, 12244, -4200, 4242, 12154, -4181, 4088 } },
-  ["tires.145SR12_tread_layer"] = { LF = { 9.0497, 14283, -4379, 2432, 14274, -4357, 2443 },
-                                    LR = { 9.2527, 11677, -3033, 2601, 11658, -3046, 2552 } },
+  ["tires.145SR12"] = { LF = { 9.0482, 15260, -5194, 5014, 15152, -5121, 4796 },
+                        LR = { 9.2514, 12239, -4192, 4234, 12153, -4171, 4087 } },
+  ["tires.145SR12_tread_layer"] = { LF = { 9.0497, 14282, -4379, 2430, 14273, -4355, 2443 },
+                                    LR = { 9.2527, 11677, -3033, 2601, 11659, -3046, 2550 } },
 }
 local defaults = { dt = 5e-4, settle = 1.0, ramp = 5.0, cruise = 2.0, lead = 1.0, depth = 0.10, length = 0.76,
                    speed_kmh = 48.0, mu = 0.9 }
