@@ -23,6 +23,8 @@ local p = tirefe.parameters{
   tire = { "tires.145SR12_tread_layer", "parameter set in lua/tires/ (tires.145SR12: the paper's model)" },
   elements = { 100, "wedges around the tire" },
   rim_inertia = { 0.0, "rotary inertia of what turns with the tire (0: the tire set's)", unit = "kg m^2" },
+  tread_shear_stiffness = { 0.0, "tread rubber's shear stiffness per length (0: the tire set's)", unit = "N/m^2" },
+  tread_shear_damping = { -1.0, "tread rubber's shear dashpot per length (< 0: the tire set's)", unit = "N s/m^2" },
   pressure_kpa = { 208, "inflation pressure", unit = "kPa" },
   load = { 3800, "spindle load on the drum", unit = "N" },
   drum_diameter = { 1.7, "drum diameter", unit = "m" },
@@ -51,7 +53,7 @@ tirefe.progress{ end_time = p.end_time }
 local guard = require("guard")
 guard.positive(p, { "pressure_kpa", "load", "drum_diameter", "cleat_length", "speed_kmh", "spin_up_time", "dt",
                     "dt_max", "dt_cleat", "ring_time", "fields_interval" })
-guard.non_negative(p, { "cleat_height", "rim_inertia" })
+guard.non_negative(p, { "cleat_height", "rim_inertia", "tread_shear_stiffness" })
 if p.end_time <= 2.0 + p.dt then error("parameter end_time must be later than the 2 s of inflation and pressing") end
 
 -- The rig (lua/drum.lua): the drum's turn, the cleat's passages under the tire and the
@@ -71,6 +73,8 @@ local model = tirefe.model{ title = "drum-cleat test, " .. p.tire }
 local tire_parameters = require(p.tire)
 tire_parameters.elements = p.elements
 if p.rim_inertia > 0 then tire_parameters.rim_rotary_inertia = p.rim_inertia end
+if p.tread_shear_stiffness > 0 then tire_parameters.tread_layer_circumferential_stiffness = p.tread_shear_stiffness end
+if p.tread_shear_damping >= 0 then tire_parameters.tread_layer_circumferential_damping = p.tread_shear_damping end
 tire_parameters.pressure = p.pressure_kpa * 1e3
 tire_parameters.pressure_load_function = "inflation"
 tire_parameters.y = rig.radius + tire_parameters.outer_diameter / 2
