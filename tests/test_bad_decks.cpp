@@ -170,8 +170,8 @@ TEST_CASE("drum-cleat deck, short version: where the tread meets the cleat moves
     const std::string name = "drum_phase_" + std::to_string(quarter) + ".h5";
     char start[64];
     std::snprintf(start, sizeof start, "%.6f", -90.0 + 0.25 * quarter * spacing_deg);
-    const RunResult result = run_tirefe(deck + " spin_up_time=0.5 end_time=3.0 cleat_start_deg=" + start +
-                                        " output=" + name);
+    const RunResult result =
+        run_tirefe(deck + " spin_up_time=0.5 end_time=3.0 cleat_start_deg=" + start + " output=" + name);
     INFO("errors: " << result.errors);
     REQUIRE(result.exit_status == 0);
     const auto hdf5 = tirefe::io::Hdf5File::open_read_only((run_folder() / name).string());

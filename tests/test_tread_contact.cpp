@@ -60,7 +60,8 @@ void check_tangent(const TreadContact& kernel, const Local& local, const Evaluat
   const IntegratorFactors& f = context.factors;
   for (int j = 0; j < TreadContact::kDofs; ++j) {
     for (auto field : {&Local::displacement, &Local::velocity}) {
-      const double factor = (field == &Local::displacement ? f.tangent_stiffness : f.tangent_damping) / f.force_stiffness;
+      const double factor =
+          (field == &Local::displacement ? f.tangent_stiffness : f.tangent_damping) / f.force_stiffness;
       if (factor == 0.0) continue;
       Local plus = local, minus = local;
       (plus.*field)[j] += step;
@@ -144,9 +145,9 @@ TEST_CASE("tread contact tangent equals finite differences: stick, slip and land
     const Local local = local_state(down + Eigen::Vector2d(4e-4, -5e-4), down + Eigen::Vector2d(4.2e-4, -7e-4), va, vb);
     TreadContact::History moving = base, resting = base;
     const TreadContact::Vector r1 = evaluate(kernel, local, statics, base, moving);
-    const TreadContact::Vector r2 = evaluate(kernel, local_state(local.displacement.segment<2>(0),
-                                                                 local.displacement.segment<2>(3)),
-                                             statics, base, resting);
+    const TreadContact::Vector r2 =
+        evaluate(kernel, local_state(local.displacement.segment<2>(0), local.displacement.segment<2>(3)), statics, base,
+                 resting);
     CHECK((r1 - r2).norm() == 0.0);
     check_tangent(kernel, local, statics, base);
   }
@@ -218,8 +219,7 @@ TEST_CASE("a chord pressed into a road carries k_N times its compression, sheare
     const double stick_limit = mu * normal / (k_t * length);  // the travel at which it slips
     for (const double travel : {0.3 * stick_limit, 0.9 * stick_limit, 3.0 * stick_limit}) {
       TreadContact::History trial = pressed;
-      const TreadContact::Vector r =
-          evaluate(kernel, local_state({travel, -d}, {travel, -d}), statics, pressed, trial);
+      const TreadContact::Vector r = evaluate(kernel, local_state({travel, -d}, {travel, -d}), statics, pressed, trial);
       const double expected = std::min(k_t * length * travel, mu * normal);
       CHECK(r[0] + r[3] == Approx(expected).epsilon(1e-12));  // the residual is -f: it resists
       CHECK(count(trial, travel < stick_limit ? ContactState::Stick : ContactState::Slip) == TreadContact::kSamples);
@@ -246,8 +246,8 @@ TEST_CASE("tread contact is frame-indifferent: carried with the surface, it shea
       const double t = 0.01 * step;
       // The chord's points carried rigidly with the road, and their velocities.
       auto carried = [&](const Eigen::Vector2d& x) -> Eigen::Vector2d { return motion.to_space(x + sunk, t) - x; };
-      const Local local = local_state(carried(a), carried(b), motion.velocity(carried(a) + a, t),
-                                      motion.velocity(carried(b) + b, t));
+      const Local local =
+          local_state(carried(a), carried(b), motion.velocity(carried(a) + a, t), motion.velocity(carried(b) + b, t));
       TreadContact::History trial = history;
       evaluate(kernel, local, at(t, 0.01), history, trial);
       history = trial;
@@ -270,7 +270,9 @@ TEST_CASE("tread contact is frame-indifferent: carried with the surface, it shea
       const Eigen::Matrix2d turn = (Eigen::Matrix2d() << c, -s, s, c).finished();
       const Eigen::Vector2d sink(0.0, -0.003);
       auto at_time = [&](const Eigen::Vector2d& x) { return Eigen::Vector2d(turn * (x + sink) - x); };
-      auto velocity = [&](const Eigen::Vector2d& x) { return Eigen::Vector2d(spin * Eigen::Vector2d(-(turn * (x + sink)).y(), (turn * (x + sink)).x())); };
+      auto velocity = [&](const Eigen::Vector2d& x) {
+        return Eigen::Vector2d(spin * Eigen::Vector2d(-(turn * (x + sink)).y(), (turn * (x + sink)).x()));
+      };
       const Local local = local_state(at_time(a), at_time(b), velocity(a), velocity(b));
       TreadContact::History trial = history;
       evaluate(kernel, local, at(t), history, trial);
@@ -333,8 +335,8 @@ double dropped_chord_balance(double step, double* dissipated = nullptr) {
   model.add_block<TreadBeam>("beam").add({a, b}, TreadBeam({0.0, height}, {length, height}, section));
   auto road = std::make_shared<FlatRoad>(Eigen::Vector2d::Zero(), Eigen::Vector2d::UnitX(),
                                          RigidMotion::translation(MotionFunction::ramped_rate(speed, 0.05, 0.02)));
-  model.add_block<TreadContact>("contact").add({a, b}, TreadContact(road, {0.0, height}, {length, height},
-                                                                    rubber(0.6, 2.4e3, 2.4e3)));
+  model.add_block<TreadContact>("contact").add(
+      {a, b}, TreadContact(road, {0.0, height}, {length, height}, rubber(0.6, 2.4e3, 2.4e3)));
   for (int node : {a, b}) {
     model.fix(node, kRz);
     model.add_nodal_load(node, kUy, -50.0, model.add_load_function(LoadFunction::constant(1.0)));

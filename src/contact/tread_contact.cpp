@@ -7,14 +7,13 @@ namespace tirefe {
 
 void TreadRubber::check() const {
   auto require = [](bool ok, const std::string& what, double value) {
-    if (!ok || !std::isfinite(value)) throw ModelError("tread contact: " + what + " (got " + std::to_string(value) + ")");
+    if (!ok || !std::isfinite(value))
+      throw ModelError("tread contact: " + what + " (got " + std::to_string(value) + ")");
   };
   require(normal_stiffness > 0.0, "the tread rubber's normal stiffness must be positive", normal_stiffness);
-  require(tangential_stiffness > 0.0, "the tread rubber's tangential stiffness must be positive",
-          tangential_stiffness);
+  require(tangential_stiffness > 0.0, "the tread rubber's tangential stiffness must be positive", tangential_stiffness);
   require(normal_damping >= 0.0, "the tread rubber's normal damping must not be negative", normal_damping);
-  require(tangential_damping >= 0.0, "the tread rubber's tangential damping must not be negative",
-          tangential_damping);
+  require(tangential_damping >= 0.0, "the tread rubber's tangential damping must not be negative", tangential_damping);
   require(friction >= 0.0, "the friction coefficient must not be negative", friction);
   require(search_distance > 0.0, "the search distance must be positive", search_distance);
 }
@@ -90,7 +89,7 @@ Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen
   const double k_t = share_ * rubber_.tangential_stiffness, c_t = damped ? share_ * rubber_.tangential_damping : 0.0;
   const double penetration = -p.gap;
   const double engaged = std::min(1.0, penetration / kDampingDepth);  // the dashpot's build-up (header)
-  const double closing = std::max(0.0, -v_n);                          // it acts while the rubber is compressed
+  const double closing = std::max(0.0, -v_n);                         // it acts while the rubber is compressed
   const double normal_force = k_n * penetration + engaged * c_n * closing;
   const bool landing = base.state == ContactState::Open;  // sticks where it lands, unsheared
   // The sample's travel relative to the surface in this step: from the material point where
@@ -151,7 +150,7 @@ Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen
   // -df/dx and -df/dv, f = t_N nu + t_T tau (header).
   const double b = p.normal_rate, spin = pose.spin;
   const Eigen::RowVector2d tau_t = tau.transpose(), nu_t = nu.transpose();
-  const double closing_rate = closing > 0.0 ? engaged * c_n : 0.0;                            // d(e c_N closing)/d(-v_n)
+  const double closing_rate = closing > 0.0 ? engaged * c_n : 0.0;  // d(e c_N closing)/d(-v_n)
   const double engaging = penetration < kDampingDepth ? c_n * closing / kDampingDepth : 0.0;  // of e c_N closing, by -g
   const Eigen::RowVector2d normal_by_x =
       -(k_n + engaging) * nu_t + (closing_rate * (spin - b * v_t)) * tau_t;  // dt_N/dx
@@ -239,9 +238,8 @@ ContactSummary summarize_contact(const TreadContactBlock& block) {
       summary.force += sample.force;
       summary.max_penetration = std::max(summary.max_penetration, -sample.gap);
       if (sample.state == ContactState::Slip) ++summary.nodes_slipping;
-      const double offset = summary.nodes_in_contact == 0
-                                ? 0.0
-                                : block.kernel(e).surface().arc_difference(sample.coordinate, first);
+      const double offset =
+          summary.nodes_in_contact == 0 ? 0.0 : block.kernel(e).surface().arc_difference(sample.coordinate, first);
       if (summary.nodes_in_contact++ == 0) first = sample.coordinate;
       low = std::min(low, offset);
       high = std::max(high, offset);

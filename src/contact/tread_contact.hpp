@@ -92,7 +92,7 @@ struct TreadSample {
   double sliding_velocity = 0.0;                                 // v_rel.tau [m/s]
   double surface_power = 0.0;                                    // f.v_surface [W]
   double surface_work = 0.0;                                     // booked since the start [J]
-  double dissipated = 0.0;  // friction + dashpots, since the start [J]
+  double dissipated = 0.0;                                       // friction + dashpots, since the start [J]
   ContactState state = ContactState::Open;
   std::int32_t unused_after_state = 0;  // explicit padding: checkpoints copy every byte
 };
@@ -101,10 +101,10 @@ static_assert(sizeof(TreadSample) == 16 * sizeof(double), "TreadSample must have
 class TreadContact : public KernelShape<2, std::array<TreadSample, 8>> {
  public:
   static constexpr int kSamples = 8;
-  static constexpr double kDampingDepth = 0.5e-3;          // d_0 [m]
-  static constexpr bool kReadsAcceleration = false;        // massless
-  static constexpr bool kReadsLastTrial = true;            // evaluate() writes every field of 'trial' (no copy of 'base')
-  static constexpr bool kBooksEnergy = true;               // its dashpots and friction (energy())
+  static constexpr double kDampingDepth = 0.5e-3;    // d_0 [m]
+  static constexpr bool kReadsAcceleration = false;  // massless
+  static constexpr bool kReadsLastTrial = true;      // evaluate() writes every field of 'trial' (no copy of 'base')
+  static constexpr bool kBooksEnergy = true;         // its dashpots and friction (energy())
   static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
 
   /// The chord's reference end points (counter-clockwise about the tire's centre).

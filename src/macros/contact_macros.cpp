@@ -445,9 +445,8 @@ void add_contact_macros(MacroTable& table) {
         {"history", VT::String, false, "",
          "prefix of history channels <prefix>_fx, _fy, _patch_length, _nodes_in_contact (sample points), "
          "_surface_angle, _surface_x"},
-        {"output_every", VT::Integer, false, "",
-         "write per-sample rows (/contact/<name>/...) every n steps; 0: never", std::string("0"),
-         Range::NonNegative}},
+        {"output_every", VT::Integer, false, "", "write per-sample rows (/contact/<name>/...) every n steps; 0: never",
+         std::string("0"), Range::NonNegative}},
        "model:tire_contact{ surface = \"drum\", friction = 0.3, history = \"drum\" }"},
       tire_contact_macro);
   add({"contact_value",

@@ -23,7 +23,7 @@ struct EnergyRecord {
   double unstored_work = 0.0;       // done on it by element forces that store no energy
   double damping = 0.0;             // dissipated by the elements' dashpots
   double contact_dissipated = 0.0;  // dissipated by friction and the contacts' dashpots
-  double balance_error = 0.0;  // kinetic + strain + damping + contact - initial - external - surface - unstored
+  double balance_error = 0.0;       // kinetic + strain + damping + contact - initial - external - surface - unstored
   // The contacts' own accounts when the balance started (their histories carry them).
   double supplied_at_start = 0.0, contact_dissipated_at_start = 0.0;
 };

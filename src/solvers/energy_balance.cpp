@@ -48,8 +48,8 @@ void EnergyBalance::add_step(const State& old_state, const State& state, double 
   carried_.unstored_forces.swap(unstored_);
   record.surface_work = stored.supplied - record.supplied_at_start;
   record.contact_dissipated = stored.dissipated - record.contact_dissipated_at_start;
-  record.balance_error = record.kinetic + record.strain + record.damping + record.contact_dissipated -
-                         record.initial - record.external_work - record.surface_work - record.unstored_work;
+  record.balance_error = record.kinetic + record.strain + record.damping + record.contact_dissipated - record.initial -
+                         record.external_work - record.surface_work - record.unstored_work;
 }
 
 ElementEnergy EnergyBalance::stored_energy(const State& state) const {

@@ -55,8 +55,8 @@ struct TireParameters {
 
 struct Tire {
   std::string name;
-  int spindle = -1;                // 0-based node index
-  std::vector<int> tread_nodes;    // 0-based, counter-clockwise from the +x axis
+  int spindle = -1;              // 0-based node index
+  std::vector<int> tread_nodes;  // 0-based, counter-clockwise from the +x axis
   std::shared_ptr<PressureSchedule> pressure;
   TireParameters parameters;
 };
