@@ -18,7 +18,6 @@ By default the short protocol (0.5 s spin-up: the same full-speed impact); --ful
     /usr/bin/python3 bench/drum_cleat_study.py phases [--full] [--jobs 2] [extra key=value ...]
 """
 import argparse
-import concurrent.futures
 import math
 import os
 import subprocess
@@ -26,6 +25,8 @@ import sys
 import time
 
 import h5py
+
+from deck_runs import run_variants
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHORT = ["spin_up_time=0.5", "end_time=3.0"]
@@ -90,15 +91,9 @@ def main():
     protocol = [] if options.full else SHORT
     variants = STUDIES[options.study]
     quantities = CALIBRATION_QUANTITIES if options.study == "calibration" else QUANTITIES
-    with concurrent.futures.ThreadPoolExecutor(options.jobs) as pool:
-        futures = [pool.submit(run, name, protocol + options.extra + arguments, options.output_dir)
-                   for name, arguments in variants.items()]
-        results = dict(future.result() for future in futures)
-
-    failed = [name for name in variants if "error" in results[name]]
-    for name in failed:
-        print(f"{name}: failed: {results[name]['error']}")
-    if failed:
+    results = run_variants(lambda name, arguments: run(name, protocol + options.extra + arguments, options.output_dir),
+                           variants, options.jobs)
+    if results is None:
         return 1
     first = results[next(iter(variants))]
     print(f"{'run':24s}" + "".join(f"{label:>22s}" for _, label in quantities) + f"{'steps':>8s}{'it/step':>8s}"

@@ -9,13 +9,14 @@ balance's error over it and its largest error in one step).
     /usr/bin/python3 bench/pothole_study.py [--tire tires.145SR12_tread_layer] [--jobs 2]
 """
 import argparse
-import concurrent.futures
 import os
 import subprocess
 import sys
 import time
 
 import h5py
+
+from deck_runs import run_variants
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 VARIANTS = {
@@ -52,14 +53,9 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--output-dir", default=os.path.join(ROOT, "results", "pothole_study"))
     options = parser.parse_args()
-    with concurrent.futures.ThreadPoolExecutor(options.jobs) as pool:
-        futures = [pool.submit(run, name, [f"tire={options.tire}"] + arguments, options.output_dir)
-                   for name, arguments in VARIANTS.items()]
-        results = dict(future.result() for future in futures)
-    failed = [name for name in VARIANTS if "error" in results[name]]
-    for name in failed:
-        print(f"{name}: failed: {results[name]['error']}")
-    if failed:
+    results = run_variants(lambda name, arguments: run(name, [f"tire={options.tire}"] + arguments, options.output_dir),
+                           VARIANTS, options.jobs)
+    if results is None:
         return 1
     for corner in ("LF", "LR"):
         finest = results[FINEST][corner]

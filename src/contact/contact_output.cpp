@@ -6,12 +6,23 @@
 
 namespace tirefe {
 
-ContactSource contact_source(const ContactBlock& block) {
+namespace {
+
+// What either kind of contact block gives alike: its name, surface, totals and per-point rows.
+template <class Block>
+ContactSource common_source(const Block& block) {
   ContactSource source;
   source.block = block.name();
   if (block.size() > 0) source.surface = &block.kernel(0).surface();
   source.summarize = [&block] { return summarize_contact(block); };
   source.fill = [&block](ContactNodeResults& results) { fill_contact_results(block, results); };
+  return source;
+}
+
+}  // namespace
+
+ContactSource contact_source(const ContactBlock& block) {
+  ContactSource source = common_source(block);
   source.write_points = [&block](io::Hdf5File& file, const std::string& group) {
     std::vector<long long> nodes;
     for (int e = 0; e < block.size(); ++e) nodes.push_back(block.element_nodes(e)[0]);
@@ -21,11 +32,7 @@ ContactSource contact_source(const ContactBlock& block) {
 }
 
 ContactSource contact_source(const TreadContactBlock& block) {
-  ContactSource source;
-  source.block = block.name();
-  if (block.size() > 0) source.surface = &block.kernel(0).surface();
-  source.summarize = [&block] { return summarize_contact(block); };
-  source.fill = [&block](ContactNodeResults& results) { fill_contact_results(block, results); };
+  ContactSource source = common_source(block);
   source.write_points = [&block](io::Hdf5File& file, const std::string& group) {
     std::vector<long long> starts;
     std::vector<double> positions;

@@ -185,23 +185,25 @@ ContactBlock& add_contact_block(Model& model, const std::string& name, std::shar
   return block;
 }
 
+void ContactSummary::add_point(const RigidSurface& surface, const Eigen::Vector2d& point_force, double gap,
+                               ContactState state, double coordinate) {
+  if (state == ContactState::Open) return;
+  force += point_force;
+  max_penetration = std::max(max_penetration, -gap);
+  if (state == ContactState::Slip) ++nodes_slipping;
+  const double offset = nodes_in_contact == 0 ? 0.0 : surface.arc_difference(coordinate, first_);
+  if (nodes_in_contact++ == 0) first_ = coordinate;
+  low_ = std::min(low_, offset);
+  high_ = std::max(high_, offset);
+  patch_length = high_ - low_;
+}
+
 ContactSummary summarize_contact(const ContactBlock& block) {
   ContactSummary summary;
-  double first = 0.0, low = 0.0, high = 0.0;
   for (int e = 0; e < block.size(); ++e) {
-    const ContactHistory& history = block.committed_history(e);
-    if (history.state == ContactState::Open) continue;
-    summary.force += history.force;
-    summary.max_penetration = std::max(summary.max_penetration, -history.gap);
-    if (history.state == ContactState::Slip) ++summary.nodes_slipping;
-    // Arc length relative to the first node in contact (wrapped on a drum).
-    const double offset =
-        summary.nodes_in_contact == 0 ? 0.0 : block.kernel(e).surface().arc_difference(history.coordinate, first);
-    if (summary.nodes_in_contact++ == 0) first = history.coordinate;
-    low = std::min(low, offset);
-    high = std::max(high, offset);
+    const ContactHistory& h = block.committed_history(e);
+    summary.add_point(block.kernel(e).surface(), h.force, h.gap, h.state, h.coordinate);
   }
-  summary.patch_length = high - low;
   return summary;
 }
 

@@ -143,10 +143,18 @@ ContactBlock& add_contact_block(Model& model, const std::string& name, std::shar
 /// Block totals of the last accepted step.
 struct ContactSummary {
   Eigen::Vector2d force = Eigen::Vector2d::Zero();  // sum of t_N nu + t_T tau on the structure [N]
-  double patch_length = 0.0;                        // arc length spanned by the nodes in contact [m]
-  int nodes_in_contact = 0;
+  double patch_length = 0.0;                        // arc length spanned by the points in contact [m]
+  int nodes_in_contact = 0;                         // points: nodes, or a tread's samples
   int nodes_slipping = 0;
   double max_penetration = 0.0;  // [m]
+
+  /// Counts one point in contact at surface coordinate 'coordinate' (open points are skipped).
+  void add_point(const RigidSurface& surface, const Eigen::Vector2d& point_force, double gap, ContactState state,
+                 double coordinate);
+
+ private:
+  // Arc lengths relative to the first point in contact (wrapped on a drum).
+  double first_ = 0.0, low_ = 0.0, high_ = 0.0;
 };
 ContactSummary summarize_contact(const ContactBlock& block);
 

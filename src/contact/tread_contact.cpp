@@ -231,20 +231,9 @@ TreadContactBlock& add_tread_contact_block(Model& model, const std::string& name
 
 ContactSummary summarize_contact(const TreadContactBlock& block) {
   ContactSummary summary;
-  double first = 0.0, low = 0.0, high = 0.0;
   for (int e = 0; e < block.size(); ++e)
-    for (const TreadSample& sample : block.committed_history(e)) {
-      if (sample.state == ContactState::Open) continue;
-      summary.force += sample.force;
-      summary.max_penetration = std::max(summary.max_penetration, -sample.gap);
-      if (sample.state == ContactState::Slip) ++summary.nodes_slipping;
-      const double offset =
-          summary.nodes_in_contact == 0 ? 0.0 : block.kernel(e).surface().arc_difference(sample.coordinate, first);
-      if (summary.nodes_in_contact++ == 0) first = sample.coordinate;
-      low = std::min(low, offset);
-      high = std::max(high, offset);
-    }
-  summary.patch_length = high - low;
+    for (const TreadSample& sample : block.committed_history(e))
+      summary.add_point(block.kernel(e).surface(), sample.force, sample.gap, sample.state, sample.coordinate);
   return summary;
 }
 
