@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <map>
 
+#include "io/temporary_file.hpp"
+
 namespace tirefe::io {
 
 namespace {
@@ -136,7 +138,7 @@ namespace {
 const char* const kUnfinished = ".partial";  // a checkpoint being written
 }  // namespace
 
-void remove_unfinished_checkpoint(const std::string& path) { std::remove((path + kUnfinished).c_str()); }
+void remove_unfinished_checkpoint(const std::string& path) { clear_for_temporary(path + kUnfinished, kHdf5Signature); }
 
 void check_parameters(const Checkpoint& checkpoint,
                       const std::vector<std::pair<std::string, std::string>>& parameters) {
@@ -159,8 +161,9 @@ void check_parameters(const Checkpoint& checkpoint,
 
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
   const std::string partial = path + kUnfinished;
+  clear_for_temporary(partial, kHdf5Signature);
   {
-    Hdf5File file = Hdf5File::create(partial);
+    Hdf5File file = Hdf5File::create_new(partial);
     file.write_attribute("/", "title", checkpoint.title);
     file.write_attribute("/", "model_index", checkpoint.model_index);
     file.write_attribute("/", "node_count", checkpoint.node_count);

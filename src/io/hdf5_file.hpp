@@ -17,6 +17,9 @@
 
 namespace tirefe::io {
 
+/// The first bytes of every HDF5 file (the superblock at offset 0).
+extern const char* const kHdf5Signature;
+
 class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -132,10 +135,13 @@ class Hdf5File {
  public:
   // Create (truncate) a file. Parent folders must exist.
   static Hdf5File create(const std::string& path);
+  // Create a file where nothing is (never through a symbolic link); IoError otherwise.
+  static Hdf5File create_new(const std::string& path);
   // Create a file that is whole at every instant, even for a reader while it is written or
   // after the process is killed: it is written as '<path>.partial', copied whole to 'path'
   // (under a temporary name, then renamed) at every flush() and renamed to 'path' at close().
-  // Leftovers of a killed run ('<path>.partial', '<path>.partial.copy') are removed here.
+  // Leftovers of a killed run ('<path>.partial', '<path>.partial.copy') are removed here;
+  // anything else in their place is refused (temporary_file.hpp).
   static Hdf5File create_published(const std::string& path);
   // A file held in memory only and dropped when closed ('name' for messages).
   static Hdf5File create_in_memory(const std::string& name);

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <limits>
 
+#include "io/temporary_file.hpp"
 #include "tire/wheel_axes.hpp"
 #include "tirefe/version.hpp"
 
@@ -21,10 +22,20 @@ std::string utc_now() {
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return text;
 }
+/// <stem>.xmf beside the result file 'path'.
+std::string index_path_of(const std::string& path) {
+  return std::filesystem::path(path).replace_extension(".xmf").string();
+}
+
+/// The result file, its index's temporary refused now if anything is in its way, not at the first frame.
+Hdf5File create_published_with_index(const std::string& path) {
+  clear_for_temporary(index_path_of(path) + ".partial", kXdmfSignature);
+  return Hdf5File::create_published(path);
+}
 }  // namespace
 
 ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage)
-    : file_(storage == ResultStorage::File ? Hdf5File::create_published(path) : Hdf5File::create_in_memory(path)),
+    : file_(storage == ResultStorage::File ? create_published_with_index(path) : Hdf5File::create_in_memory(path)),
       discarded_(storage == ResultStorage::Discarded),
       index_(std::filesystem::path(path).filename().string()) {
   file_.write_attribute("/", "tirefe_version", std::string(kVersion));
@@ -78,12 +89,12 @@ ResultFile::~ResultFile() {
   }
 }
 
+std::string ResultFile::index_path() const { return index_path_of(path()); }
+
 void ResultFile::write_index() {
   if (index_.empty()) return;
-  std::filesystem::path index(path());
-  index.replace_extension(".xmf");
   try {
-    index_.write(index.string());
+    index_.write(index_path());
   } catch (const IoError&) {
     file_.abandon();
     throw;

@@ -188,6 +188,8 @@ class ResultFile {
   /// The first frame without views: every frame in the index has them, and the frames_viewed_ first.
   size_t first_unviewed_frame() const { return std::max(frames_viewed_, index_.frames()); }
   void write_index();
+  /// <stem>.xmf beside the file.
+  std::string index_path() const;
   void write_index_if_due();
   /// Adds the frames the last flush put in the file to the index.
   void index_flushed_frames();

@@ -1,10 +1,12 @@
 #include "macros/deck_files.hpp"
 
-#include <fstream>
 #include <iterator>
 #include <vector>
 
 #include "core/mesh.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/temporary_file.hpp"
+#include "io/xdmf.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/lua_module_dir.hpp"
 
@@ -12,7 +14,8 @@ namespace tirefe::macros {
 
 namespace fs = std::filesystem;
 
-const char* const kHdf5Signature = "\x89HDF\r\n\x1a\n";
+OutputFile OutputFile::hdf5(std::string purpose) { return {std::move(purpose), "an HDF5 file", io::kHdf5Signature}; }
+OutputFile OutputFile::xdmf(std::string purpose) { return {std::move(purpose), "an XDMF index", io::kXdmfSignature}; }
 
 namespace {
 
@@ -49,11 +52,7 @@ void refuse_foreign_file(const fs::path& real, const std::string& shown, const O
   if (!fs::exists(status)) return;
   if (fs::is_directory(status)) throw ModelError("'" + shown + "' is a folder; give a file name");
   if (!fs::is_regular_file(status)) throw ModelError("'" + shown + "' is not a regular file; tirefe writes only files");
-  std::ifstream in(real, std::ios::binary);
-  std::string head(kind.signature.size(), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  if (in.gcount() == 0 && in.eof()) return;  // empty
-  if (head != kind.signature)
+  if (!io::empty_or_begins_with(real.string(), kind.signature))
     throw ModelError("'" + shown + "' exists and is not " + kind.format +
                      "; tirefe replaces only files of the kind it writes: remove it or choose another name");
 }

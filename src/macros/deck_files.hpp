@@ -14,9 +14,6 @@ namespace tirefe::macros {
 
 struct DeckSession;
 
-/// The first bytes of every HDF5 file tirefe writes (the superblock at offset 0).
-extern const char* const kHdf5Signature;
-
 /// What a deck writes to a file: 'purpose' names it in messages ("the result file of
 /// model 1 ('drum')"); an existing file may be replaced only if it is empty or begins
 /// with 'signature', the mark of 'format' ("an HDF5 file").
@@ -25,7 +22,8 @@ struct OutputFile {
   std::string format;
   std::string signature;
 
-  static OutputFile hdf5(std::string purpose) { return {std::move(purpose), "an HDF5 file", kHdf5Signature}; }
+  static OutputFile hdf5(std::string purpose);
+  static OutputFile xdmf(std::string purpose);
 };
 
 /// 'path' made absolute with symlinks and ".." resolved (as far as it exists).

@@ -184,8 +184,7 @@ void DeckModel::open_output(const std::string& file, int field_interval, double 
   const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters};
   // Every process claims the names, so that every rank refuses a clash alike.
   const std::string path = deck_output_path(session_, file, OutputFile::hdf5(result_purpose()));
-  deck_output_path(session_, fs::path(file).replace_extension(".xmf").string(),
-                   {xdmf_purpose(), "an XDMF index", "<?xml"});
+  deck_output_path(session_, fs::path(file).replace_extension(".xmf").string(), OutputFile::xdmf(xdmf_purpose()));
   if (owned())
     output_ = std::make_unique<io::ResultFile>(path, metadata);
   else
