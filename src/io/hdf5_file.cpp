@@ -365,13 +365,19 @@ Hdf5File Hdf5File::create_in_memory(const std::string& name) {
   return Hdf5File(name, Hdf5Handle(id, H5Fclose));
 }
 
-Hdf5File Hdf5File::open_read_only(const std::string& path) {
+namespace {
+Hdf5Handle open_file(const std::string& path, unsigned flags) {
   silence_hdf5_errors();
   Hdf5Handle fapl = make_fapl(path);
-  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get());
+  const hid_t id = H5Fopen(path.c_str(), flags, fapl.get());
   check(id, [&] { return "cannot open file '" + path + "'"; });
-  return Hdf5File(path, Hdf5Handle(id, H5Fclose));
+  return Hdf5Handle(id, H5Fclose);
 }
+}  // namespace
+
+Hdf5File Hdf5File::open_read_only(const std::string& path) { return Hdf5File(path, open_file(path, H5F_ACC_RDONLY)); }
+
+Hdf5File Hdf5File::open_read_write(const std::string& path) { return Hdf5File(path, open_file(path, H5F_ACC_RDWR)); }
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
     : path_(std::move(other.path_)),
@@ -674,6 +680,11 @@ ExtendibleDataset* Hdf5File::find_extendible(const std::string& dataset_path) {
   for (ExtendibleDataset& dataset : datasets_)
     if (dataset.path() == dataset_path) return &dataset;
   return nullptr;
+}
+
+void Hdf5File::remove(const std::string& object_path) {
+  latch_->check(H5Ldelete(file_.get(), object_path.c_str(), H5P_DEFAULT),
+                [&] { return describe("remove", object_path, path_); });
 }
 
 bool Hdf5File::exists(const std::string& object_path) const {

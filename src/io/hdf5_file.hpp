@@ -147,6 +147,8 @@ class Hdf5File {
   static Hdf5File create_in_memory(const std::string& name);
   // Open an existing file read-only (tests, restart, post-processing).
   static Hdf5File open_read_only(const std::string& path);
+  // Open an existing file to change it (tests and fuzzing alter checkpoints with it).
+  static Hdf5File open_read_write(const std::string& path);
 
   Hdf5File(Hdf5File&& other) noexcept;
   Hdf5File& operator=(Hdf5File&& other) noexcept;
@@ -206,6 +208,8 @@ class Hdf5File {
   const std::deque<ExtendibleDataset>& extendible_datasets() const { return datasets_; }
   ExtendibleDataset* find_extendible(const std::string& dataset_path);
   bool exists(const std::string& object_path) const;
+  // Removes the dataset or group at 'object_path' (to write it anew).
+  void remove(const std::string& object_path);
 
   // Writes the appended rows and flushes everything, so that a process killed afterwards
   // leaves a file readable up to here (a published file: copies it to its path).
