@@ -494,9 +494,12 @@ void ResultFile::flush_if_due() {
   // about three times the file, and a disk filling up still finds the last copy holding
   // most of the rows (the copy needs room beside the file being written). While a flush is
   // being written, the rows wait for the next; rows that have grown so wait for it, so that
-  // a run faster than its disk holds no more than that in memory.
+  // a run faster than its disk holds no more than that in memory. Frames whose views lag
+  // kMaxUnviewedFrames behind make the run wait for the writer too: a flush, and the close
+  // of a run stopped by a signal, then has that many views at most to write.
   const bool grown = pending_bytes() + unflushed_bytes_ >= std::max(kFlushBytes, flushed_bytes_ / 2);
-  if (!grown && flush_job_.running()) return;
+  const bool views_behind = frames_awaiting_views() >= kMaxUnviewedFrames;
+  if (!grown && !views_behind && flush_job_.running()) return;
   flush_job_.wait();  // a finished flush's failure fails the step that finds it
   const auto since = std::chrono::steady_clock::now() - last_flush_;
   if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) {
@@ -504,6 +507,11 @@ void ResultFile::flush_if_due() {
     return;
   }
   start_flush();
+}
+
+size_t ResultFile::frames_awaiting_views() const {
+  const size_t frames = field_time_ ? static_cast<size_t>(field_time_->rows()) : 0;  // this thread's count
+  return frames - std::min(frames, frames_viewed_);
 }
 
 void ResultFile::start_writes_if_due() {

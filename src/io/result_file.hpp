@@ -144,8 +144,13 @@ class ResultFile {
   static constexpr std::chrono::milliseconds kFlushInterval{250};
   /// The least bytes of waiting rows that call for a flush before its time.
   static constexpr size_t kFlushBytes = 256 * 1024;
+  /// Frames recorded whose views the writer has not been given yet: what a close would
+  /// still write (at most kMaxUnviewedFrames - 1 after a step).
+  size_t frames_awaiting_views() const;
   /// The least frames whose views are written between flushes, together.
   static constexpr size_t kViewBatch = 16;
+  /// The most frames whose views wait to be written (a few tenths of a second of the writer's work).
+  static constexpr size_t kMaxUnviewedFrames = 256;
   /// The bytes of waiting rows that are written between flushes (the copy waits for the
   /// flush): memory holds about this much, whatever the file's size.
   static constexpr size_t kRowBatchBytes = 1024 * 1024;

@@ -23,7 +23,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
     if (output_) output_->record(analysis, record);
     report_step(record);
     if (const int signal = stop_signal().load()) {
-      if (output_) output_->flush();
+      // No flush here: the close that follows writes the rest without copying the file.
       throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " after step " +
                                std::to_string(record.step) + " at t = " + std::to_string(record.time) +
                                (output_ ? "; '" + output_->path() + "' holds every completed step" : ""));
