@@ -125,10 +125,16 @@ void ResultFile::add_channel(const std::string& name, const std::string& unit, C
   flush_job_.wait();
   // Checked here, at the macro that names the channel: HDF5 would take a '/' for a group
   // path and fail (or nest the channel) only when the first step writes it.
-  if (name.empty() || name == "." || name.find('/') != std::string::npos)
-    throw IoError("history channel name '" + name + "' must be a non-empty name without '/' (use '_', e.g. 'tip_x')");
-  for (const auto& existing : channel_names_)
-    if (existing.first == name) throw IoError("history channel '" + name + "' is defined twice");
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+    throw IoError("history channel name '" + name +
+                  "' must be a non-empty name without '/', not '.' or '..' (use '_', e.g. 'tip_x')");
+  if (channel_set_.count(name)) throw IoError("history channel '" + name + "' is defined twice");
+  // Each channel is a dataset of its own (some 26 kB of memory): more than this is a
+  // loop gone wrong, refused before it costs gigabytes.
+  if (channel_names_.size() >= kMaxChannels)
+    throw IoError("history channel '" + name + "' would be channel " + std::to_string(kMaxChannels + 1) +
+                  "; a result file holds at most " + std::to_string(kMaxChannels) + " history channels");
+  channel_set_.insert(name);
   channel_names_.emplace_back(name, unit);
   if (channels_.empty()) {
     pending_channels_.push_back(std::move(channel));

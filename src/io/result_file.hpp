@@ -48,6 +48,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <unordered_set>
 #include <vector>
 
 #include "io/background_job.hpp"
@@ -149,6 +150,8 @@ class ResultFile {
   size_t frames_awaiting_views() const;
   /// The least frames whose views are written between flushes, together.
   static constexpr size_t kViewBatch = 16;
+  /// The most history channels of a result file (docs/decks.md, Limits).
+  static constexpr size_t kMaxChannels = 10000;
   /// The most frames whose views wait to be written (a few tenths of a second of the writer's work).
   static constexpr size_t kMaxUnviewedFrames = 256;
   /// The bytes of waiting rows that are written between flushes (the copy waits for the
@@ -213,6 +216,7 @@ class ResultFile {
   Hdf5File file_;
   bool discarded_;
   std::vector<std::pair<std::string, std::string>> channel_names_;  // name, unit
+  std::unordered_set<std::string> channel_set_;                     // their names
   std::vector<Channel> pending_channels_;
   std::vector<HistoryChannel> channels_;
   bool mesh_written_ = false;
