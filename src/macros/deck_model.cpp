@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 DeckModel::DeckModel(std::string title, DeckSession& session)
     : title_(std::move(title)), session_(session), analysis_(model_), index_(++session.models_created) {
   if (session_.restart && session_.restart->model_index == index_) restart_ = session_.restart;
+  session_.live_models.insert(this);
   load_functions_["ramp"] = Model::kRampLoadFunction;
   load_functions_["constant"] = model_.add_load_function(LoadFunction::constant(1.0));
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
@@ -39,6 +40,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
 }
 
 DeckModel::~DeckModel() {
+  session_.live_models.erase(this);
   // A model collected by Lua (the fit's evaluations) frees its file names for the next one.
   for (const std::string& purpose : {result_purpose(), xdmf_purpose(), checkpoint_purpose()})
     release_outputs(session_, purpose);
@@ -117,14 +119,32 @@ DeckModel::Busy::Busy(DeckModel& deck, std::string what) : deck_(deck), outer_(s
   deck_.busy_with_ = std::move(what);
 }
 
+namespace {
+/// Nodes and elements of a model.
+std::pair<long long, long long> size_of(const Model& model) {
+  long long elements = 0;
+  for (const auto& block : model.blocks()) elements += block->size();
+  return {model.mesh().node_count(), elements};
+}
+}  // namespace
+
+bool DeckModel::fits() const {
+  long long nodes = 0, elements = 0;
+  for (const DeckModel* live : session_.live_models) {
+    const auto [n, e] = size_of(live->model_);
+    nodes += n;
+    elements += e;
+  }
+  return nodes <= kMaxNodes && elements <= kMaxElements;
+}
+
 void DeckModel::check_size() const {
-  const int nodes = model_.mesh().node_count();
-  int elements = 0;
-  for (const auto& block : model_.blocks()) elements += block->size();
-  if (nodes > kMaxNodes || elements > kMaxElements)
-    throw ModelError("model '" + title_ + "' has grown to " + std::to_string(nodes) + " nodes and " +
-                     std::to_string(elements) + " elements; a model holds at most " + std::to_string(kMaxNodes) +
-                     " nodes and " + std::to_string(kMaxElements) + " elements");
+  if (fits()) return;
+  const auto [nodes, elements] = size_of(model_);
+  throw ModelError("model '" + title_ + "' has grown to " + std::to_string(nodes) + " nodes and " +
+                   std::to_string(elements) + " elements; the models of a deck hold at most " +
+                   std::to_string(kMaxNodes) + " nodes and " + std::to_string(kMaxElements) + " elements together (" +
+                   std::to_string(session_.live_models.size()) + " models now)");
 }
 
 void DeckModel::define_section(const std::string& name, const BeamSection& section) {
