@@ -94,6 +94,16 @@ bool lies_within(const fs::path& path, const fs::path& folder) {
   return true;
 }
 
+void require_regular_file(const std::string& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status) || fs::is_regular_file(status)) return;  // a missing file is its reader's to report
+  if (fs::is_directory(status)) throw ModelError("'" + path + "' is a folder; give a file");
+  throw ModelError("'" + path +
+                   "' is no regular file (a FIFO or a device would block the read or never end it); "
+                   "give a file");
+}
+
 std::string deck_relative(const DeckSession& session, const std::string& file) {
   fs::path path(file);
   if (path.is_relative() && !session.deck_path.empty()) path = fs::path(session.deck_path).parent_path() / path;
@@ -101,6 +111,7 @@ std::string deck_relative(const DeckSession& session, const std::string& file) {
     throw ModelError("'" + file +
                      "' lies outside the folders a deck may read (its own folder, the project's lua/ and inputs/, "
                      "the output folder); give another with --allow-read DIR (docs/security.md)");
+  require_regular_file(path.string());
   return path.string();
 }
 

@@ -31,8 +31,11 @@ std::filesystem::path resolved_path(const std::filesystem::path& path);
 /// True if the resolved 'path' is 'folder' or lies below it (both resolved by the caller).
 bool lies_within(const std::filesystem::path& path, const std::filesystem::path& folder);
 
+/// Throws a ModelError naming 'path' if it is there but no regular file: a FIFO would
+/// block its read, a device such as /dev/zero would never end it, a folder is no file.
+void require_regular_file(const std::string& path);
 /// A file a deck reads: a relative path is taken from the deck's folder. Throws a
-/// ModelError if the file lies outside the folders the deck may read.
+/// ModelError if the file lies outside the folders the deck may read or is no regular file.
 std::string deck_relative(const DeckSession& session, const std::string& file);
 /// A file a deck writes: a relative path goes in the output folder, created as needed.
 /// Throws a ModelError if it lies outside the folders the deck may write, if an existing

@@ -424,6 +424,11 @@ void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::stri
   overrides_ = overrides;
   parameters_called_ = false;
   last_traceback_.clear();
+  try {
+    require_regular_file(deck_path);
+  } catch (const std::runtime_error& error) {  // ModelError
+    throw DeckError(deck_path + ": " + error.what());
+  }
   std::ifstream in(deck_path, std::ios::binary);
   if (!in) throw DeckError(deck_path + ": cannot open the deck file");
   deck_text_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

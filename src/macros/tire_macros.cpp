@@ -3,6 +3,7 @@
 // tire property files (tire_file_macros.cpp).
 #include <cmath>
 
+#include "macros/deck_files.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
@@ -121,6 +122,7 @@ TireParameters load_tire_parameters(const std::string& source, const std::vector
   lua_pushcfunction(L, parse_tire_table);
   lua_pushlightuserdata(L, &parameters);
   const bool property_file = source.size() > 4 && source.compare(source.size() - 4, 4, ".tir") == 0;
+  if (property_file) require_regular_file(source);
   if (property_file)
     lua_pushcfunction(L, protected_call<read_tire_property_file>);
   else
