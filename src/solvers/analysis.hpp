@@ -149,6 +149,9 @@ class Analysis : private StepEquations, private SteppedSystem {
     controller_.set_closing_observer([this, hook = std::move(hook)](const StepRecord& record) { hook(*this, record); });
   }
 
+  /// Why the last step that failed did (its last Newton failure), or "".
+  const std::string& last_failure() const { return last_failure_; }
+
  private:
   void prepare();
   void size_state();
