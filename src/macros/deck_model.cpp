@@ -25,7 +25,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
     report_step(record);
     if (const int signal = stop_signal().load()) {
       // No flush here: the close that follows writes the rest without copying the file.
-      throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " after step " +
+      throw std::runtime_error(std::string("stopped by ") + stop_cause(signal) + " after step " +
                                std::to_string(record.step) + " at t = " + std::to_string(record.time) +
                                (output_ ? "; '" + output_->path() + "' holds every completed step" : ""));
     }

@@ -287,9 +287,9 @@ LuaSandbox::LuaSandbox(std::string lua_dir) : lua_dir_(std::move(lua_dir)) {
   state_ = lua_newstate(allocate, &memory_);
   if (!state_) throw std::runtime_error("cannot create a Lua state (out of memory)");
   lua_State* L = state();
-  lua_atpanic(L, [](lua_State* P) -> int {
-    throw std::runtime_error(std::string("unprotected Lua error: ") + error_text(P, -1));
-  });
+  // An error outside any protected call (a load function called by a host's step through
+  // the C API) becomes an exception with the error's own text, which names its deck line.
+  lua_atpanic(L, [](lua_State* P) -> int { throw std::runtime_error(error_text(P, -1)); });
   // A deck looping in pure Lua still stops on SIGINT / SIGTERM (coroutines inherit the hook).
   lua_sethook(L, stop_hook, LUA_MASKCOUNT, kStopHookInstructions);
   lua_pushlightuserdata(L, this);
@@ -330,7 +330,11 @@ std::string LuaSandbox::memory_message() const {
 
 void LuaSandbox::stop_hook(lua_State* L, lua_Debug*) {
   const int signal = stop_signal().load();
-  if (!signal) return;
+  if (!signal) {
+    // A host's cancel that was answered leaves a state looking every instruction: back to the pace.
+    if (lua_gethookcount(L) != kStopHookInstructions) lua_sethook(L, stop_hook, LUA_MASKCOUNT, kStopHookInstructions);
+    return;
+  }
   // From now on every instruction raises again: a deck catching the error with pcall
   // cannot go on, the error climbs to the top; in the main thread too, where a coroutine's
   // error ends as a value of coroutine.resume or coroutine.close.
@@ -338,8 +342,7 @@ void LuaSandbox::stop_hook(lua_State* L, lua_Debug*) {
   lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
   lua_sethook(lua_tothread(L, -1), stop_hook, LUA_MASKCOUNT, 1);
   lua_pop(L, 1);
-  raise_deck_error(
-      L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " while the deck ran Lua code");
+  raise_deck_error(L, std::string("stopped by ") + stop_cause(signal) + " while the deck ran Lua code");
 }
 
 LuaSandbox* LuaSandbox::from(lua_State* L) {
