@@ -34,6 +34,12 @@ Hdf5File create_published_with_index(const std::string& path) {
 }
 }  // namespace
 
+void require_path_name(const std::string& name, const std::string& what) {
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+    throw IoError(what + " '" + name +
+                  "' must be a non-empty name without '/', not '.' or '..' (use '_', e.g. 'tip_x')");
+}
+
 ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage)
     : file_(storage == ResultStorage::File ? create_published_with_index(path) : Hdf5File::create_in_memory(path)),
       discarded_(storage == ResultStorage::Discarded),
@@ -125,9 +131,7 @@ void ResultFile::add_channel(const std::string& name, const std::string& unit, C
   flush_job_.wait();
   // Checked here, at the macro that names the channel: HDF5 would take a '/' for a group
   // path and fail (or nest the channel) only when the first step writes it.
-  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
-    throw IoError("history channel name '" + name +
-                  "' must be a non-empty name without '/', not '.' or '..' (use '_', e.g. 'tip_x')");
+  require_path_name(name, "history channel name");
   if (channel_set_.count(name)) throw IoError("history channel '" + name + "' is defined twice");
   // Each channel is a dataset of its own (some 26 kB of memory): more than this is a
   // loop gone wrong, refused before it costs gigabytes.

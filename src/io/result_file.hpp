@@ -78,6 +78,11 @@ struct RunMetadata {
   std::vector<std::pair<std::string, std::string>> parameters;  // the deck's parameters, as text
 };
 
+/// A name that becomes part of a path in the result file (a history channel, a surface, a
+/// node set, a contact block, a modal label): IoError, at the macro that gives it, unless
+/// it is non-empty, without '/' and not '.' or '..'. 'what' says whose it is ("surface name").
+void require_path_name(const std::string& name, const std::string& what);
+
 class ResultFile {
  public:
   using Channel = std::function<double(const Analysis&, const StepRecord&)>;

@@ -213,6 +213,7 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
 
 int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
+  io::require_path_name(name, "surface name");
   if (deck.has_surface(name)) throw ModelError("surface '" + name + "' is already defined");
   const std::shared_ptr<const RigidSurface> surface = build_surface(deck, arguments);
   deck.define_surface(name, surface);
@@ -225,6 +226,7 @@ int contact_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments
   const std::shared_ptr<const RigidSurface> surface = deck.surface(surface_name);
   const std::vector<int> nodes = target_nodes(deck, arguments);
   const std::string name = arguments.string_or("name", "contact_" + surface_name);
+  io::require_path_name(name, "contact block name");
   for (const auto& block : deck.model().blocks())
     if (block->name() == name) throw ModelError("an element block named '" + name + "' exists already (give 'name')");
   ContactParameters parameters;

@@ -117,6 +117,8 @@ std::string deck_relative(const DeckSession& session, const std::string& file) {
 
 std::string deck_output_path(DeckSession& session, const std::string& file, const OutputFile& kind) {
   fs::path path(file);
+  if (!path.has_filename())  // "" or "sub/": the file's own name is missing
+    throw ModelError("'" + file + "' names no file, only a folder; give a file name (e.g. 'run.h5')");
   if (path.is_relative()) path = fs::path(session.output_dir) / path;
   const fs::path real = resolved_path(path);
   if (!inside_any(real, write_folders(session)))

@@ -203,6 +203,9 @@ void DeckModel::open_output(const std::string& file, int field_interval, double 
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
   const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters};
   // Every process claims the names, so that every rank refuses a clash alike.
+  if (fs::path(file).extension() == ".xmf")
+    throw ModelError("a result file named '" + file +
+                     "' would be its own XDMF index (<name>.xmf is written beside it); give it the extension .h5");
   const std::string path = deck_output_path(session_, file, OutputFile::hdf5(result_purpose()));
   deck_output_path(session_, fs::path(file).replace_extension(".xmf").string(), OutputFile::xdmf(xdmf_purpose()));
   if (owned())

@@ -52,6 +52,7 @@ TireParameters tire_parameters(const MacroArguments& arguments) {
 int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const TireParameters parameters = tire_parameters(arguments);
   const std::string name = arguments.string("name");
+  io::require_path_name(name, "tire name");  // its node sets are named after it
   const Tire tire =
       build_tire(deck.model(), parameters,
                  deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))), name);
