@@ -250,7 +250,8 @@ TEST_CASE("a checkpoint holding a count out of range or a non-finite number is r
          {"/blocks/0", "elements", nan, "'/blocks/0/elements' = nan is not an integer"},
          {"/analysis", "reactions_valid", 2.0, "'/analysis/reactions_valid' = 2 is not an integer from 0 to 1"},
          {"/", "time", nan, "'/time' holds nan, not a finite number"},
-         {"/analysis", "current_step", -INFINITY, "'/analysis/current_step' holds -inf"}}));
+         {"/analysis", "current_step", -INFINITY, "'/analysis/current_step' holds -inf"},
+         {"/analysis", "current_step", -1.0, "'/analysis/current_step' = -1 is no step size > 0"}}));
     INFO(tampering.object << " " << tampering.name);
     tirefe::io::Hdf5File::open_read_write(path).write_attribute(tampering.object, tampering.name, tampering.value);
     CHECK_THAT(refusal_of(path), Catch::Contains("restart file '" + path + "' is not a readable checkpoint (") &&

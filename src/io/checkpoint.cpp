@@ -269,6 +269,9 @@ Checkpoint read_checkpoint(const std::string& path) {
     checkpoint.model_index = static_cast<int>(integer_attribute(file, "/", "model_index", 1));
     checkpoint.node_count = static_cast<int>(integer_attribute(file, "/", "node_count"));
     CarriedState::for_each_field(checkpoint.analysis, FieldReader{file});
+    for (const auto& [path, step] : {std::pair{"/analysis/nominal_step", checkpoint.analysis.steps.nominal},
+                                     std::pair{"/analysis/current_step", checkpoint.analysis.steps.current}})
+      if (!(step > 0.0)) throw IoError(std::string("'") + path + "' = " + number_text(step) + " is no step size > 0");
     const long long blocks = integer_attribute(file, "/blocks", "count");
     for (long long b = 0; b < blocks; ++b) {
       const std::string group = "/blocks/" + std::to_string(b);
