@@ -2,17 +2,23 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "contact/rigid_surface.hpp"
 #include "contact/road_file.hpp"
 #include "core/mesh.hpp"
 #include "fitting/curve_data.hpp"
+#include "include/tirefe.h"
+#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/teim_orbit.hpp"
 #include "macros/deck_session.hpp"
@@ -51,19 +57,24 @@ void require_names_file(const std::exception& error, const fs::path& file) {
   require(message.find(file.filename().string()) != std::string::npos, "the error does not name the file: " + message);
 }
 
-/// Runs a deck through the sandbox and the macro layer: it runs or stops with a DeckError naming it.
-void run_deck(const fs::path& deck) {
+/// Runs a deck through the sandbox and the macro layer, restarted from 'restart' if given:
+/// it runs or stops with a DeckError naming it. Returns whether it ran to its end.
+bool run_deck(const fs::path& deck, std::shared_ptr<const io::Checkpoint> restart = nullptr,
+              const fs::path& output = scratch() / "results") {
   macros::DeckSession session;
-  session.output_dir = (scratch() / "results").string();
+  session.output_dir = output.string();
   session.deck_path = deck.string();
   session.quiet = true;
+  session.restart = std::move(restart);
   macros::LuaSandbox sandbox(TIREFE_LUA_DIR);
   try {
     macros::install_macros(sandbox, session);
     sandbox.run_file(deck.string());
   } catch (const macros::DeckError& error) {
     require_names_file(error, deck);
+    return false;
   }
+  return !session.restart;  // a restart's checkpoint loaded (a deck ending before it fails, as tirefe does)
 }
 
 // Macros that only describe the model or query it: solving macros (step, solve, modal,
@@ -297,6 +308,359 @@ void property_file(const uint8_t* data, size_t size) {
       require_names_file(error, road);
     }
   }
+}
+
+// --- checkpoint_file --------------------------------------------------------------------
+
+namespace {
+
+// A beam run that writes a checkpoint between two solves, and is restarted from it.
+const char* kCheckpointDeck = R"(local model = tirefe.model{ title = "fuzz checkpoint" }
+local n = { model:node{ x = 0, y = 0 }, model:node{ x = 0.5, y = 0 }, model:node{ x = 1, y = 0.1 } }
+model:section{ name = "beam", EA = 1e5, GA = 1e5, EI = 10, rhoA = 1, rhoI = 1e-3 }
+model:beam{ section = "beam", nodes = n }
+model:fix{ node = n[1] }
+model:load{ node = n[3], fy = -1 }
+model:output{ file = "run.h5", fields_every = 2 }
+model:history{ name = "tip_uy", node = n[3], dof = "uy" }
+model:integrator{ type = "newmark" }
+model:step_control{ max_cuts = 3, min_dt = 1e-4 }
+model:solve{ to = 0.02, dt = 0.005 }
+model:checkpoint{ file = "ck.h5" }
+model:solve{ to = 0.04 }
+)";
+
+/// A number of the checkpoint that an input may change: an attribute, or an entry of a dataset.
+struct Place {
+  std::string object, name;  // an attribute; or name empty: the dataset 'object'
+  size_t entry = 0;
+  bool bytes = false;  // a dataset of bytes (an element block's history)
+  bool integers = false;
+};
+
+/// The reference checkpoint (written once per process) and the places of its numbers.
+struct ReferenceCheckpoint {
+  fs::path deck, file;
+  std::vector<Place> places;
+};
+
+const ReferenceCheckpoint& reference_checkpoint() {
+  static const ReferenceCheckpoint reference = [] {
+    ReferenceCheckpoint made;
+    made.deck = write_file("checkpoint.lua", kCheckpointDeck);
+    const fs::path output = scratch() / "reference";
+    fs::remove_all(output);
+    if (!run_deck(made.deck, nullptr, output)) throw FuzzFailure("the checkpoint deck does not run");
+    made.file = output / "ck.h5";
+    const io::Checkpoint checkpoint = io::read_checkpoint(made.file.string());
+    auto attribute = [&](const std::string& object, const std::string& name) { made.places.push_back({object, name}); };
+    auto entries = [&](const std::string& dataset, size_t count, bool bytes, bool integers) {
+      for (size_t k = 0; k < count; ++k) made.places.push_back({dataset, "", k, bytes, integers});
+    };
+    CarriedState carried = checkpoint.analysis;
+    CarriedState::for_each_field(carried, [&](const char* path, const auto& field) {
+      using Field = std::decay_t<decltype(field)>;
+      if constexpr (std::is_same_v<Field, Eigen::VectorXd>) {
+        entries(path, static_cast<size_t>(field.size()), false, false);
+      } else {
+        const std::string text = path;
+        const size_t slash = text.rfind('/');
+        attribute(slash == 0 ? "/" : text.substr(0, slash), text.substr(slash + 1));
+      }
+    });
+    for (const char* name : {"model_index", "node_count"}) attribute("/", name);
+    attribute("/blocks", "count");
+    for (size_t b = 0; b < checkpoint.blocks.size(); ++b) {
+      const std::string group = "/blocks/" + std::to_string(b);
+      for (const char* name : {"bytes_per_element", "elements"}) attribute(group, name);
+      entries(group + "/history", checkpoint.blocks[b].history.size(), true, false);
+    }
+    for (const char* name : {"has_output", "steps_recorded", "count"}) attribute("/rows", name);
+    for (size_t r = 0; r < checkpoint.rows.size(); ++r) {
+      const std::string group = "/rows/" + std::to_string(r);
+      attribute(group, "rows");
+      entries(group + "/values", std::min<size_t>(checkpoint.rows[r].values.size(), 8), false, false);
+      entries(group + "/row_shape", checkpoint.rows[r].row_shape.size(), false, true);
+    }
+    return made;
+  }();
+  return reference;
+}
+
+/// The value of a change: one of the numbers that break readers (a palette byte below 32),
+/// or the eight bytes as they are.
+double changed_value(const uint8_t* bytes) {
+  static const double kPalette[] = {std::nan(""), INFINITY,     -INFINITY,    0.0,           -1.0,
+                                    1.0,          2147483647.0, 2147483648.0, -2147483649.0, 9007199254740993.0,
+                                    1e300,        -1e300,       0.5,          1e-300,        4294967296.0,
+                                    -0.0,         3.0,          1e18,         -2.0,          1.5};
+  if (bytes[0] < 32) return kPalette[bytes[1] % (sizeof kPalette / sizeof kPalette[0])];
+  double value;
+  std::memcpy(&value, bytes, sizeof value);
+  return value;
+}
+
+constexpr size_t kChangeBytes = 10;  // two for the place, eight for the value
+constexpr size_t kMostChanges = 8;
+
+std::string place_text(const Place& place) {
+  return place.name.empty() ? place.object + "[" + std::to_string(place.entry) + "]"
+                            : (place.object == "/" ? "" : place.object) + "/" + place.name;
+}
+
+/// Writes the reference checkpoint with the changes of 'data' to 'file'.
+void write_changed_checkpoint(const uint8_t* data, size_t size, const fs::path& file) {
+  const ReferenceCheckpoint& reference = reference_checkpoint();
+  fs::copy_file(reference.file, file, fs::copy_options::overwrite_existing);
+  io::Hdf5File hdf5 = io::Hdf5File::open_read_write(file.string());
+  for (size_t at = 0, changes = 0; at + kChangeBytes <= size && changes < kMostChanges; at += kChangeBytes, ++changes) {
+    const Place& place = reference.places[(data[at] | data[at + 1] << 8) % reference.places.size()];
+    const double value = changed_value(data + at + 2);
+    if (!place.name.empty()) {
+      hdf5.write_attribute(place.object, place.name, value);
+    } else if (place.bytes) {
+      std::vector<unsigned char> bytes = hdf5.read_bytes(place.object);
+      bytes.at(place.entry) = static_cast<unsigned char>(data[at + 2] ^ data[at + 9]);
+      hdf5.remove(place.object);
+      hdf5.write_bytes(place.object, bytes);
+    } else if (place.integers) {
+      std::vector<long long> values = hdf5.read_ints(place.object);
+      values.at(place.entry) = std::isfinite(value) && std::abs(value) < 9e18 ? static_cast<long long>(value) : -1;
+      hdf5.remove(place.object);
+      hdf5.write_int_vector(place.object, values);
+    } else {
+      std::vector<double> values = hdf5.read_doubles(place.object);
+      values.at(place.entry) = value;
+      hdf5.remove(place.object);
+      hdf5.write_vector(place.object, values);
+    }
+  }
+  hdf5.close();
+}
+
+}  // namespace
+
+std::string checkpoint_changes(const uint8_t* data, size_t size) {
+  const ReferenceCheckpoint& reference = reference_checkpoint();
+  std::string text;
+  for (size_t at = 0, changes = 0; at + kChangeBytes <= size && changes < kMostChanges; at += kChangeBytes, ++changes) {
+    const Place& place = reference.places[(data[at] | data[at + 1] << 8) % reference.places.size()];
+    char value[32];
+    std::snprintf(value, sizeof value, "%.17g", changed_value(data + at + 2));
+    text += place_text(place) + " = " + (place.bytes ? "a byte" : value) + "\n";
+  }
+  return text;
+}
+
+void checkpoint_file(const uint8_t* data, size_t size) {
+  const ReferenceCheckpoint& reference = reference_checkpoint();
+  const fs::path file = scratch() / "changed.ckpt.h5";
+  write_changed_checkpoint(data, size, file);
+  std::shared_ptr<const io::Checkpoint> checkpoint;
+  try {
+    checkpoint = std::make_shared<io::Checkpoint>(io::read_checkpoint(file.string()));
+  } catch (const io::IoError& error) {
+    require_names_file(error, file);
+    return;
+  }
+  const fs::path output = scratch() / "restarted";
+  fs::remove_all(output);
+  if (!run_deck(reference.deck, checkpoint, output)) return;  // refused at a deck line (another model, ...)
+  const io::Hdf5File result = io::Hdf5File::open_read_only((output / "run.h5").string());
+  for (double time : result.read_doubles("/history/time"))
+    require(std::isfinite(time), "a restart wrote a time that is not finite");
+}
+
+// --- capi_calls ---------------------------------------------------------------------------
+
+namespace {
+
+/// Reads doubles and choices from the input bytes (zeros once they run out).
+class ByteReader {
+ public:
+  ByteReader(const uint8_t* data, size_t size) : data_(data), size_(size) {}
+  bool done() const { return at_ >= size_; }
+  uint8_t byte() { return at_ < size_ ? data_[at_++] : 0; }
+  /// A number a host might pass: one that breaks readers (NaN, infinities, 1e-12, 1e300,
+  /// ...), a plausible one, or eight raw bytes.
+  double number() {
+    static const double kPalette[] = {std::nan(""), INFINITY, -INFINITY, 0.0,  -0.0,  1e-12, 1e-7, 1e-3,
+                                      -1e-3,        1e300,    -1e300,    0.01, -0.01, 0.1,   1.0,  -0.4};
+    const uint8_t kind = byte();
+    if (kind < 160) return kPalette[kind % (sizeof kPalette / sizeof kPalette[0])];
+    if (kind < 240) return (static_cast<int>(byte()) - 128) * 1e-4;  // millimetres around the spindle
+    uint8_t bytes[8];
+    for (uint8_t& b : bytes) b = byte();
+    double value;
+    std::memcpy(&value, bytes, sizeof value);
+    return value;
+  }
+
+ private:
+  const uint8_t* data_;
+  size_t size_;
+  size_t at_ = 0;
+};
+
+bool known_status(tirefe_status status) { return status >= TIREFE_OK && status <= TIREFE_CANCELLED; }
+
+void require_answer(tirefe_status status, const char* message, const std::string& call) {
+  require(known_status(status), call + ": unknown status " + std::to_string(status));
+  if (status == TIREFE_OK) return;
+  require(message && message[0] != '\0', call + ": failed without a message");
+  require(std::strchr(message, '\n') == nullptr, call + ": a message of more than one line: " + message);
+}
+
+template <size_t N>
+bool all_finite(const double (&values)[N]) {
+  for (double value : values)
+    if (!std::isfinite(value)) return false;
+  return true;
+}
+
+/// The committed state before and after a trial step: the same time, position and velocity
+/// bit for bit, the same force but for round-off (the first step after a restore computes
+/// the committed reactions anew: 1e-12 N of inflation becomes 0).
+bool unchanged(const tirefe_spindle_state& before, const tirefe_spindle_state& after) {
+  bool same = std::memcmp(&before.time, &after.time, sizeof before.time) == 0 &&
+              std::memcmp(before.position, after.position, sizeof before.position) == 0 &&
+              std::memcmp(before.velocity, after.velocity, sizeof before.velocity) == 0;
+  for (int c = 0; c < 3; ++c)
+    same = same && std::abs(before.force[c] - after.force[c]) <= 1e-6 * (1.0 + std::abs(before.force[c]));
+  return same;
+}
+
+/// The tire every input starts from: opened once, its first state saved.
+struct FuzzTire {
+  tirefe_tire* tire = nullptr;
+  tirefe_saved_state* start = nullptr;
+};
+
+const FuzzTire& fuzz_tire() {
+  static const FuzzTire made = [] {
+    FuzzTire opened;
+    const tirefe_parameter coarse[] = {{"elements", 40}};
+    char error[512];
+    if (tirefe_open("tires.145SR12", coarse, 1, nullptr, &opened.tire, error, sizeof error) != TIREFE_OK ||
+        tirefe_save_state(opened.tire, &opened.start) != TIREFE_OK)
+      throw FuzzFailure(std::string("cannot open the fuzzed tire: ") + error);
+    return opened;
+  }();
+  return made;
+}
+
+// Not 'elements': a large tire is bounded by the element limit, and what it costs (its
+// contact's stiffness, growing with the square of the elements) is not what this target seeks.
+const char* const kParameterNames[] = {"pressure",        "k_sw",    "rim_mass", "tread_EA", "outer_diameter",
+                                       "sidewall_length", "presure", ""};
+
+}  // namespace
+
+void capi_calls(const uint8_t* data, size_t size) {
+  const FuzzTire& fuzzed = fuzz_tire();
+  tirefe_tire* tire = fuzzed.tire;
+  require(tirefe_restore_state(tire, fuzzed.start) == TIREFE_OK, "the start state cannot be restored");
+  ByteReader in(data, size);
+  std::vector<tirefe_saved_state*> saved;
+  tirefe_spindle_force reply{};
+  tirefe_spindle_state before{}, after{};
+  char error[256];
+  for (int calls = 0; calls < 16 && !in.done(); ++calls) {
+    const uint8_t op = in.byte() % 12;
+    tirefe_status status = TIREFE_OK;
+    switch (op) {
+      case 0:
+      case 1: {  // a trial step, by position or by velocity; a failure leaves the committed state
+        tirefe_state(tire, &before);
+        const double h = in.number(), a = in.number(), b = in.number(), c = in.number();
+        const double velocity[3] = {a, b, c};
+        const tirefe_spindle_motion motion{h, a, b, c};
+        status = op == 0 ? tirefe_solve(tire, &motion, &reply) : tirefe_solve_velocity(tire, h, velocity, &reply);
+        require_answer(status, tirefe_message(tire), "solve");
+        if (status == TIREFE_OK) {
+          require(all_finite(reply.force) && std::isfinite(reply.time), "a solved step's force is not finite");
+          for (const auto& row : reply.jacobian) require(all_finite(row), "a solved step's Jacobian is not finite");
+        }
+        tirefe_state(tire, &after);
+        require(unchanged(before, after), "a trial step changed the committed state");
+        continue;  // its answer is checked; the state call after it cleared the message
+      }
+      case 2: status = tirefe_commit(tire); break;
+      case 3: status = tirefe_revert(tire); break;
+      case 4:
+        status = tirefe_state(tire, &after);
+        require(status == TIREFE_OK && all_finite(after.position) && all_finite(after.velocity) &&
+                    all_finite(after.force) && std::isfinite(after.time),
+                "the committed state is not finite");
+        break;
+      case 5:
+        if (saved.size() < 4) {
+          saved.push_back(nullptr);
+          status = tirefe_save_state(tire, &saved.back());
+        }
+        break;
+      case 6:
+        status = tirefe_restore_state(tire, saved.empty() ? fuzzed.start : saved[in.byte() % saved.size()]);
+        break;
+      case 7:  // a state freed: once for real, then the stale handle again
+        if (!saved.empty()) {
+          tirefe_saved_state* freed = saved[in.byte() % saved.size()];
+          status = tirefe_free_state(freed);
+          saved.erase(std::find(saved.begin(), saved.end(), freed));
+          require(tirefe_restore_state(tire, freed) == TIREFE_INVALID_ARGUMENT, "a freed state was restored");
+          require(tirefe_free_state(freed) == TIREFE_INVALID_ARGUMENT, "a state was freed twice");
+        }
+        break;
+      case 8: {  // made-up handles are refused without being read
+        long words[4] = {in.byte(), in.byte(), in.byte(), in.byte()};
+        tirefe_tire* made_up = reinterpret_cast<tirefe_tire*>(words);
+        require(tirefe_commit(made_up) == TIREFE_INVALID_ARGUMENT && tirefe_close(made_up) == TIREFE_INVALID_ARGUMENT,
+                "a made-up handle was taken for a tire");
+        break;
+      }
+      case 9: {  // another tire opened with overrides and options from the bytes, then closed
+        tirefe_parameter overrides[2];
+        const size_t count = in.byte() % 3;
+        for (size_t k = 0; k < count; ++k)
+          overrides[k] = {kParameterNames[in.byte() % (sizeof kParameterNames / sizeof kParameterNames[0])],
+                          in.number()};
+        tirefe_options options;
+        tirefe_default_options(&options);
+        if (in.byte() % 2) {
+          options.friction = in.number();
+          options.hht_alpha = in.number();
+          options.free_spin = static_cast<int>(in.byte() % 4) - 1;
+          options.heading = static_cast<int>(in.byte() % 4) - 2;
+        }
+        tirefe_tire* other = nullptr;
+        status = tirefe_open("tires.145SR12", overrides, count, &options, &other, error, sizeof error);
+        require_answer(status, error, "open");
+        require((status == TIREFE_OK) == (other != nullptr), "open's handle and status disagree");
+        if (other) require(tirefe_close(other) == TIREFE_OK, "an opened tire does not close");
+        continue;
+      }
+      case 10: {  // a static curve of up to three deflections
+        double deflections[3], forces[3];
+        const size_t n = in.byte() % 4;
+        for (size_t k = 0; k < n; ++k) deflections[k] = in.number();
+        tirefe_parameter coarse[] = {{"elements", 24}};
+        status = tirefe_static_forces("tires.145SR12", coarse, 1, deflections, n, forces, error, sizeof error);
+        require_answer(status, error, "static_forces");
+        if (status == TIREFE_OK)
+          for (size_t k = 0; k < n; ++k) require(std::isfinite(forces[k]), "a static force is not finite");
+        continue;
+      }
+      default: {
+        double level = 0.0;
+        status = tirefe_road_level(tire, &level);
+        require(status == TIREFE_OK && std::isfinite(level) && level < 0.0, "the road level is not below the spindle");
+        break;
+      }
+    }
+    require_answer(status, tirefe_message(tire), "call " + std::to_string(op));
+  }
+  for (tirefe_saved_state* state : saved) require(tirefe_free_state(state) == TIREFE_OK, "a saved state does not free");
+  tirefe_revert(tire);
 }
 
 }  // namespace tirefe::fuzz

@@ -38,5 +38,15 @@ void property_file(const uint8_t* data, size_t size);
 /// A road profile file read by name as CSV (.csv, each track), OpenCRG (.crg, three lateral
 /// positions) and 'x y' text (src/contact/road_file.hpp).
 void road_file(const uint8_t* data, size_t size);
+/// A checkpoint of a small beam run with its numbers changed (fuzz_entries.cpp), read back
+/// and restarted from: refused with an error naming the file or the deck, or restarted to
+/// a result file whose times are finite.
+void checkpoint_file(const uint8_t* data, size_t size);
+/// The changes checkpoint_file() makes for these bytes: "<place> = <value>" per line.
+std::string checkpoint_changes(const uint8_t* data, size_t size);
+/// A sequence of C API calls (include/tirefe.h) on a small tire, with arguments from the
+/// bytes: every call answers with a known status, a one-line message when it fails,
+/// finite numbers when it succeeds, and a failed step leaves the committed state as it was.
+void capi_calls(const uint8_t* data, size_t size);
 
 }  // namespace tirefe::fuzz

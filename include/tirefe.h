@@ -17,6 +17,13 @@
  *
  * Errors: every call returns a status; TIREFE_OK is 0. On any other status
  * tirefe_message() says why in one line. No call throws, exits or aborts.
+ * Handles: a tirefe_tire* or tirefe_saved_state* is a number in the guise of a pointer,
+ * looked up in the library's table of open handles and never dereferenced: NULL, a
+ * closed tire, a freed state (handles are never reused) or any other pointer is
+ * TIREFE_INVALID_ARGUMENT, a double tirefe_close or tirefe_free_state too; closing NULL
+ * does nothing, as free(NULL) does. A handle closed while another thread's call runs on
+ * it is freed when that call returns.
+ * Cancel: tirefe_cancel() stops the calls that run a deck's Lua code or take many steps.
  * Threads: calls on one handle are serialized by the handle (a lock); different
  * handles run in parallel, except tires opened from decks, which write result files:
  * their calls share one lock (the HDF5 library is not thread-safe).
@@ -38,7 +45,8 @@ typedef enum tirefe_status {
   TIREFE_STEP_FAILED = 3,      /* the step did not converge; the tire stays at its committed state */
   TIREFE_INVALID_CALL = 4,     /* a call out of order: commit without a solved trial step */
   TIREFE_OUT_OF_MEMORY = 5,
-  TIREFE_INTERNAL_ERROR = 6
+  TIREFE_INTERNAL_ERROR = 6,
+  TIREFE_CANCELLED = 7 /* stopped by tirefe_cancel; a tire stays at its committed state */
 } tirefe_status;
 
 /* An opened tire. Not copyable; close it with tirefe_close. */
@@ -57,7 +65,8 @@ typedef struct tirefe_options {
   double hht_alpha;        /* the tire's time integrator: 0 Newmark average acceleration (default),
                               in [-1/3, 0) HHT-alpha; the host should integrate with the same scheme */
   int free_spin;           /* 1 (default): the wheel turns freely on its bearing (the tire solves the
-                              spin, My = 0); 0: the host gives the spin angle and gets the drive torque */
+                              spin, My = 0); 0: the host gives the spin angle and gets the drive torque;
+                              nothing else */
   int heading;             /* +1 (default): the wheel heads along +x of the tire's plane; -1: along -x */
   const char* road;        /* NULL (default): a flat road. Else a road file (docs/contact.md): a road data file
                               (.rdf, a flat or profile road) or a CSV profile (.csv), its x along the heading and
@@ -73,7 +82,7 @@ typedef struct tirefe_options {
  * the wheel centre's position and spin angle in wheel axes (absolute; the design
  * position of the spindle is x = z = 0, its spin 0). spin is ignored when free. */
 typedef struct tirefe_spindle_motion {
-  double time_step; /* h [s] */
+  double time_step; /* h [s], at least 1e-7 s (below, round-off of the positions swamps the inertia) */
   double x;         /* along the heading [m] */
   double z;         /* up [m] */
   double spin;      /* about y, positive rolling forward [rad] */
@@ -147,11 +156,22 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
 tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
                                tirefe_tire** tire, char* error, size_t error_size);
 
-/* Closes the tire and frees it; NULL is ignored. */
-void tirefe_close(tirefe_tire* tire);
+/* Closes the tire and frees it. NULL: nothing, TIREFE_OK; a handle not open (closed
+ * before, or never opened): TIREFE_INVALID_ARGUMENT. */
+tirefe_status tirefe_close(tirefe_tire* tire);
+
+/* Asks the calls of this library in progress in any thread (or, when none runs, the next
+ * one) to stop: a deck's Lua code in tirefe_open_deck or in the load functions of a deck
+ * tire's step, a deck's steps, the Lua of a parameter module in tirefe_open, the
+ * deflections of tirefe_static_forces. Such a call returns TIREFE_CANCELLED within
+ * milliseconds, a tire at its committed state; the cancel is then answered. Safe to call
+ * from any thread and from a signal handler (it sets an atomic flag): a host's SIGINT
+ * handler, a watchdog thread or alarm() gives a deadline. A call doing neither (a step of
+ * a tire opened by tirefe_open) finishes; its cancel stops the next one. */
+void tirefe_cancel(void);
 
 /* Why the last call on this handle failed (one line); "" after a success. The text
- * stays valid until the next call on the handle. */
+ * stays valid until the next call on the handle. For a handle not open: a text saying so. */
 const char* tirefe_message(const tirefe_tire* tire);
 
 /* Height of the road below the spindle's design position [m] (negative). */
@@ -201,7 +221,8 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
 typedef struct tirefe_saved_state tirefe_saved_state;
 tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved);
 tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* saved);
-void tirefe_free_state(tirefe_saved_state* saved);
+/* NULL: nothing, TIREFE_OK; a state not saved (freed before): TIREFE_INVALID_ARGUMENT. */
+tirefe_status tirefe_free_state(tirefe_saved_state* saved);
 
 #ifdef __cplusplus
 }

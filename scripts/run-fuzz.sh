@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-180}"
-targets=(deck_macro deck_sequence road_profile curve_data property_file road_file)
+targets=(deck_macro deck_sequence road_profile curve_data property_file road_file checkpoint capi)
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTIREFE_FUZZ=ON \
   -DBUILD_TESTING=OFF -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" >/dev/null
 cmake --build build-fuzz -j "${JOBS:-2}" --target "${targets[@]/#/fuzz_}"

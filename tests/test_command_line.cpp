@@ -338,3 +338,20 @@ TEST_CASE(
   CHECK(quiet.status == 0);
   CHECK(quiet.out.find("\rt = ") == std::string::npos);
 }
+
+TEST_CASE("an option that takes a value without one is a usage error naming the option, not an unknown option",
+          "[cli]") {
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("deck.lua", "");
+  for (const std::string option : {"--output-dir", "--restart", "--allow-read", "--allow-write", "--lua-memory"}) {
+    INFO(option);
+    const Run last = run_in(folder.path(), tirefe_binary() + " " + deck + " " + option);
+    CHECK(last.status == 2);
+    CHECK(last.err.rfind("tirefe: option '" + option + "' needs a value: " + option + " ", 0) == 0);
+    // Nor is the next option taken for its value.
+    const Run followed = run_in(folder.path(), tirefe_binary() + " " + deck + " " + option + " --quiet");
+    CHECK(followed.status == 2);
+    CHECK(followed.err.find("needs a value: " + option) != std::string::npos);
+    CHECK(followed.err.find("(got the option '--quiet')") != std::string::npos);
+  }
+}

@@ -139,6 +139,7 @@ TEST_CASE("SIGTERM stops a run after the current step, with every step in the fi
 namespace {
 
 using tirefe::io::Hdf5File;
+using tirefe::io::kHdf5Signature;
 
 struct DatasetEntry {
   std::string path;
@@ -313,7 +314,9 @@ TEST_CASE("the next run removes what a killed run left unfinished, and an unfini
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("short.lua", kShortDeck);
   const std::vector<std::string> leftovers{"short.h5.partial", "short.h5.partial.copy", "short.ckpt.h5.partial"};
-  for (const std::string& leftover : leftovers) folder.write(leftover, "a killed run's unfinished file");
+  // Cut off anywhere: an HDF5 file's first bytes, or none.
+  for (const std::string& leftover : leftovers)
+    folder.write(leftover, leftover == "short.h5.partial.copy" ? "" : kHdf5Signature + std::string("unfinished"));
   const fs::path log = folder.path("log.txt");
   REQUIRE(wait_for(start(TIREFE_BINARY, {deck, "--quiet", "--output-dir", folder.path()}, log)) == 0);
   for (const std::string& leftover : leftovers) CHECK_FALSE(fs::exists(folder.path(leftover)));
@@ -327,6 +330,13 @@ TEST_CASE("the next run removes what a killed run left unfinished, and an unfini
   CHECK(WEXITSTATUS(status) == 1);
   CHECK_THAT(text_of(log), Catch::Contains("is a checkpoint a run did not finish writing; restart from '" +
                                            folder.path("short.ckpt.h5") + "'"));
+
+  // A file that no run of tirefe wrote is never deleted: the deck stops at the macro.
+  folder.write("short.h5.partial", "my notes");
+  CHECK(WEXITSTATUS(wait_for(start(TIREFE_BINARY, {deck, "--quiet", "--output-dir", folder.path()}, log))) == 1);
+  CHECK_THAT(text_of(log), Catch::Contains("short.h5.partial' is in the way of the temporary file tirefe writes there: "
+                                           "it is a file tirefe did not write; remove it"));
+  CHECK(text_of(folder.path("short.h5.partial")) == "my notes");
 }
 
 TEST_CASE("a full disk stops the run with one line naming the file, which keeps its last flush", "[reliability]") {

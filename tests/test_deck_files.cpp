@@ -16,6 +16,8 @@
 #include "io/hdf5_file.hpp"
 #include "macros/deck_files.hpp"
 #include "macros/deck_session.hpp"
+#include "macros/macro_table.hpp"
+#include "tire/tire_builder.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -181,6 +183,26 @@ TEST_CASE("a folder, a missing file or a FIFO as the deck: one line and exit sta
     CHECK(run.status == 2);
     CHECK(run.output == message);
   }
+}
+
+TEST_CASE("a FIFO, a device or a folder in place of a file a deck or a host reads is refused, not read",
+          "[files][decks]") {
+  // A FIFO would block the read for ever, /dev/zero would never end it.
+  TempDir dir;
+  tirefe::macros::DeckSession session;
+  place_in(session, dir);
+  REQUIRE(::mkfifo(dir.path("deck/fifo.csv").c_str(), 0600) == 0);
+  fs::create_symlink("/dev/zero", dir.path("deck/zero.tir"));
+  fs::create_directories(dir.path("deck/folder.csv"));
+  CHECK_THAT(refusal([&] { deck_relative(session, "fifo.csv"); }),
+             Contains("fifo.csv' is no regular file (a FIFO or a device would block the read or never end it); give "
+                      "a file"));
+  session.read_folders.push_back("/dev");
+  CHECK_THAT(refusal([&] { deck_relative(session, "zero.tir"); }), Contains("zero.tir' is no regular file"));
+  CHECK_THAT(refusal([&] { deck_relative(session, "folder.csv"); }), Contains("folder.csv' is a folder; give a file"));
+  // A host's tire property file (tirefe_open), outside any deck.
+  CHECK_THAT(refusal([&] { tirefe::macros::load_tire_parameters(dir.path("deck/zero.tir")); }),
+             Contains("zero.tir' is no regular file"));
 }
 
 TEST_CASE("a deck's read of a foreign file names it without a line of its content", "[files][decks]") {

@@ -36,3 +36,9 @@ TEST_CASE("the fuzz corpus replays cleanly through every parser", "[reliability]
   CHECK(replay("property_file", tirefe::fuzz::property_file) >= 4);
   CHECK(replay("road_file", tirefe::fuzz::road_file) >= 4);
 }
+
+TEST_CASE("the fuzz corpus of a host's inputs replays cleanly: changed checkpoints and C API calls",
+          "[reliability][fuzz][capi]") {
+  CHECK(replay("checkpoint", tirefe::fuzz::checkpoint_file) >= 4);
+  CHECK(replay("capi", tirefe::fuzz::capi_calls) >= 4);
+}

@@ -243,7 +243,7 @@ TEST_CASE("Hdf5File errors name the file and the object", "[io][hdf5]") {
 TEST_CASE("a published file holds its last flush, whole, until the close renames it into place", "[io][hdf5]") {
   TempPath temp;
   const std::string working = temp.str() + ".partial";
-  std::ofstream(working + ".copy") << "a killed run's unfinished copy";
+  std::ofstream(working + ".copy") << tirefe::io::kHdf5Signature << "a killed run's unfinished copy";
   {
     Hdf5File file = Hdf5File::create_published(temp.str());
     CHECK_FALSE(fs::exists(working + ".copy"));  // removed: no result

@@ -53,9 +53,14 @@ std::string read_text(const std::string& path) {
 
 TEST_CASE("SIGTERM stops a deck looping in pure Lua, with its line and status 143", "[reliability][limits]") {
   TempDir dir;
-  const std::string deck = GENERATE(as<std::string>{}, "local n = 0\nwhile true do\n  n = n + 1\nend\n",
-                                    // catching the stop does not keep it going
-                                    "while true do\n  pcall(function() while true do end end)\nend\n");
+  const std::string deck =
+      GENERATE(as<std::string>{}, "local n = 0\nwhile true do\n  n = n + 1\nend\n",
+               // catching the stop does not keep it going
+               "while true do\n  pcall(function() while true do end end)\nend\n",
+               // nor catching it in a coroutine, whose close returns it as a value
+               "local co = coroutine.create(function()\n"
+               "  local x <close> = setmetatable({}, { __close = function() while true do end end })\n"
+               "  coroutine.yield()\nend)\ncoroutine.resume(co)\ncoroutine.close(co)\n");
   INFO(deck);
   const std::string path = dir.write("loop.lua", deck);
   const std::string errors = dir.path("errors.txt");

@@ -14,9 +14,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
+#include "elements/beam_mesh.hpp"
 #include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
+#include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
 namespace fs = std::filesystem;
@@ -191,4 +194,96 @@ TEST_CASE("two checkpoints of the same state are the same bytes, element histori
   REQUIRE(beams.bytes_per_element == 1);
   CHECK(std::count(beams.history.begin(), beams.history.end(), 0) == 24);
   CHECK(ends[0].analysis.state.displacement == ends[1].analysis.state.displacement);
+}
+
+namespace {
+
+/// A cantilever of four beams with a tip load, two static steps taken.
+struct SmallRun {
+  tirefe::Model model;
+  tirefe::Analysis analysis{model};
+  SmallRun() {
+    tirefe::BeamSection section;
+    section.axial_stiffness = section.shear_stiffness = 1e6;
+    section.bending_stiffness = 10.0;
+    const std::vector<int> nodes = tirefe::add_beam_line(model, "beam", {0.0, 0.0}, {1.0, 0.0}, 4, section);
+    for (int dof : {tirefe::kUx, tirefe::kUy, tirefe::kRz}) model.fix(nodes.front(), dof);
+    model.add_nodal_load(nodes.back(), tirefe::kUy, -1.0, tirefe::Model::kRampLoadFunction);
+    analysis.set_time_step(0.1);
+    analysis.advance(0.2);
+  }
+};
+
+std::string refusal_of(const std::string& checkpoint) {
+  try {
+    tirefe::io::read_checkpoint(checkpoint);
+  } catch (const tirefe::io::IoError& error) {
+    return error.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+TEST_CASE("a checkpoint holding a count out of range or a non-finite number is refused, never wrapped",
+          "[reliability][restart]") {
+  tirefe::testing::TempDir dir;
+  SmallRun run;
+  tirefe::io::Checkpoint checkpoint = tirefe::io::capture_checkpoint(run.analysis, nullptr, 1, "small");
+  const std::string path = dir.path("small.ckpt.h5");
+  tirefe::io::write_checkpoint(path, checkpoint);
+  REQUIRE(tirefe::io::read_checkpoint(path).analysis.accepted_steps == 2);
+
+  SECTION("an attribute changed in the file") {
+    struct Tampering {
+      const char* object;
+      const char* name;
+      double value;
+      const char* refusal;
+    };
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Tampering tampering = GENERATE_COPY(values<Tampering>(
+        {{"/", "steps", -2147483649.0, "'/steps' = -2147483649 is not an integer from 0 to 2147483647"},
+         {"/", "steps", 2.5, "'/steps' = 2.5 is not an integer from 0 to 2147483647"},
+         {"/", "model_index", 0.0, "'/model_index' = 0 is not an integer from 1 to 2147483647"},
+         {"/rows", "steps_recorded", 1e300, "'/rows/steps_recorded' = 1e+300 is not an integer"},
+         {"/blocks/0", "elements", nan, "'/blocks/0/elements' = nan is not an integer"},
+         {"/analysis", "reactions_valid", 2.0, "'/analysis/reactions_valid' = 2 is not an integer from 0 to 1"},
+         {"/", "time", nan, "'/time' holds nan, not a finite number"},
+         {"/analysis", "current_step", -INFINITY, "'/analysis/current_step' holds -inf"},
+         {"/analysis", "current_step", -1.0, "'/analysis/current_step' = -1 is no step size > 0"}}));
+    INFO(tampering.object << " " << tampering.name);
+    tirefe::io::Hdf5File::open_read_write(path).write_attribute(tampering.object, tampering.name, tampering.value);
+    CHECK_THAT(refusal_of(path), Catch::Contains("restart file '" + path + "' is not a readable checkpoint (") &&
+                                     Catch::Contains(tampering.refusal));
+  }
+  SECTION("a state vector with a NaN") {
+    {
+      tirefe::io::Hdf5File file = tirefe::io::Hdf5File::open_read_write(path);
+      std::vector<double> velocity = file.read_doubles("/analysis/velocity");
+      velocity.back() = std::numeric_limits<double>::quiet_NaN();
+      file.remove("/analysis/velocity");
+      file.write_vector("/analysis/velocity", velocity);
+    }
+    CHECK_THAT(refusal_of(path), Catch::Contains("'/analysis/velocity' holds nan, not a finite number"));
+  }
+  SECTION("rows whose shape overflows, and a time row that is not a number") {
+    checkpoint.has_output = true;
+    checkpoint.rows.push_back({"/fields/displacement", {1LL << 40, 1LL << 40}, 0, {}});
+    tirefe::io::write_checkpoint(path, checkpoint);
+    CHECK_THAT(refusal_of(path), Catch::Contains("rows of '/fields/displacement' are incomplete"));
+    checkpoint.rows = {{"/history/time", {}, 2, {0.1, std::numeric_limits<double>::quiet_NaN()}}};
+    tirefe::io::write_checkpoint(path, checkpoint);
+    CHECK_THAT(refusal_of(path), Catch::Contains("'/rows/0/values' holds nan, not a finite number"));
+  }
+}
+
+TEST_CASE("an analysis stops counting steps at the largest int instead of wrapping", "[reliability][restart]") {
+  SmallRun run;
+  tirefe::CarriedState state = run.analysis.snapshot();
+  state.accepted_steps = std::numeric_limits<int>::max();
+  run.analysis.restore(state);
+  CHECK_THROWS_WITH(run.analysis.advance(0.1),
+                    "the analysis has taken 2147483647 steps, the most it counts; continue in another run");
+  CHECK(run.analysis.accepted_steps() == std::numeric_limits<int>::max());
 }

@@ -296,3 +296,21 @@ TEST_CASE("driven-DOF solves and H_ss through the RingSolver's border equal thos
     CHECK((product - expected).norm() <= 1e-12 * expected.norm());
   }
 }
+
+TEST_CASE("a tire on the road without pressure, or one that cannot be inflated, is a model error saying why",
+          "[spindle][vehicle]") {
+  // Without pressure the tire is slack where it meets the road; the contact stiffness
+  // scaled from it would fail with a message about the contact, not about the pressure.
+  const auto road = [](double level) { return std::make_shared<FlatRoad>(Eigen::Vector2d(0.0, level)); };
+  TireParameters slack = macros::load_tire_parameters("tires.145SR12");
+  slack.pressure = 0.0;
+  CHECK_THROWS_WITH(TireOnRoad(slack, road, RoadContact{0.8}),
+                    "parameter 'pressure' is 0 Pa: a tire on the road is inflated before it touches it; give a "
+                    "pressure > 0");
+  // A pressure no step size can inflate: the parameters are at fault, not the steps.
+  TireParameters bursting = macros::load_tire_parameters("tires.145SR12");
+  bursting.pressure = 1e300;
+  CHECK_THROWS_WITH(TireOnRoad(bursting, road, RoadContact{0.8}),
+                    Catch::StartsWith("the tire cannot be inflated on its hub with these parameters (") &&
+                        Catch::EndsWith("); check the pressure and the stiffnesses"));
+}

@@ -385,6 +385,23 @@ TEST_CASE("result file: rows wait in memory for a batch at most, however large t
         std::vector<double>(run.dofs / kDofsPerNode, kFrames - 1));
 }
 
+TEST_CASE("result file: frames wait for their views a few hundred at most, so that a stopped run closes at once",
+          "[io][xdmf][reliability]") {
+  // Frames come far faster than the writer makes their views (a few per frame, each some
+  // 0.1 ms): without the bound they pile up while a flush is written, and the close of a
+  // run stopped by SIGINT, which writes them all, takes as long as the run took to make them.
+  RingFrames run;
+  constexpr int kFrames = 4000;
+  size_t most_waiting = 0;
+  io::ResultFile file(run.folder.path("ring.h5"), io::RunMetadata{"ring", "", "", {}});
+  for (int frame = 0; frame < kFrames; ++frame) {
+    run.write(file, frame);
+    most_waiting = std::max(most_waiting, file.frames_awaiting_views());
+  }
+  CHECK(most_waiting >= io::ResultFile::kViewBatch);
+  CHECK(most_waiting < io::ResultFile::kMaxUnviewedFrames);
+}
+
 TEST_CASE("result file: a flush that fails while the run goes on fails the next step, naming the file",
           "[io][xdmf][reliability]") {
   RingFrames run;

@@ -1,11 +1,16 @@
 // The C API of include/tirefe.h over TireOnRoad and TireSpindle (docs/coupling.md).
 // Every entry point catches whatever the C++ side throws and turns it into a status and
-// a message kept in the handle: nothing unwinds into the C caller.
+// a message kept in the handle: nothing unwinds into the C caller. The handles a host
+// holds are numbers looked up in a table of open tires and saved states, never addresses
+// dereferenced here: a closed, freed or made-up handle is an error, not a crash.
 #include "tirefe.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -13,11 +18,13 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "contact/road_file.hpp"
 #include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
+#include "macros/interrupt.hpp"
 #include "macros/lua_module_dir.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/wheel_axes.hpp"
@@ -30,7 +37,8 @@ struct DeckHold {
   std::unique_ptr<tirefe::macros::LuaSandbox> sandbox;
 };
 
-struct tirefe_tire {
+/// An open tire, behind its tirefe_tire* handle.
+struct OpenTire {
   std::mutex mutex;  // one caller at a time per tire
   // Opened from parameters: the tire on its flat road; from a deck: the deck and a spindle
   // of its model (destroyed before the deck).
@@ -45,7 +53,8 @@ struct tirefe_tire {
   std::string message;
 };
 
-struct tirefe_saved_state {
+/// A saved state, behind its tirefe_saved_state* handle.
+struct SavedState {
   tirefe::io::Checkpoint checkpoint;
 };
 
@@ -80,22 +89,124 @@ tirefe_status status_of_current_exception(std::string& message) {
 /// the HDF5 library is not thread-safe.
 std::mutex deck_tires_mutex;
 
+/// The next handle's number, one count for every kind: a tire's handle is no state's.
+std::uintptr_t next_handle_number() {
+  static std::atomic<std::uintptr_t> next{0x7e1fe0000000};  // far from where heaps and stacks lie
+  return next += 16;
+}
+
+/// The open objects of one kind by their handles. A handle is a number (never reused, never
+/// zero) in the guise of a pointer: looking it up reads no memory of the host's, so NULL,
+/// a closed or freed handle and any other pointer are told apart from an open one.
+template <class Object, class Handle>
+class HandleTable {
+ public:
+  Handle* add(std::shared_ptr<Object> object) {
+    const std::uintptr_t number = next_handle_number();
+    const std::lock_guard<std::mutex> lock(mutex_);
+    open_.emplace(number, std::move(object));
+    return reinterpret_cast<Handle*>(number);
+  }
+  /// The object of 'handle', or null; the object lives while the caller holds it.
+  std::shared_ptr<Object> find(const Handle* handle) const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = open_.find(reinterpret_cast<std::uintptr_t>(handle));
+    return found == open_.end() ? nullptr : found->second;
+  }
+  /// Takes 'handle' out of the table (it is closed); null if it was not open.
+  std::shared_ptr<Object> remove(const Handle* handle) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = open_.find(reinterpret_cast<std::uintptr_t>(handle));
+    if (found == open_.end()) return nullptr;
+    std::shared_ptr<Object> object = std::move(found->second);
+    open_.erase(found);
+    return object;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::unordered_map<std::uintptr_t, std::shared_ptr<Object>> open_;
+};
+
+HandleTable<OpenTire, tirefe_tire>& open_tires() {
+  static HandleTable<OpenTire, tirefe_tire> table;
+  return table;
+}
+HandleTable<SavedState, tirefe_saved_state>& saved_states() {
+  static HandleTable<SavedState, tirefe_saved_state> table;
+  return table;
+}
+
+/// A tire opened from a deck closes its result file when it is freed: under the lock of
+/// the deck tires, in whichever thread lets go of it last.
+void delete_tire(OpenTire* tire) {
+  std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
+  if (tire->deck) deck_lock.lock();
+  delete tire;
+}
+
+constexpr const char* kNotATire = "not an open tire (NULL, closed, or not made by tirefe_open or tirefe_open_deck)";
+
+/// The end of a call that tirefe_cancel may stop: the cancel is answered (a later call is
+/// not stopped by it), and the call's failure, if it stopped, is TIREFE_CANCELLED.
+tirefe_status answer_cancel(tirefe_status status) {
+  int cancel = macros::kHostCancel;
+  const bool cancelled = macros::stop_signal().compare_exchange_strong(cancel, 0);
+  return cancelled && status != TIREFE_OK ? TIREFE_CANCELLED : status;
+}
+
+/// Runs 'body' on a deck's tire inside a protected call of the deck's Lua state, as the
+/// deck runs its macros: a Lua error of the deck's code that the body calls back (a load
+/// function's error, the stop of tirefe_cancel) unwinds to here, a deck error. Outside a
+/// protected call Lua would leave the state with its hooks off after an error in a hook.
+template <class Body>
+tirefe_status in_deck_lua(OpenTire& tire, Body& body) {
+  struct Call {
+    Body& body;
+    OpenTire& tire;
+    tirefe_status status = TIREFE_OK;
+    std::exception_ptr failure;
+  } call{body, tire, TIREFE_OK, nullptr};
+  lua_State* L = tire.deck->sandbox->state();
+  lua_pushcfunction(L, [](lua_State* state) -> int {
+    Call& call = *static_cast<Call*>(lua_touserdata(state, 1));
+    try {
+      call.status = call.body(call.tire);
+    } catch (const std::exception&) {  // Lua's own errors (a pointer type) go on to lua_pcall
+      call.failure = std::current_exception();
+    }
+    return 0;
+  });
+  lua_pushlightuserdata(L, &call);
+  if (lua_pcall(L, 1, 0, 0) != LUA_OK) {
+    const std::string message = macros::error_text(L, -1);
+    lua_pop(L, 1);
+    throw ModelError(message);
+  }
+  if (call.failure) std::rethrow_exception(call.failure);
+  return call.status;
+}
+
 /// Runs 'body' on the locked tire; every exception becomes a status and the message.
 template <class Body>
-tirefe_status guarded(tirefe_tire* tire, Body&& body) {
+tirefe_status guarded(tirefe_tire* handle, Body&& body) {
+  const std::shared_ptr<OpenTire> tire = open_tires().find(handle);  // released last, after the locks
   if (!tire) return TIREFE_INVALID_ARGUMENT;
   std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
   if (tire->deck) deck_lock.lock();
   std::lock_guard<std::mutex> lock(tire->mutex);
   tire->message.clear();
+  tirefe_status status;
   try {
-    return body(*tire);
+    status = tire->deck ? in_deck_lua(*tire, body) : body(*tire);
   } catch (...) {
-    return status_of_current_exception(tire->message);
+    status = status_of_current_exception(tire->message);
   }
+  // A deck's Lua (its load functions) runs in a deck tire's steps: tirefe_cancel stops it.
+  return tire->deck ? answer_cancel(status) : status;
 }
 
-tirefe_status refuse(tirefe_tire& tire, tirefe_status status, std::string message) {
+tirefe_status refuse(OpenTire& tire, tirefe_status status, std::string message) {
   tire.message = std::move(message);
   return status;
 }
@@ -129,6 +240,9 @@ std::vector<ParameterValue> parameter_values(const tirefe_parameter* overrides, 
     if (!overrides[i].name) throw std::invalid_argument("override " + std::to_string(i) + " has no name");
     if (!std::isfinite(overrides[i].value))
       throw std::invalid_argument(std::string("override '") + overrides[i].name + "' is not a finite number");
+    for (const ParameterValue& earlier : values)
+      if (earlier.first == overrides[i].name)
+        throw std::invalid_argument(std::string("override '") + overrides[i].name + "' is given twice");
     values.emplace_back(overrides[i].name, overrides[i].value);
   }
   return values;
@@ -188,13 +302,15 @@ void check_options(const tirefe_options& options) {
     throw std::invalid_argument("options.road_start and options.start_z must be finite");
   if (!(options.road_edge_radius >= 0.0 && std::isfinite(options.road_edge_radius)))
     throw std::invalid_argument("options.road_edge_radius must be a finite number >= 0");
+  if (options.free_spin != 0 && options.free_spin != 1)
+    throw std::invalid_argument("options.free_spin must be 1 (the wheel turns freely) or 0 (the host drives the spin)");
 }
 
-std::unique_ptr<tirefe_tire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
-                                       const tirefe_options& options) {
+std::unique_ptr<OpenTire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
+                                    const tirefe_options& options) {
   check_options(options);
   const TireParameters parameters = macros::load_tire_parameters(source, overrides);
-  auto handle = std::make_unique<tirefe_tire>();
+  auto handle = std::make_unique<OpenTire>();
   const TireOnRoad::RoadMaker road =
       options.road && *options.road
           ? TireOnRoad::RoadMaker([&options](double level) { return file_road(options, level); })
@@ -240,9 +356,9 @@ int read_host_tire(lua_State* L) {
   return 0;
 }
 
-std::unique_ptr<tirefe_tire> open_deck(const std::string& deck, const std::map<std::string, std::string>& overrides,
-                                       const std::string& output_dir) {
-  auto handle = std::make_unique<tirefe_tire>();
+std::unique_ptr<OpenTire> open_deck(const std::string& deck, const std::map<std::string, std::string>& overrides,
+                                    const std::string& output_dir) {
+  auto handle = std::make_unique<OpenTire>();
   handle->deck = std::make_unique<DeckHold>();
   macros::DeckSession& session = handle->deck->session;
   session.output_dir = output_dir;
@@ -282,6 +398,22 @@ void copy_reply(const SpindleReply& reply, Heading heading, double jacobian_scal
   out.newton_iterations = reply.newton_iterations;
 }
 
+/// The shortest step a host may ask for. The inertia forces of a step are the change of
+/// position over h^2: below this, the round-off of the positions (1e-16 of the tire's
+/// size) over h^2 swamps them (h = 1e-12 gave Fz = 3e21 N for a spindle held still).
+constexpr double kMinTimeStep = 1e-7;
+
+/// Why 'h' is no time step for a host, or "".
+std::string time_step_problem(double h) {
+  char text[112] = "";
+  if (!(h > 0.0 && std::isfinite(h)))
+    std::snprintf(text, sizeof text, "the time step must be a finite number > 0 (got %g)", h);
+  else if (h < kMinTimeStep)
+    std::snprintf(text, sizeof text, "the time step %g s is below %g s, where round-off swamps the tire's inertia", h,
+                  kMinTimeStep);
+  return text;
+}
+
 bool finite(const double* values, int count) {
   for (int i = 0; i < count; ++i)
     if (!std::isfinite(values[i])) return false;
@@ -289,9 +421,9 @@ bool finite(const double* values, int count) {
 }
 
 /// Solves the trial step to 'input'; the handle then holds a trial until commit or revert.
-tirefe_status solve(tirefe_tire& tire, const SpindleInput& input, double jacobian_scale, tirefe_spindle_force& out) {
-  if (!(input.time_step > 0.0 && std::isfinite(input.time_step)))
-    return refuse(tire, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
+tirefe_status solve(OpenTire& tire, const SpindleInput& input, double jacobian_scale, tirefe_spindle_force& out) {
+  if (const std::string problem = time_step_problem(input.time_step); !problem.empty())
+    return refuse(tire, TIREFE_INVALID_ARGUMENT, problem);
   tire.has_trial = false;
   copy_reply(tire.spindle->solve_step(input), tire.heading, jacobian_scale, out);
   tire.has_trial = true;
@@ -302,7 +434,7 @@ tirefe_status solve(tirefe_tire& tire, const SpindleInput& input, double jacobia
 struct DofState {
   double u, v, a;
 };
-DofState committed_dof(const tirefe_tire& tire, int c) {
+DofState committed_dof(const OpenTire& tire, int c) {
   const State& state = tire.analysis->state();
   const int dof = dof_index(tire.spindle_node, c);
   return {state.displacement[dof], state.velocity[dof], state.acceleration[dof]};
@@ -313,7 +445,7 @@ DofState committed_dof(const tirefe_tire& tire, int c) {
 /// Its clock starts at 0 with the stretch, so that what it says speaks of the stretch alone.
 class SpindlePath final : public SteppedSystem {
  public:
-  SpindlePath(tirefe_tire& tire, const tirefe_spindle_path& path)
+  SpindlePath(OpenTire& tire, const tirefe_spindle_path& path)
       : tire_(tire),
         start_(tire.spindle->time()),
         duration_(path.duration),
@@ -324,7 +456,14 @@ class SpindlePath final : public SteppedSystem {
 
   double time() const override { return tire_.spindle->time() - start_; }
 
+  /// tirefe_cancel, seen between the stretch's steps.
+  struct Cancelled : std::runtime_error {
+    using std::runtime_error::runtime_error;
+  };
+
   bool try_step(double step, double end_time, StepRecord& record) override {
+    if (macros::stop_signal().load() == macros::kHostCancel)
+      throw Cancelled("stopped by tirefe_cancel " + where() + ", at its last committed step");
     const Eigen::Vector3d plane = plane_motion(position_at(end_time), tire_.heading);
     SpindleInput input{step, plane.x(), plane.y(), plane.z()};
     input.jacobian = false;  // nobody reads it
@@ -376,7 +515,7 @@ class SpindlePath final : public SteppedSystem {
     return h00 * start_position_ + h10 * T * start_rate_ + h01 * end_ + h11 * T * end_rate_;
   }
 
-  tirefe_tire& tire_;
+  OpenTire& tire_;
   double start_, duration_;
   Eigen::Vector3d start_position_, start_rate_, end_, end_rate_;
   double failed_at_ = 0.0;
@@ -415,10 +554,13 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
   tirefe_options chosen;
   tirefe_default_options(&chosen);
   if (options) chosen = *options;
-  const tirefe_status status = without_handle(
-      error, error_size, [&] { *tire = open_tire(source, parameter_values(overrides, count), chosen).release(); });
+  const tirefe_status status = without_handle(error, error_size, [&] {
+    std::shared_ptr<OpenTire> opened(open_tire(source, parameter_values(overrides, count), chosen).release(),
+                                     delete_tire);
+    *tire = open_tires().add(std::move(opened));
+  });
   // Building the tire is not a step: a failure to inflate it is the parameters' fault.
-  return status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status;
+  return answer_cancel(status == TIREFE_STEP_FAILED ? TIREFE_MODEL_ERROR : status);
 }
 
 tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
@@ -428,13 +570,20 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
     copy_message("tirefe_static_forces: source, overrides, deflections and forces must not be NULL", error, error_size);
     return TIREFE_INVALID_ARGUMENT;
   }
-  return without_handle(error, error_size, [&] {
+  return answer_cancel(without_handle(error, error_size, [&] {
     for (size_t i = 0; i < n; ++i)
-      if (!std::isfinite(deflections[i])) throw std::invalid_argument("the deflections must be finite");
+      if (!std::isfinite(deflections[i]))
+        throw std::invalid_argument("deflection " + std::to_string(i) + " is not a finite number");
+    size_t pressed = 0;
     const std::vector<double> curve = static_vertical_forces(
-        macros::load_tire_parameters(source, parameter_values(overrides, count)), {deflections, deflections + n});
+        macros::load_tire_parameters(source, parameter_values(overrides, count)), {deflections, deflections + n}, [&] {
+          if (macros::stop_signal().load() == macros::kHostCancel)
+            throw ModelError("stopped by tirefe_cancel after " + std::to_string(pressed) + " of " + std::to_string(n) +
+                             " deflections");
+          ++pressed;
+        });
     std::copy(curve.begin(), curve.end(), forces);
-  });
+  }));
 }
 
 tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, size_t count, const char* output_dir,
@@ -447,30 +596,42 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
   const tirefe_status status = without_handle(error, error_size, [&] {
     std::map<std::string, std::string> values;
     for (size_t i = 0; i < count; ++i) {
-      const std::string pair = overrides[i] ? overrides[i] : "";
+      if (!overrides[i]) throw std::invalid_argument("override " + std::to_string(i) + " is NULL");
+      const std::string pair = overrides[i];
       const size_t equals = pair.find('=');
       if (equals == std::string::npos || equals == 0)
         throw std::invalid_argument("override '" + pair + "' is not key=value");
-      values[pair.substr(0, equals)] = pair.substr(equals + 1);
+      if (!values.emplace(pair.substr(0, equals), pair.substr(equals + 1)).second)
+        throw std::invalid_argument("override '" + pair.substr(0, equals) + "' is given twice");
     }
-    const std::lock_guard<std::mutex> lock(deck_tires_mutex);
-    *tire = open_deck(deck, values, output_dir ? output_dir : "results").release();
+    std::unique_ptr<OpenTire> opened;
+    {
+      const std::lock_guard<std::mutex> lock(deck_tires_mutex);
+      opened = open_deck(deck, values, output_dir ? output_dir : "results");
+    }
+    // delete_tire takes the lock: the table's owner is made after it is released.
+    *tire = open_tires().add(std::shared_ptr<OpenTire>(opened.release(), delete_tire));
   });
   // A deck's errors (already "deck.lua:LINE: ...") and failed steps are the deck's fault.
-  return status == TIREFE_STEP_FAILED || status == TIREFE_INTERNAL_ERROR ? TIREFE_MODEL_ERROR : status;
+  return answer_cancel(status == TIREFE_STEP_FAILED || status == TIREFE_INTERNAL_ERROR ? TIREFE_MODEL_ERROR : status);
 }
 
-void tirefe_close(tirefe_tire* tire) {
-  if (!tire) return;
-  std::unique_lock<std::mutex> deck_lock(deck_tires_mutex, std::defer_lock);
-  if (tire->deck) deck_lock.lock();  // its result file is closed here
-  delete tire;
+void tirefe_cancel(void) { macros::stop_signal().store(macros::kHostCancel); }
+
+tirefe_status tirefe_close(tirefe_tire* tire) {
+  if (!tire) return TIREFE_OK;
+  return open_tires().remove(tire) ? TIREFE_OK : TIREFE_INVALID_ARGUMENT;  // freed here, or by a call still on it
 }
 
-const char* tirefe_message(const tirefe_tire* tire) { return tire ? tire->message.c_str() : "no tire (NULL handle)"; }
+const char* tirefe_message(const tirefe_tire* tire) {
+  if (!tire) return "no tire (NULL handle)";
+  const std::shared_ptr<OpenTire> open = open_tires().find(tire);
+  // The text lives in the tire, which the table keeps until tirefe_close.
+  return open ? open->message.c_str() : kNotATire;
+}
 
 tirefe_status tirefe_road_level(tirefe_tire* tire, double* level) {
-  return guarded(tire, [&](tirefe_tire& t) {
+  return guarded(tire, [&](OpenTire& t) {
     if (!level) return refuse(t, TIREFE_INVALID_ARGUMENT, "level must not be NULL");
     if (!t.tire) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire: its roads are the deck's own");
     *level = t.tire->road_level();
@@ -479,7 +640,7 @@ tirefe_status tirefe_road_level(tirefe_tire* tire, double* level) {
 }
 
 tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motion, tirefe_spindle_force* out) {
-  return guarded(tire, [&](tirefe_tire& t) {
+  return guarded(tire, [&](OpenTire& t) {
     if (!motion || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "motion and out must not be NULL");
     const double values[] = {motion->x, motion->z, motion->spin};
     if (!finite(values, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle motion must be finite");
@@ -490,11 +651,11 @@ tirefe_status tirefe_solve(tirefe_tire* tire, const tirefe_spindle_motion* motio
 
 tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const double velocity[3],
                                     tirefe_spindle_force* out) {
-  return guarded(tire, [&](tirefe_tire& t) {
+  return guarded(tire, [&](OpenTire& t) {
     if (!velocity || !out) return refuse(t, TIREFE_INVALID_ARGUMENT, "velocity and out must not be NULL");
     if (!finite(velocity, 3)) return refuse(t, TIREFE_INVALID_ARGUMENT, "the spindle velocity must be finite");
-    if (!(time_step > 0.0 && std::isfinite(time_step)))
-      return refuse(t, TIREFE_INVALID_ARGUMENT, "the time step must be a finite number > 0");
+    if (const std::string problem = time_step_problem(time_step); !problem.empty())
+      return refuse(t, TIREFE_INVALID_ARGUMENT, problem);
     const TimeScheme& scheme = t.analysis->integrator().scheme();
     const double h = time_step;
     const Eigen::Vector2d& reference = t.analysis->model().mesh().position(t.spindle_node);
@@ -511,7 +672,7 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
 
 tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path, double max_step,
                              tirefe_advance_report* report) {
-  return guarded(tire, [&](tirefe_tire& t) {
+  const tirefe_status status = guarded(tire, [&](OpenTire& t) {
     if (!path) return refuse(t, TIREFE_INVALID_ARGUMENT, "path must not be NULL");
     if (!(path->duration > 0.0 && std::isfinite(path->duration)) || !(max_step > 0.0 && std::isfinite(max_step)))
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's duration and max_step must be finite numbers > 0");
@@ -531,14 +692,17 @@ tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path,
       controller.advance_to(stretch, path->duration);
     } catch (const StepFailure& failure) {
       status = refuse(t, TIREFE_STEP_FAILED, failure.what());
+    } catch (const SpindlePath::Cancelled& stop) {
+      status = refuse(t, TIREFE_CANCELLED, stop.what());
     }
     if (report) *report = stretch.report();
     return status;
   });
+  return answer_cancel(status);
 }
 
 tirefe_status tirefe_commit(tirefe_tire* tire) {
-  return guarded(tire, [](tirefe_tire& t) {
+  return guarded(tire, [](OpenTire& t) {
     if (!t.has_trial) return refuse(t, TIREFE_INVALID_CALL, "tirefe_commit: no solved trial step to accept");
     t.has_trial = false;
     t.spindle->commit();
@@ -547,7 +711,7 @@ tirefe_status tirefe_commit(tirefe_tire* tire) {
 }
 
 tirefe_status tirefe_revert(tirefe_tire* tire) {
-  return guarded(tire, [](tirefe_tire& t) {
+  return guarded(tire, [](OpenTire& t) {
     t.has_trial = false;
     t.spindle->revert();
     return TIREFE_OK;
@@ -555,7 +719,7 @@ tirefe_status tirefe_revert(tirefe_tire* tire) {
 }
 
 tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
-  return guarded(tire, [&](tirefe_tire& t) {
+  return guarded(tire, [&](OpenTire& t) {
     if (!state) return refuse(t, TIREFE_INVALID_ARGUMENT, "state must not be NULL");
     const Eigen::Vector3d position = plane_motion(t.spindle->committed_position(), t.heading);
     const Eigen::Vector3d velocity(committed_dof(t, 0).v, committed_dof(t, 1).v, committed_dof(t, 2).v);
@@ -572,25 +736,35 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
 }
 
 tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved) {
-  return guarded(tire, [&](tirefe_tire& t) {
+  if (saved) *saved = nullptr;
+  return guarded(tire, [&](OpenTire& t) {
     if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
     if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is saved with the deck's model:checkpoint");
-    *saved = new tirefe_saved_state{io::capture_checkpoint(*t.analysis, nullptr, 1, "tirefe C API")};
+    auto state =
+        std::make_shared<SavedState>(SavedState{io::capture_checkpoint(*t.analysis, nullptr, 1, "tirefe C API")});
+    *saved = saved_states().add(std::move(state));
     return TIREFE_OK;
   });
 }
 
 tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* saved) {
-  return guarded(tire, [&](tirefe_tire& t) {
-    if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
+  return guarded(tire, [&](OpenTire& t) {
+    const std::shared_ptr<SavedState> state = saved_states().find(saved);
+    if (!state)
+      return refuse(
+          t, TIREFE_INVALID_ARGUMENT,
+          saved ? "saved is no state of tirefe_save_state (freed, or never saved)" : "saved must not be NULL");
     if (t.has_trial) t.spindle->revert();
     t.has_trial = false;
     if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is restored with tirefe --restart");
-    io::restore_checkpoint(saved->checkpoint, *t.analysis, nullptr);
+    io::restore_checkpoint(state->checkpoint, *t.analysis, nullptr);
     return TIREFE_OK;
   });
 }
 
-void tirefe_free_state(tirefe_saved_state* saved) { delete saved; }
+tirefe_status tirefe_free_state(tirefe_saved_state* saved) {
+  if (!saved) return TIREFE_OK;
+  return saved_states().remove(saved) ? TIREFE_OK : TIREFE_INVALID_ARGUMENT;
+}
 
 }  // extern "C"

@@ -1,8 +1,13 @@
 #include "io/checkpoint.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
+#include <limits>
 #include <map>
+
+#include "io/temporary_file.hpp"
 
 namespace tirefe::io {
 
@@ -15,8 +20,46 @@ Eigen::VectorXd to_eigen(const std::vector<double>& values) {
   return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-long long integer_attribute(const Hdf5File& file, const std::string& object, const char* name) {
-  return static_cast<long long>(file.read_double_attribute(object, name));
+/// A tampered value for a message, to 15 digits.
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
+}
+
+/// The attribute 'name' of 'object' as CarriedState::for_each_field names it ("/analysis/beta").
+std::string field_path(const std::string& object, const std::string& name) {
+  return (object == "/" ? "" : object) + "/" + name;
+}
+
+/// An integer attribute from 'low' to 'high': a tampered file's 1e300 or -2^31 - 1 is
+/// refused, never wrapped (the counts are ints in the model).
+long long integer_attribute(const Hdf5File& file, const std::string& object, const char* name, long long low = 0,
+                            long long high = std::numeric_limits<int>::max()) {
+  const double value = file.read_double_attribute(object, name);
+  if (!(value >= static_cast<double>(low) && value <= static_cast<double>(high)) || value != std::floor(value))
+    throw IoError("'" + field_path(object, name) + "' = " + number_text(value) + " is not an integer from " +
+                  std::to_string(low) + " to " + std::to_string(high));
+  return static_cast<long long>(value);
+}
+
+/// The number of values in a row of 'shape', or -1 if an extent is below 1 or the row
+/// would hold more than INT_MAX values.
+long long row_size_of(const std::vector<long long>& shape) {
+  constexpr long long kMost = std::numeric_limits<int>::max();
+  long long size = 1;
+  for (long long extent : shape) {
+    if (extent < 1 || extent > kMost / size) return -1;
+    size *= extent;
+  }
+  return size;
+}
+
+/// Refuses a state value that is not a finite number (NaN, infinity).
+template <class Values>
+void require_finite(const Values& values, const std::string& path) {
+  for (double value : values)
+    if (!std::isfinite(value)) throw IoError("'" + path + "' holds " + number_text(value) + ", not a finite number");
 }
 
 /// A field's place in the file, "/analysis/beta": the object "/analysis" and the name "beta".
@@ -44,16 +87,22 @@ struct FieldWriter {
 /// Reads them back.
 struct FieldReader {
   const Hdf5File& file;
-  void operator()(const char* path, Eigen::VectorXd& field) const { field = to_eigen(file.read_doubles(path)); }
+  void operator()(const char* path, Eigen::VectorXd& field) const {
+    const std::vector<double> values = file.read_doubles(path);
+    require_finite(values, path);
+    field = to_eigen(values);
+  }
   void operator()(const char* path, double& field) const {
     const auto [object, name] = attribute_place(path);
     field = file.read_double_attribute(object, name);
+    require_finite(std::initializer_list<double>{field}, path);
   }
-  void operator()(const char* path, int& field) const { field = static_cast<int>(read_integer(path)); }
-  void operator()(const char* path, bool& field) const { field = read_integer(path) != 0; }
-  long long read_integer(const char* path) const {
+  void operator()(const char* path, int& field) const { field = static_cast<int>(read_integer(path, 0)); }
+  void operator()(const char* path, bool& field) const { field = read_integer(path, 1) != 0; }
+  long long read_integer(const char* path, long long high) const {
     const auto [object, name] = attribute_place(path);
-    return integer_attribute(file, object, name.c_str());
+    return high > 0 ? integer_attribute(file, object, name.c_str(), 0, high)
+                    : integer_attribute(file, object, name.c_str());
   }
 };
 
@@ -121,8 +170,7 @@ void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, Result
                   std::to_string(file.extendible_datasets().size()));
   for (const SavedRows& rows : checkpoint.rows) {
     ExtendibleDataset* dataset = file.find_extendible(rows.path);
-    long long row_size = 1;
-    for (long long extent : rows.row_shape) row_size *= extent;
+    const long long row_size = row_size_of(rows.row_shape);
     if (!dataset || dataset->rows() != 0 || static_cast<long long>(dataset->row_size()) != row_size)
       throw differs("its result file has '" + rows.path + "' which the deck's does not write alike");
     dataset->append_rows(rows.values.data(), static_cast<hsize_t>(rows.rows));
@@ -136,7 +184,7 @@ namespace {
 const char* const kUnfinished = ".partial";  // a checkpoint being written
 }  // namespace
 
-void remove_unfinished_checkpoint(const std::string& path) { std::remove((path + kUnfinished).c_str()); }
+void remove_unfinished_checkpoint(const std::string& path) { clear_for_temporary(path + kUnfinished, kHdf5Signature); }
 
 void check_parameters(const Checkpoint& checkpoint,
                       const std::vector<std::pair<std::string, std::string>>& parameters) {
@@ -159,8 +207,9 @@ void check_parameters(const Checkpoint& checkpoint,
 
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
   const std::string partial = path + kUnfinished;
+  clear_for_temporary(partial, kHdf5Signature);
   {
-    Hdf5File file = Hdf5File::create(partial);
+    Hdf5File file = Hdf5File::create_new(partial);
     file.write_attribute("/", "title", checkpoint.title);
     file.write_attribute("/", "model_index", checkpoint.model_index);
     file.write_attribute("/", "node_count", checkpoint.node_count);
@@ -217,9 +266,12 @@ Checkpoint read_checkpoint(const std::string& path) {
       throw IoError("no checkpoint written by this tirefe");
     Checkpoint checkpoint;
     checkpoint.title = file.read_string_attribute("/", "title");
-    checkpoint.model_index = static_cast<int>(integer_attribute(file, "/", "model_index"));
+    checkpoint.model_index = static_cast<int>(integer_attribute(file, "/", "model_index", 1));
     checkpoint.node_count = static_cast<int>(integer_attribute(file, "/", "node_count"));
     CarriedState::for_each_field(checkpoint.analysis, FieldReader{file});
+    for (const auto& [path, step] : {std::pair{"/analysis/nominal_step", checkpoint.analysis.steps.nominal},
+                                     std::pair{"/analysis/current_step", checkpoint.analysis.steps.current}})
+      if (!(step > 0.0)) throw IoError(std::string("'") + path + "' = " + number_text(step) + " is no step size > 0");
     const long long blocks = integer_attribute(file, "/blocks", "count");
     for (long long b = 0; b < blocks; ++b) {
       const std::string group = "/blocks/" + std::to_string(b);
@@ -228,7 +280,7 @@ Checkpoint read_checkpoint(const std::string& path) {
                                    integer_attribute(file, group, "bytes_per_element"),
                                    integer_attribute(file, group, "elements"), file.read_bytes(group + "/history")});
     }
-    checkpoint.has_output = integer_attribute(file, "/rows", "has_output") != 0;
+    checkpoint.has_output = integer_attribute(file, "/rows", "has_output", 0, 1) != 0;
     checkpoint.steps_recorded = static_cast<int>(integer_attribute(file, "/rows", "steps_recorded"));
     const long long row_sets = integer_attribute(file, "/rows", "count");
     for (long long r = 0; r < row_sets; ++r) {
@@ -238,10 +290,12 @@ Checkpoint read_checkpoint(const std::string& path) {
       rows.rows = integer_attribute(file, group, "rows");
       rows.row_shape = file.read_ints(group + "/row_shape");
       rows.values = file.read_doubles(group + "/values");
-      long long row_size = 1;
-      for (long long extent : rows.row_shape) row_size *= extent;
-      if (rows.rows < 0 || row_size <= 0 || static_cast<long long>(rows.values.size()) != rows.rows * row_size)
+      const long long values = static_cast<long long>(rows.values.size());
+      const long long row_size = row_size_of(rows.row_shape);
+      if (row_size < 0 || values % row_size != 0 || values / row_size != rows.rows)
         throw IoError("rows of '" + rows.path + "' are incomplete");
+      // Every row of a result file has its time: the rows of a run nobody tampered with.
+      if (rows.path == "/history/time") require_finite(rows.values, "/rows/" + std::to_string(r) + "/values");
       checkpoint.rows.push_back(std::move(rows));
     }
     if (file.exists("/parameters/names")) {

@@ -14,7 +14,12 @@
 #include <numeric>
 #include <utility>
 
+#include "io/temporary_file.hpp"
+
 namespace tirefe::io {
+
+const char* const kHdf5Signature = "\x89HDF\r\n\x1a\n";
+
 namespace {
 
 // The innermost entry of the HDF5 error stack is the most specific one, reduced to one
@@ -43,16 +48,17 @@ std::string hdf5_error_detail() {
 
 std::string system_error(const std::string& action) { return action + ": " + std::strerror(errno); }
 
-// Copies the file 'from' to 'to' whole, in the kernel where it can (no pass through this
-// process; a reflink on file systems that share blocks).
+// Copies the file 'from' to the new file 'to' whole, in the kernel where it can (no pass
+// through this process; a reflink on file systems that share blocks). A failed copy is removed.
 void copy_file(const std::string& from, const std::string& to) {
   const int in = ::open(from.c_str(), O_RDONLY | O_CLOEXEC);
   if (in < 0) throw IoError(system_error("cannot read '" + from + "'"));
-  const int out = ::open(to.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
-  if (out < 0) {
-    const IoError error(system_error("cannot write '" + to + "'"));
+  int out = -1;
+  try {
+    out = create_new_file(to);
+  } catch (const IoError&) {
     ::close(in);
-    throw error;
+    throw;
   }
   struct stat status {};
   bool copied = ::fstat(in, &status) == 0;
@@ -70,10 +76,12 @@ void copy_file(const std::string& from, const std::string& to) {
     copied = moved > 0;
     left -= moved;
   }
-  const std::string failure = copied ? "" : system_error("cannot write '" + to + "'");
+  std::string failure = copied ? "" : system_error("cannot write '" + to + "'");
   ::close(in);
-  if (::close(out) != 0 && copied) throw IoError(system_error("cannot write '" + to + "'"));
-  if (!copied) throw IoError(failure);
+  if (::close(out) != 0 && failure.empty()) failure = system_error("cannot write '" + to + "'");
+  if (failure.empty()) return;
+  ::unlink(to.c_str());
+  throw IoError(failure);
 }
 
 std::string describe(const std::string& action, const std::string& object, const std::string& file) {
@@ -309,6 +317,17 @@ void ExtendibleDataset::write_rows(const double* values, hsize_t rows) {
 
 void silence_hdf5_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+namespace {
+// The new file 'path' (H5Fcreate with 'flags'); 'failure' says what could not be done.
+Hdf5Handle create_file(const std::string& path, unsigned flags, const std::string& failure) {
+  silence_hdf5_errors();
+  Hdf5Handle fapl = make_fapl(path);
+  const hid_t id = H5Fcreate(path.c_str(), flags, H5P_DEFAULT, fapl.get());
+  check(id, [&] { return failure; });
+  return Hdf5Handle(id, H5Fclose);
+}
+}  // namespace
+
 // --- Hdf5File ------------------------------------------------------------------------------
 
 Hdf5File::Hdf5File(std::string path, Hdf5Handle file)
@@ -319,21 +338,19 @@ Hdf5File::Hdf5File(std::string path, Hdf5Handle file)
 }
 
 Hdf5File Hdf5File::create(const std::string& path) {
-  silence_hdf5_errors();
-  Hdf5Handle fapl = make_fapl(path);
-  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
-  check(id, [&] { return "cannot create output file '" + path + "'"; });
-  return Hdf5File(path, Hdf5Handle(id, H5Fclose));
+  return Hdf5File(path, create_file(path, H5F_ACC_TRUNC, "cannot create output file '" + path + "'"));
+}
+
+Hdf5File Hdf5File::create_new(const std::string& path) {
+  // O_EXCL: the creation fails on anything there, a symbolic link included.
+  return Hdf5File(path, create_file(path, H5F_ACC_EXCL, "cannot create '" + path + "'"));
 }
 
 Hdf5File Hdf5File::create_published(const std::string& path) {
-  silence_hdf5_errors();
   const std::string working = path + ".partial";
-  std::remove((working + ".copy").c_str());  // a copy a killed run left unfinished
-  Hdf5Handle fapl = make_fapl(path);
-  const hid_t id = H5Fcreate(working.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
-  check(id, [&] { return "cannot create output file '" + path + "' (written as '" + working + "')"; });
-  Hdf5File file(path, Hdf5Handle(id, H5Fclose));
+  for (const std::string& leftover : {working, working + ".copy"}) clear_for_temporary(leftover, kHdf5Signature);
+  Hdf5File file(path, create_file(working, H5F_ACC_EXCL,
+                                  "cannot create output file '" + path + "' (written as '" + working + "')"));
   file.working_path_ = working;
   return file;
 }
@@ -348,13 +365,19 @@ Hdf5File Hdf5File::create_in_memory(const std::string& name) {
   return Hdf5File(name, Hdf5Handle(id, H5Fclose));
 }
 
-Hdf5File Hdf5File::open_read_only(const std::string& path) {
+namespace {
+Hdf5Handle open_file(const std::string& path, unsigned flags) {
   silence_hdf5_errors();
   Hdf5Handle fapl = make_fapl(path);
-  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get());
+  const hid_t id = H5Fopen(path.c_str(), flags, fapl.get());
   check(id, [&] { return "cannot open file '" + path + "'"; });
-  return Hdf5File(path, Hdf5Handle(id, H5Fclose));
+  return Hdf5Handle(id, H5Fclose);
 }
+}  // namespace
+
+Hdf5File Hdf5File::open_read_only(const std::string& path) { return Hdf5File(path, open_file(path, H5F_ACC_RDONLY)); }
+
+Hdf5File Hdf5File::open_read_write(const std::string& path) { return Hdf5File(path, open_file(path, H5F_ACC_RDWR)); }
 
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
     : path_(std::move(other.path_)),
@@ -659,6 +682,11 @@ ExtendibleDataset* Hdf5File::find_extendible(const std::string& dataset_path) {
   return nullptr;
 }
 
+void Hdf5File::remove(const std::string& object_path) {
+  latch_->check(H5Ldelete(file_.get(), object_path.c_str(), H5P_DEFAULT),
+                [&] { return describe("remove", object_path, path_); });
+}
+
 bool Hdf5File::exists(const std::string& object_path) const {
   // H5Lexists fails (rather than returning false) when an intermediate group is missing,
   // so walk the path one component at a time.
@@ -705,12 +733,7 @@ void Hdf5File::flush_staged() {
 void Hdf5File::publish_copy() const {
   // Renamed into place: a reader, or a run killed meanwhile, finds the previous copy whole.
   const std::string copy = working_path_ + ".copy";
-  try {
-    copy_file(working_path_, copy);
-  } catch (const IoError&) {
-    std::remove(copy.c_str());
-    throw;
-  }
+  copy_file(working_path_, copy);
   if (std::rename(copy.c_str(), path_.c_str()) != 0) {
     const IoError error(system_error("cannot rename '" + copy + "' to '" + path_ + "'"));
     std::remove(copy.c_str());

@@ -17,6 +17,9 @@
 
 namespace tirefe::io {
 
+/// The first bytes of every HDF5 file (the superblock at offset 0).
+extern const char* const kHdf5Signature;
+
 class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -132,15 +135,20 @@ class Hdf5File {
  public:
   // Create (truncate) a file. Parent folders must exist.
   static Hdf5File create(const std::string& path);
+  // Create a file where nothing is (never through a symbolic link); IoError otherwise.
+  static Hdf5File create_new(const std::string& path);
   // Create a file that is whole at every instant, even for a reader while it is written or
   // after the process is killed: it is written as '<path>.partial', copied whole to 'path'
   // (under a temporary name, then renamed) at every flush() and renamed to 'path' at close().
-  // Leftovers of a killed run ('<path>.partial', '<path>.partial.copy') are removed here.
+  // Leftovers of a killed run ('<path>.partial', '<path>.partial.copy') are removed here;
+  // anything else in their place is refused (temporary_file.hpp).
   static Hdf5File create_published(const std::string& path);
   // A file held in memory only and dropped when closed ('name' for messages).
   static Hdf5File create_in_memory(const std::string& name);
   // Open an existing file read-only (tests, restart, post-processing).
   static Hdf5File open_read_only(const std::string& path);
+  // Open an existing file to change it (tests and fuzzing alter checkpoints with it).
+  static Hdf5File open_read_write(const std::string& path);
 
   Hdf5File(Hdf5File&& other) noexcept;
   Hdf5File& operator=(Hdf5File&& other) noexcept;
@@ -200,6 +208,8 @@ class Hdf5File {
   const std::deque<ExtendibleDataset>& extendible_datasets() const { return datasets_; }
   ExtendibleDataset* find_extendible(const std::string& dataset_path);
   bool exists(const std::string& object_path) const;
+  // Removes the dataset or group at 'object_path' (to write it anew).
+  void remove(const std::string& object_path);
 
   // Writes the appended rows and flushes everything, so that a process killed afterwards
   // leaves a file readable up to here (a published file: copies it to its path).

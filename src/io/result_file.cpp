@@ -9,6 +9,7 @@
 #include <ctime>
 #include <limits>
 
+#include "io/temporary_file.hpp"
 #include "tire/wheel_axes.hpp"
 #include "tirefe/version.hpp"
 
@@ -21,10 +22,26 @@ std::string utc_now() {
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return text;
 }
+/// <stem>.xmf beside the result file 'path'.
+std::string index_path_of(const std::string& path) {
+  return std::filesystem::path(path).replace_extension(".xmf").string();
+}
+
+/// The result file, its index's temporary refused now if anything is in its way, not at the first frame.
+Hdf5File create_published_with_index(const std::string& path) {
+  clear_for_temporary(index_path_of(path) + ".partial", kXdmfSignature);
+  return Hdf5File::create_published(path);
+}
 }  // namespace
 
+void require_path_name(const std::string& name, const std::string& what) {
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos)
+    throw IoError(what + " '" + name +
+                  "' must be a non-empty name without '/', not '.' or '..' (use '_', e.g. 'tip_x')");
+}
+
 ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage)
-    : file_(storage == ResultStorage::File ? Hdf5File::create_published(path) : Hdf5File::create_in_memory(path)),
+    : file_(storage == ResultStorage::File ? create_published_with_index(path) : Hdf5File::create_in_memory(path)),
       discarded_(storage == ResultStorage::Discarded),
       index_(std::filesystem::path(path).filename().string()) {
   file_.write_attribute("/", "tirefe_version", std::string(kVersion));
@@ -85,12 +102,12 @@ ResultFile::~ResultFile() {
   }
 }
 
+std::string ResultFile::index_path() const { return index_path_of(path()); }
+
 void ResultFile::write_index() {
   if (index_.empty()) return;
-  std::filesystem::path index(path());
-  index.replace_extension(".xmf");
   try {
-    index_.write(index.string());
+    index_.write(index_path());
   } catch (const IoError&) {
     file_.abandon();
     throw;
@@ -121,10 +138,14 @@ void ResultFile::add_channel(const std::string& name, const std::string& unit, C
   flush_job_.wait();
   // Checked here, at the macro that names the channel: HDF5 would take a '/' for a group
   // path and fail (or nest the channel) only when the first step writes it.
-  if (name.empty() || name == "." || name.find('/') != std::string::npos)
-    throw IoError("history channel name '" + name + "' must be a non-empty name without '/' (use '_', e.g. 'tip_x')");
-  for (const auto& existing : channel_names_)
-    if (existing.first == name) throw IoError("history channel '" + name + "' is defined twice");
+  require_path_name(name, "history channel name");
+  if (channel_set_.count(name)) throw IoError("history channel '" + name + "' is defined twice");
+  // Each channel is a dataset of its own (some 26 kB of memory): more than this is a
+  // loop gone wrong, refused before it costs gigabytes.
+  if (channel_names_.size() >= kMaxChannels)
+    throw IoError("history channel '" + name + "' would be channel " + std::to_string(kMaxChannels + 1) +
+                  "; a result file holds at most " + std::to_string(kMaxChannels) + " history channels");
+  channel_set_.insert(name);
   channel_names_.emplace_back(name, unit);
   if (channels_.empty()) {
     pending_channels_.push_back(std::move(channel));
@@ -490,9 +511,12 @@ void ResultFile::flush_if_due() {
   // about three times the file, and a disk filling up still finds the last copy holding
   // most of the rows (the copy needs room beside the file being written). While a flush is
   // being written, the rows wait for the next; rows that have grown so wait for it, so that
-  // a run faster than its disk holds no more than that in memory.
+  // a run faster than its disk holds no more than that in memory. Frames whose views lag
+  // kMaxUnviewedFrames behind make the run wait for the writer too: a flush, and the close
+  // of a run stopped by a signal, then has that many views at most to write.
   const bool grown = pending_bytes() + unflushed_bytes_ >= std::max(kFlushBytes, flushed_bytes_ / 2);
-  if (!grown && flush_job_.running()) return;
+  const bool views_behind = frames_awaiting_views() >= kMaxUnviewedFrames;
+  if (!grown && !views_behind && flush_job_.running()) return;
   flush_job_.wait();  // a finished flush's failure fails the step that finds it
   const auto since = std::chrono::steady_clock::now() - last_flush_;
   if (!grown && (since < kFlushInterval || since < 20 * last_flush_cost_)) {
@@ -500,6 +524,11 @@ void ResultFile::flush_if_due() {
     return;
   }
   start_flush();
+}
+
+size_t ResultFile::frames_awaiting_views() const {
+  const size_t frames = field_time_ ? static_cast<size_t>(field_time_->rows()) : 0;  // this thread's count
+  return frames - std::min(frames, frames_viewed_);
 }
 
 void ResultFile::start_writes_if_due() {

@@ -48,6 +48,7 @@
 #include <memory>
 #include <string>
 #include <utility>
+#include <unordered_set>
 #include <vector>
 
 #include "io/background_job.hpp"
@@ -76,6 +77,11 @@ struct RunMetadata {
   std::string deck_text;
   std::vector<std::pair<std::string, std::string>> parameters;  // the deck's parameters, as text
 };
+
+/// A name that becomes part of a path in the result file (a history channel, a surface, a
+/// node set, a contact block, a modal label): IoError, at the macro that gives it, unless
+/// it is non-empty, without '/' and not '.' or '..'. 'what' says whose it is ("surface name").
+void require_path_name(const std::string& name, const std::string& what);
 
 class ResultFile {
  public:
@@ -144,8 +150,15 @@ class ResultFile {
   static constexpr std::chrono::milliseconds kFlushInterval{250};
   /// The least bytes of waiting rows that call for a flush before its time.
   static constexpr size_t kFlushBytes = 256 * 1024;
+  /// Frames recorded whose views the writer has not been given yet: what a close would
+  /// still write (at most kMaxUnviewedFrames - 1 after a step).
+  size_t frames_awaiting_views() const;
   /// The least frames whose views are written between flushes, together.
   static constexpr size_t kViewBatch = 16;
+  /// The most history channels of a result file (docs/decks.md, Limits).
+  static constexpr size_t kMaxChannels = 10000;
+  /// The most frames whose views wait to be written (a few tenths of a second of the writer's work).
+  static constexpr size_t kMaxUnviewedFrames = 256;
   /// The bytes of waiting rows that are written between flushes (the copy waits for the
   /// flush): memory holds about this much, whatever the file's size.
   static constexpr size_t kRowBatchBytes = 1024 * 1024;
@@ -188,6 +201,8 @@ class ResultFile {
   /// The first frame without views: every frame in the index has them, and the frames_viewed_ first.
   size_t first_unviewed_frame() const { return std::max(frames_viewed_, index_.frames()); }
   void write_index();
+  /// <stem>.xmf beside the file.
+  std::string index_path() const;
   void write_index_if_due();
   /// Adds the frames the last flush put in the file to the index.
   void index_flushed_frames();
@@ -206,6 +221,7 @@ class ResultFile {
   Hdf5File file_;
   bool discarded_;
   std::vector<std::pair<std::string, std::string>> channel_names_;  // name, unit
+  std::unordered_set<std::string> channel_set_;                     // their names
   std::vector<Channel> pending_channels_;
   std::vector<HistoryChannel> channels_;
   bool mesh_written_ = false;

@@ -4,12 +4,17 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <ostream>
 #include <sstream>
 
+#include <ext/stdio_filebuf.h>
+
 #include "io/hdf5_file.hpp"
+#include "io/temporary_file.hpp"
 
 namespace tirefe::io {
+
+const char* const kXdmfSignature = "<?xml";
 
 namespace {
 
@@ -151,12 +156,14 @@ std::string XdmfIndex::text() const {
 
 void XdmfIndex::write(const std::string& path) const {
   const std::string partial = path + ".partial";
+  clear_for_temporary(partial, kXdmfSignature);
   {
+    __gnu_cxx::stdio_filebuf<char> file(create_new_file(partial), std::ios::out);  // closes it
+    std::ostream out(&file);
     errno = 0;
-    std::ofstream out(partial, std::ios::trunc);
     write_to(out);
-    out.close();
-    if (!out) {
+    out.flush();
+    if (!out || file.close() == nullptr) {
       // The system's reason (a full disk) is the one that says what to do.
       const std::string reason = errno != 0 ? std::string(": ") + std::strerror(errno) : "";
       std::remove(partial.c_str());

@@ -20,6 +20,9 @@
 
 namespace tirefe::io {
 
+/// The first bytes of every XDMF index tirefe writes.
+extern const char* const kXdmfSignature;
+
 /// A dataset of the HDF5 file. In a path, "{frame}" stands for the frame's number.
 struct XdmfData {
   std::string path;

@@ -219,6 +219,7 @@ std::shared_ptr<const RigidSurface> build_surface(DeckModel& deck, const MacroAr
 
 int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   const std::string name = arguments.string("name");
+  io::require_path_name(name, "surface name");
   if (deck.has_surface(name)) throw ModelError("surface '" + name + "' is already defined");
   const std::shared_ptr<const RigidSurface> surface = build_surface(deck, arguments);
   deck.define_surface(name, surface);
@@ -226,8 +227,9 @@ int surface_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   return 0;
 }
 
-/// 'name', refused if an element block has it already.
+/// 'name', refused if it is not a plain name or an element block has it already.
 std::string unused_block_name(DeckModel& deck, const std::string& name) {
+  io::require_path_name(name, "contact block name");
   for (const auto& block : deck.model().blocks())
     if (block->name() == name) throw ModelError("an element block named '" + name + "' exists already (give 'name')");
   return name;

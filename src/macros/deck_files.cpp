@@ -1,10 +1,12 @@
 #include "macros/deck_files.hpp"
 
-#include <fstream>
 #include <iterator>
 #include <vector>
 
 #include "core/mesh.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/temporary_file.hpp"
+#include "io/xdmf.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/lua_module_dir.hpp"
 
@@ -12,7 +14,8 @@ namespace tirefe::macros {
 
 namespace fs = std::filesystem;
 
-const char* const kHdf5Signature = "\x89HDF\r\n\x1a\n";
+OutputFile OutputFile::hdf5(std::string purpose) { return {std::move(purpose), "an HDF5 file", io::kHdf5Signature}; }
+OutputFile OutputFile::xdmf(std::string purpose) { return {std::move(purpose), "an XDMF index", io::kXdmfSignature}; }
 
 namespace {
 
@@ -49,11 +52,7 @@ void refuse_foreign_file(const fs::path& real, const std::string& shown, const O
   if (!fs::exists(status)) return;
   if (fs::is_directory(status)) throw ModelError("'" + shown + "' is a folder; give a file name");
   if (!fs::is_regular_file(status)) throw ModelError("'" + shown + "' is not a regular file; tirefe writes only files");
-  std::ifstream in(real, std::ios::binary);
-  std::string head(kind.signature.size(), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  if (in.gcount() == 0 && in.eof()) return;  // empty
-  if (head != kind.signature)
+  if (!io::empty_or_begins_with(real.string(), kind.signature))
     throw ModelError("'" + shown + "' exists and is not " + kind.format +
                      "; tirefe replaces only files of the kind it writes: remove it or choose another name");
 }
@@ -95,6 +94,16 @@ bool lies_within(const fs::path& path, const fs::path& folder) {
   return true;
 }
 
+void require_regular_file(const std::string& path) {
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  if (!fs::exists(status) || fs::is_regular_file(status)) return;  // a missing file is its reader's to report
+  if (fs::is_directory(status)) throw ModelError("'" + path + "' is a folder; give a file");
+  throw ModelError("'" + path +
+                   "' is no regular file (a FIFO or a device would block the read or never end it); "
+                   "give a file");
+}
+
 std::string deck_relative(const DeckSession& session, const std::string& file) {
   fs::path path(file);
   if (path.is_relative() && !session.deck_path.empty()) path = fs::path(session.deck_path).parent_path() / path;
@@ -102,11 +111,14 @@ std::string deck_relative(const DeckSession& session, const std::string& file) {
     throw ModelError("'" + file +
                      "' lies outside the folders a deck may read (its own folder, the project's lua/ and inputs/, "
                      "the output folder); give another with --allow-read DIR (docs/security.md)");
+  require_regular_file(path.string());
   return path.string();
 }
 
 std::string deck_output_path(DeckSession& session, const std::string& file, const OutputFile& kind) {
   fs::path path(file);
+  if (!path.has_filename())  // "" or "sub/": the file's own name is missing
+    throw ModelError("'" + file + "' names no file, only a folder; give a file name (e.g. 'run.h5')");
   if (path.is_relative()) path = fs::path(session.output_dir) / path;
   const fs::path real = resolved_path(path);
   if (!inside_any(real, write_folders(session)))

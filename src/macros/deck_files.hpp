@@ -14,9 +14,6 @@ namespace tirefe::macros {
 
 struct DeckSession;
 
-/// The first bytes of every HDF5 file tirefe writes (the superblock at offset 0).
-extern const char* const kHdf5Signature;
-
 /// What a deck writes to a file: 'purpose' names it in messages ("the result file of
 /// model 1 ('drum')"); an existing file may be replaced only if it is empty or begins
 /// with 'signature', the mark of 'format' ("an HDF5 file").
@@ -25,7 +22,8 @@ struct OutputFile {
   std::string format;
   std::string signature;
 
-  static OutputFile hdf5(std::string purpose) { return {std::move(purpose), "an HDF5 file", kHdf5Signature}; }
+  static OutputFile hdf5(std::string purpose);
+  static OutputFile xdmf(std::string purpose);
 };
 
 /// 'path' made absolute with symlinks and ".." resolved (as far as it exists).
@@ -33,8 +31,11 @@ std::filesystem::path resolved_path(const std::filesystem::path& path);
 /// True if the resolved 'path' is 'folder' or lies below it (both resolved by the caller).
 bool lies_within(const std::filesystem::path& path, const std::filesystem::path& folder);
 
+/// Throws a ModelError naming 'path' if it is there but no regular file: a FIFO would
+/// block its read, a device such as /dev/zero would never end it, a folder is no file.
+void require_regular_file(const std::string& path);
 /// A file a deck reads: a relative path is taken from the deck's folder. Throws a
-/// ModelError if the file lies outside the folders the deck may read.
+/// ModelError if the file lies outside the folders the deck may read or is no regular file.
 std::string deck_relative(const DeckSession& session, const std::string& file);
 /// A file a deck writes: a relative path goes in the output folder, created as needed.
 /// Throws a ModelError if it lies outside the folders the deck may write, if an existing

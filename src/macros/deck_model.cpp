@@ -17,14 +17,15 @@ namespace fs = std::filesystem;
 DeckModel::DeckModel(std::string title, DeckSession& session)
     : title_(std::move(title)), session_(session), analysis_(model_), index_(++session.models_created) {
   if (session_.restart && session_.restart->model_index == index_) restart_ = session_.restart;
+  session_.live_models.insert(this);
   load_functions_["ramp"] = Model::kRampLoadFunction;
   load_functions_["constant"] = model_.add_load_function(LoadFunction::constant(1.0));
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
     if (output_) output_->record(analysis, record);
     report_step(record);
     if (const int signal = stop_signal().load()) {
-      if (output_) output_->flush();
-      throw std::runtime_error(std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " after step " +
+      // No flush here: the close that follows writes the rest without copying the file.
+      throw std::runtime_error(std::string("stopped by ") + stop_cause(signal) + " after step " +
                                std::to_string(record.step) + " at t = " + std::to_string(record.time) +
                                (output_ ? "; '" + output_->path() + "' holds every completed step" : ""));
     }
@@ -39,6 +40,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
 }
 
 DeckModel::~DeckModel() {
+  session_.live_models.erase(this);
   // A model collected by Lua (the fit's evaluations) frees its file names for the next one.
   for (const std::string& purpose : {result_purpose(), xdmf_purpose(), checkpoint_purpose()})
     release_outputs(session_, purpose);
@@ -128,14 +130,32 @@ DeckModel::Busy::Busy(DeckModel& deck, std::string what) : deck_(deck), outer_(s
   deck_.busy_with_ = std::move(what);
 }
 
+namespace {
+/// Nodes and elements of a model.
+std::pair<long long, long long> size_of(const Model& model) {
+  long long elements = 0;
+  for (const auto& block : model.blocks()) elements += block->size();
+  return {model.mesh().node_count(), elements};
+}
+}  // namespace
+
+bool DeckModel::fits() const {
+  long long nodes = 0, elements = 0;
+  for (const DeckModel* live : session_.live_models) {
+    const auto [n, e] = size_of(live->model_);
+    nodes += n;
+    elements += e;
+  }
+  return nodes <= kMaxNodes && elements <= kMaxElements;
+}
+
 void DeckModel::check_size() const {
-  const int nodes = model_.mesh().node_count();
-  int elements = 0;
-  for (const auto& block : model_.blocks()) elements += block->size();
-  if (nodes > kMaxNodes || elements > kMaxElements)
-    throw ModelError("model '" + title_ + "' has grown to " + std::to_string(nodes) + " nodes and " +
-                     std::to_string(elements) + " elements; a model holds at most " + std::to_string(kMaxNodes) +
-                     " nodes and " + std::to_string(kMaxElements) + " elements");
+  if (fits()) return;
+  const auto [nodes, elements] = size_of(model_);
+  throw ModelError("model '" + title_ + "' has grown to " + std::to_string(nodes) + " nodes and " +
+                   std::to_string(elements) + " elements; the models of a deck hold at most " +
+                   std::to_string(kMaxNodes) + " nodes and " + std::to_string(kMaxElements) + " elements together (" +
+                   std::to_string(session_.live_models.size()) + " models now)");
 }
 
 void DeckModel::define_section(const std::string& name, const BeamSection& section) {
@@ -194,9 +214,11 @@ void DeckModel::open_output(const std::string& file, int field_interval, double 
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
   const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters};
   // Every process claims the names, so that every rank refuses a clash alike.
+  if (fs::path(file).extension() == ".xmf")
+    throw ModelError("a result file named '" + file +
+                     "' would be its own XDMF index (<name>.xmf is written beside it); give it the extension .h5");
   const std::string path = deck_output_path(session_, file, OutputFile::hdf5(result_purpose()));
-  deck_output_path(session_, fs::path(file).replace_extension(".xmf").string(),
-                   {xdmf_purpose(), "an XDMF index", "<?xml"});
+  deck_output_path(session_, fs::path(file).replace_extension(".xmf").string(), OutputFile::xdmf(xdmf_purpose()));
   if (owned())
     output_ = std::make_unique<io::ResultFile>(path, metadata);
   else

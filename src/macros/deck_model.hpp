@@ -57,11 +57,15 @@ class DeckModel {
   };
   /// What keeps the model busy ("model:step", "tirefe.vehicle"), or "".
   const std::string& busy_with() const { return busy_with_; }
-  /// The largest model a deck may build (docs/decks.md, Limits): a loop adding nodes or
-  /// elements without end stops here with its deck line, before the memory runs out.
+  /// The most a deck's models hold together (docs/decks.md, Limits): a loop adding nodes,
+  /// elements or models without end stops here with its deck line, before the memory runs
+  /// out (a model's memory lies outside the Lua memory bound).
   static constexpr int kMaxNodes = 1000000;
   static constexpr int kMaxElements = 1000000;
-  /// Throws ModelError if the model has grown beyond kMaxNodes or kMaxElements.
+  static constexpr int kMaxModels = 1000;
+  /// Whether the session's live models hold at most kMaxNodes nodes and kMaxElements elements.
+  bool fits() const;
+  /// Throws ModelError if they hold more.
   void check_size() const;
 
   Model& model() { return model_; }

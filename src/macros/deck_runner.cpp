@@ -91,9 +91,22 @@ bool parse_mib(const std::string& text, size_t& mib) {
 }
 
 /// Empty when the line is good, else what is wrong with it.
+/// The options that take a value, and what it is (the usage's name for it).
+const std::map<std::string, std::string> kValueOptions{{"--output-dir", "DIR"},
+                                                       {"--restart", "CHECKPOINT"},
+                                                       {"--allow-read", "DIR"},
+                                                       {"--allow-write", "DIR"},
+                                                       {"--lua-memory", "MIB"}};
+
 std::string parse(int argc, char** argv, CommandLine& line) {
   for (int i = 1; i < argc; ++i) {
     const std::string argument = argv[i];
+    if (const auto option = kValueOptions.find(argument); option != kValueOptions.end()) {
+      // Not the next option taken for a folder: "--output-dir --quiet" lacks its value.
+      if (i + 1 >= argc || std::string(argv[i + 1]).rfind("--", 0) == 0)
+        return "tirefe: option '" + argument + "' needs a value: " + argument + " " + option->second +
+               (i + 1 < argc ? " (got the option '" + std::string(argv[i + 1]) + "')" : "") + "\n" + kUsage;
+    }
     if (argument == "--output-dir" && i + 1 < argc) {
       line.output_dir = argv[++i];
     } else if (argument == "--restart" && i + 1 < argc) {

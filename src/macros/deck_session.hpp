@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,8 @@ struct Checkpoint;
 }
 
 namespace tirefe::macros {
+
+class DeckModel;
 
 struct CheckResult {
   std::string name;
@@ -60,6 +63,8 @@ struct DeckSession {
   std::vector<std::pair<std::string, std::string>> parameters;
   int default_outputs_opened = 0;
   int models_created = 0;
+  /// The models alive now (made, not yet collected): their size is bounded together.
+  std::set<const DeckModel*> live_models;
   /// --restart: the checkpoint a model continues from (docs/restart.md); cleared once loaded.
   std::shared_ptr<const io::Checkpoint> restart;
   DeckProcesses processes;

@@ -103,7 +103,15 @@ int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments,
 int modal_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const int count = static_cast<int>(arguments.integer("modes"));
   deck.require_state("model:modal");
+  // The analyses return the modes there are, at most as many as the free equations: a
+  // deck asking for more would get fewer than it counts on without a word.
+  deck.model().finalize();
+  const int equations = deck.model().dof_map().equation_count();
+  if (count > equations)
+    throw ModelError("modal analysis: " + std::to_string(count) + " modes asked of a model with " +
+                     std::to_string(equations) + " free equations (at most that many modes)");
   const std::string label = arguments.string_or("label", "t" + std::to_string(deck.analysis().state().time));
+  io::require_path_name(label, "modal label");
   if (arguments.boolean("damped") || arguments.has("spin_rate")) return damped_modes(L, deck, arguments, label, count);
   return undamped_modes(L, deck, arguments, label, count);
 }

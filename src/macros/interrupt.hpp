@@ -1,5 +1,6 @@
 // Interrupt: SIGINT and SIGTERM ask a run to stop after the step in progress, so that
-// its result files close cleanly and it can say where it stopped.
+// its result files close cleanly and it can say where it stopped. A host of the library
+// asks the same of its calls with tirefe_cancel (include/tirefe.h).
 #pragma once
 
 #include <atomic>
@@ -7,10 +8,18 @@
 
 namespace tirefe::macros {
 
-/// The signal that asked the run to stop, or 0.
+/// Stands for tirefe_cancel where a signal number would (it is none).
+constexpr int kHostCancel = -1;
+
+/// The signal that asked the run to stop, kHostCancel, or 0.
 inline std::atomic<int>& stop_signal() {
   static std::atomic<int> signal{0};
   return signal;
+}
+
+/// What asked the run to stop, for messages: "SIGINT", "SIGTERM" or "tirefe_cancel".
+inline const char* stop_cause(int signal) {
+  return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "tirefe_cancel";
 }
 
 /// SIGINT and SIGTERM ask the run to stop while this lives; the handlers it replaced come

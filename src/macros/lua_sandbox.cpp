@@ -78,6 +78,22 @@ int text_only_load(lua_State* L) {
   return lua_gettop(L);
 }
 
+// setmetatable without finalisers: Lua turns hooks off while a __gc metamethod runs, so a
+// finaliser that loops would be deaf to the stop hook (SIGINT, SIGTERM). A __gc added to a
+// metatable afterwards marks nothing for finalisation (Lua 5.4, section 2.5.3).
+int setmetatable_without_gc(lua_State* L) {
+  lua_settop(L, 2);
+  if (lua_type(L, 2) == LUA_TTABLE && (lua_pushliteral(L, "__gc"), lua_rawget(L, 2) != LUA_TNIL))
+    raise_deck_error(L,
+                     "setmetatable: a deck may not set a __gc finaliser (Lua runs finalisers where SIGINT and "
+                     "SIGTERM cannot stop them); release what the table holds explicitly");
+  lua_settop(L, 2);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, 2, 1);
+  return 1;
+}
+
 // Is the table at 'index' plain data (numbers, strings, booleans and such tables, no
 // metatable)? 'seen' (absolute index) holds the tables already visited, for cycles.
 bool is_data_table(lua_State* L, int index, int seen) {
@@ -271,9 +287,9 @@ LuaSandbox::LuaSandbox(std::string lua_dir) : lua_dir_(std::move(lua_dir)) {
   state_ = lua_newstate(allocate, &memory_);
   if (!state_) throw std::runtime_error("cannot create a Lua state (out of memory)");
   lua_State* L = state();
-  lua_atpanic(L, [](lua_State* P) -> int {
-    throw std::runtime_error(std::string("unprotected Lua error: ") + error_text(P, -1));
-  });
+  // An error outside any protected call (a load function called by a host's step through
+  // the C API) becomes an exception with the error's own text, which names its deck line.
+  lua_atpanic(L, [](lua_State* P) -> int { throw std::runtime_error(error_text(P, -1)); });
   // A deck looping in pure Lua still stops on SIGINT / SIGTERM (coroutines inherit the hook).
   lua_sethook(L, stop_hook, LUA_MASKCOUNT, kStopHookInstructions);
   lua_pushlightuserdata(L, this);
@@ -314,12 +330,19 @@ std::string LuaSandbox::memory_message() const {
 
 void LuaSandbox::stop_hook(lua_State* L, lua_Debug*) {
   const int signal = stop_signal().load();
-  if (!signal) return;
+  if (!signal) {
+    // A host's cancel that was answered leaves a state looking every instruction: back to the pace.
+    if (lua_gethookcount(L) != kStopHookInstructions) lua_sethook(L, stop_hook, LUA_MASKCOUNT, kStopHookInstructions);
+    return;
+  }
   // From now on every instruction raises again: a deck catching the error with pcall
-  // cannot go on, the error climbs to the top.
+  // cannot go on, the error climbs to the top; in the main thread too, where a coroutine's
+  // error ends as a value of coroutine.resume or coroutine.close.
   lua_sethook(L, stop_hook, LUA_MASKCOUNT, 1);
-  raise_deck_error(
-      L, std::string("stopped by ") + (signal == SIGINT ? "SIGINT" : "SIGTERM") + " while the deck ran Lua code");
+  lua_rawgeti(L, LUA_REGISTRYINDEX, LUA_RIDX_MAINTHREAD);
+  lua_sethook(lua_tothread(L, -1), stop_hook, LUA_MASKCOUNT, 1);
+  lua_pop(L, 1);
+  raise_deck_error(L, std::string("stopped by ") + stop_cause(signal) + " while the deck ran Lua code");
 }
 
 LuaSandbox* LuaSandbox::from(lua_State* L) {
@@ -355,6 +378,9 @@ void LuaSandbox::open_safe_libraries() {
   lua_getglobal(L, "load");
   lua_pushcclosure(L, text_only_load, 1);
   lua_setglobal(L, "load");
+  lua_getglobal(L, "setmetatable");
+  lua_pushcclosure(L, setmetatable_without_gc, 1);
+  lua_setglobal(L, "setmetatable");
   lua_pushcfunction(L, lua_require);
   lua_setglobal(L, "require");
 }
@@ -401,6 +427,11 @@ void LuaSandbox::run_file(const std::string& deck_path, const std::map<std::stri
   overrides_ = overrides;
   parameters_called_ = false;
   last_traceback_.clear();
+  try {
+    require_regular_file(deck_path);
+  } catch (const std::runtime_error& error) {  // ModelError
+    throw DeckError(deck_path + ": " + error.what());
+  }
   std::ifstream in(deck_path, std::ios::binary);
   if (!in) throw DeckError(deck_path + ": cannot open the deck file");
   deck_text_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

@@ -152,6 +152,37 @@ Problem check_matrix(lua_State* L, int index, const ParameterSpec& p, const std:
   return std::nullopt;
 }
 
+/// Text goes into result files as UTF-8 and into C strings: a NUL would cut it short
+/// there, invalid UTF-8 would make the file unreadable to h5py.
+Problem text_problem(const std::string& text, const std::string& what) {
+  if (text.find('\0') != std::string::npos)
+    return what + " holds a NUL character (\\0 at byte " + std::to_string(text.find('\0') + 1) +
+           "); give text without one";
+  for (size_t i = 0; i < text.size();) {
+    const auto byte = static_cast<unsigned char>(text[i]);
+    // The length of the sequence a leading byte starts, and the least value it may encode.
+    const size_t length = byte < 0x80           ? 1
+                          : (byte >> 5) == 0x6  ? 2
+                          : (byte >> 4) == 0xE  ? 3
+                          : (byte >> 3) == 0x1E ? 4
+                                                : 0;
+    bool valid = length > 0 && i + length <= text.size();
+    unsigned long code = length == 1 ? byte : byte & (0x7F >> length);
+    for (size_t k = 1; valid && k < length; ++k) {
+      const auto next = static_cast<unsigned char>(text[i + k]);
+      valid = (next & 0xC0) == 0x80;
+      code = (code << 6) | (next & 0x3F);
+    }
+    const unsigned long least[] = {0, 0, 0x80, 0x800, 0x10000};
+    valid = valid && code >= least[length] && code <= 0x10FFFF && (code < 0xD800 || code > 0xDFFF);
+    if (!valid)
+      return what + " is not UTF-8 text (byte " + std::to_string(i + 1) + " of " + std::to_string(text.size()) +
+             "); save the deck as UTF-8";
+    i += length;
+  }
+  return std::nullopt;
+}
+
 Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec& p, const std::string& what) {
   index = lua_absindex(L, index);
   switch (type) {
@@ -162,7 +193,10 @@ Problem check_value(lua_State* L, int index, ValueType type, const ParameterSpec
     case ValueType::NumberMatrix: return check_matrix(L, index, p, what);
     case ValueType::String: {
       if (lua_type(L, index) != LUA_TSTRING) return type_problem(L, index, type, what);
-      const std::string value = lua_tostring(L, index);
+      size_t length = 0;
+      const char* text = lua_tolstring(L, index, &length);
+      if (Problem problem = text_problem(std::string(text, length), what)) return problem;
+      const std::string value = text;
       if (p.choices.empty() || std::find(p.choices.begin(), p.choices.end(), value) != p.choices.end())
         return std::nullopt;
       return what + " must be one of " + join(p.choices) + " (got '" + value + "')";

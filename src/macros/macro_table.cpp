@@ -66,6 +66,7 @@ int call_model_macro(lua_State* L) {
     const DeckModel::Busy busy(deck, "model:" + macro.spec.name);
     MacroArguments arguments(L, 2, macro.spec);
     const int results = macro.handler(L, deck, arguments);
+    if (!deck.fits()) lua_gc(L, LUA_GCCOLLECT);  // the models the deck dropped count until collected
     deck.check_size();
     return results;
   } catch (const std::exception& error) {
@@ -147,6 +148,10 @@ DeckModel& check_model(lua_State* L, int index) {
 }
 
 DeckModel& push_new_model(lua_State* L, const std::string& title, DeckSession& session) {
+  if (session.live_models.size() >= DeckModel::kMaxModels) lua_gc(L, LUA_GCCOLLECT);  // the dropped ones go first
+  if (session.live_models.size() >= DeckModel::kMaxModels)
+    throw ModelError("the deck holds " + std::to_string(session.live_models.size()) +
+                     " models, the most at once (a model is freed once no variable holds it)");
   // The model is made before the userdata, so that a failure leaves no half-built handle.
   auto model = std::make_unique<DeckModel>(title, session);
   auto* handle = new (lua_newuserdatauv(L, sizeof(ModelHandle), 0)) ModelHandle{};

@@ -38,6 +38,7 @@ int node_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
 int node_set_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   std::vector<int> nodes;
   for (long long number : arguments.integer_list("nodes")) nodes.push_back(deck_node(deck, number));
+  io::require_path_name(arguments.string("name"), "node set name");
   deck.model().mesh().define_node_set(arguments.string("name"), nodes);
   return 0;
 }

@@ -3,6 +3,7 @@
 // tire property files (tire_file_macros.cpp).
 #include <cmath>
 
+#include "macros/deck_files.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
@@ -51,6 +52,7 @@ TireParameters tire_parameters(const MacroArguments& arguments) {
 int tire_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) {
   const TireParameters parameters = tire_parameters(arguments);
   const std::string name = arguments.string("name");
+  io::require_path_name(name, "tire name");  // its node sets are named after it
   const Tire tire =
       build_tire(deck.model(), parameters,
                  deck.model().load_function(deck.load_function(arguments.string("pressure_load_function"))), name);
@@ -109,6 +111,7 @@ TireParameters load_tire_parameters(const std::string& source, const std::vector
   lua_pushcfunction(L, parse_tire_table);
   lua_pushlightuserdata(L, &parameters);
   const bool property_file = source.size() > 4 && source.compare(source.size() - 4, 4, ".tir") == 0;
+  if (property_file) require_regular_file(source);
   if (property_file)
     lua_pushcfunction(L, protected_call<read_tire_property_file>);
   else

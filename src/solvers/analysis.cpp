@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
 #include <sstream>
 #include <type_traits>
@@ -373,6 +374,10 @@ void Analysis::start_steps() {
 }
 
 void Analysis::commit_step(double step, StepRecord& record) {
+  // Steps are counted in an int (records, checkpoints): the count stops, never wraps.
+  if (carried_.accepted_steps == std::numeric_limits<int>::max())
+    throw ModelError("the analysis has taken " + std::to_string(carried_.accepted_steps) +
+                     " steps, the most it counts; continue in another run");
   finish_step(step);
   record.step = carried_.accepted_steps;
   record.time = carried_.state.time;

@@ -1,12 +1,23 @@
 #include "vehicle/tire_on_road.hpp"
 
+#include <cstdio>
 #include <limits>
+#include <string>
 
 #include "tire/wheel_axes.hpp"
 
 namespace tirefe {
 
 TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, const RoadContact& contact) {
+  // Without pressure the tire is slack where it meets the road, and its contact stiffness,
+  // scaled from the structure there, cannot be set.
+  if (!(parameters.pressure > 0.0)) {
+    char text[128];
+    std::snprintf(text, sizeof text,
+                  "parameter 'pressure' is %g Pa: a tire on the road is inflated before it touches it",
+                  parameters.pressure);
+    throw ModelError(std::string(text) + "; give a pressure > 0");
+  }
   TireParameters centred = parameters;
   centred.centre.setZero();
   tire_ = build_tire(model_, centred, LoadFunction::table({{0.0, 0.0}, {1.0, 1.0}}));
@@ -17,7 +28,12 @@ TireOnRoad::TireOnRoad(const TireParameters& parameters, const RoadMaker& road, 
   // as the tread beam does.
   analysis_->use_ring_solver(tire_.tread_nodes, {tire_.spindle});
   analysis_->set_time_step(0.25);
-  analysis_->advance(1.0);
+  try {
+    analysis_->advance(1.0);
+  } catch (const StepFailure&) {  // no step size of the host's would help: the parameters are at fault
+    throw ModelError("the tire cannot be inflated on its hub with these parameters (" + analysis_->last_failure() +
+                     "); check the pressure and the stiffnesses");
+  }
 
   // The road touches the lowest tread node.
   road_level_ = std::numeric_limits<double>::infinity();

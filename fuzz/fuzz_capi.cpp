@@ -1,0 +1,7 @@
+// libFuzzer target: capi_calls (fuzz/fuzz_entries.hpp). Built with -DTIREFE_FUZZ=ON (clang).
+#include "fuzz/fuzz_entries.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  tirefe::fuzz::capi_calls(data, size);
+  return 0;
+}
