@@ -12,9 +12,8 @@
 --             loaded tire", 44 Hz in its model, 35 Hz measured);
 --   vertical: the mode with the largest F_y (88 Hz measured on top of the cleat, 85 Hz
 --             after it).
--- In dynamics the Uzawa loop makes sticking exact; a linearisation sees the penalties
--- instead, so this deck gives stiff ones (the contact stiffness then changes the
--- frequencies by under 0.1 %: docs/calibration.md).
+-- The contact's stiffness is the tread rubber's, in a linearisation as in a dynamic run:
+-- there is no penalty to choose (docs/calibration.md).
 -- Then the damped modes (model:modal{ damped = true }): at rest, and after the drum has
 -- spun the tire up to the test's 51.3 km/h, in the frame turning with the tire at the
 -- spin of that speed on the tire's rolling radius (docs/dynamics.md: Coriolis and
@@ -99,7 +98,7 @@ local function loaded_modes(title, module)
   tp.heading = "-x"  -- the drum turns clockwise (its top and the contact patch move in +x) from drum_start on
   local tire = model:tire(tp)
   model:fix{ node = tire.spindle }
-  model:solve{ to = 1.0, dt = 0.25 }  -- inflated before the contact scales its penalties
+  model:solve{ to = 1.0, dt = 0.25 }  -- inflated on the held hub before the drum is placed
   model:load_function{ name = "drum_turn", fn = drum_angle }
   model:surface{ name = "drum", type = "drum", diameter = 2 * drum_radius, load_function = "drum_turn",
                  amplitude = 1.0 }

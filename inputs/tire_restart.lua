@@ -5,8 +5,7 @@
 -- results/rolling.ckpt.h5` continues from it and writes the same result file, bit for bit.
 --
 -- A restart skips the solves before its checkpoint, so nothing before it may depend on
--- computed results: the road's level and the press depth are given, not measured, and
--- the contact penalties are explicit (docs/restart.md, Limits).
+-- computed results: the road's level and the press depth are given, not measured.
 --
 --   tirefe inputs/tire_restart.lua [speed=8] [end_time=2.6] [every_steps=100]
 
