@@ -163,3 +163,7 @@ TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs
 TEST_CASE("the C++ host quoted in docs/spindle.md is the built and tested file", "[docs]") {
   CHECK(check_quoted_sources("docs/spindle.md") == 1);  // examples/spindle_host.cpp
 }
+
+TEST_CASE("the worked examples quoted in docs/extending.md are the built and tested files", "[docs]") {
+  CHECK(check_quoted_sources("docs/extending.md") == 5);  // examples/extending/: element, surface, macro, deck, output
+}
