@@ -167,3 +167,20 @@ TEST_CASE("the C++ host quoted in docs/spindle.md is the built and tested file",
 TEST_CASE("the worked examples quoted in docs/extending.md are the built and tested files", "[docs]") {
   CHECK(check_quoted_sources("docs/extending.md") == 5);  // examples/extending/: element, surface, macro, deck, output
 }
+
+TEST_CASE("the deck docs/first_deck.md reads is the shipped one", "[docs]") {
+  CHECK(check_quoted_sources("docs/first_deck.md") == 1);  // inputs/cantilever_elastica.lua
+}
+
+TEST_CASE("docs/README.md, the index of the docs, names every page", "[docs]") {
+  const std::string index = source_text("docs/README.md");
+  int pages = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(TIREFE_SOURCE_DIR) / "docs")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".md" || name == "README.md") continue;
+    INFO("docs/" << name << " is not in docs/README.md");
+    CHECK(index.find("docs/" + name) != std::string::npos);
+    ++pages;
+  }
+  CHECK(pages > 20);
+}
