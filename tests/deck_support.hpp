@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <functional>
 #include <string>
 
 #include "macros/deck_session.hpp"
@@ -19,13 +20,16 @@ struct InProcessRun {
   int failed_checks = 0;
 };
 
-inline InProcessRun run_deck_in_process(const std::string& deck, const std::string& output_dir) {
+/// 'prepare' may add to the sandbox once the macros are installed (a macro of a test's own).
+inline InProcessRun run_deck_in_process(const std::string& deck, const std::string& output_dir,
+                                        const std::function<void(macros::LuaSandbox&)>& prepare = {}) {
   macros::DeckSession session;
   session.output_dir = output_dir;
   session.deck_path = deck;
   session.quiet = true;
   macros::LuaSandbox sandbox(TIREFE_LUA_DIR);
   macros::install_macros(sandbox, session);
+  if (prepare) prepare(sandbox);
   InProcessRun run;
   try {
     sandbox.run_file(deck);

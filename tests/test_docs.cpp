@@ -1,4 +1,5 @@
-// The macro reference in docs/ is generated from the macro specs: keep it current.
+// The docs against the code: the macro reference generated from the macro specs, the
+// paths the docs name, and code the docs quote.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -12,13 +13,6 @@
 #include "macros/macro_table.hpp"
 #include "tirefe/test_paths.hpp"
 
-TEST_CASE("docs/macros.md is the current macro reference (regenerate: tirefe --macros > docs/macros.md)", "[docs]") {
-  std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/docs/macros.md");
-  REQUIRE(in.good());
-  const std::string documented((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  CHECK(documented == tirefe::macros::macro_reference());
-}
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -27,6 +21,48 @@ std::string file_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
+
+/// A file of the repository, which must exist.
+std::string source_text(const std::string& relative) {
+  const fs::path path = fs::path(TIREFE_SOURCE_DIR) / relative;
+  REQUIRE(fs::exists(path));
+  return file_text(path);
+}
+
+}  // namespace
+
+// Regenerate the pages with: bash scripts/macro-reference.sh
+TEST_CASE("docs/macros.md and the pages it lists are the current macro reference", "[docs]") {
+  const std::string reference = tirefe::macros::macro_reference();
+  const size_t first_section = reference.find("\n## ");
+  REQUIRE(first_section != std::string::npos);
+  // The index opens with the reference's preamble and lists the pages in order; each page
+  // is a title line of its own followed by the reference's sections, verbatim.
+  const std::string index = source_text("docs/macros.md");
+  CHECK(index.rfind(reference.substr(0, first_section) + "\n", 0) == 0);
+  const std::regex page_name(R"(docs/macros_\w+\.md)");
+  std::string sections;
+  int pages = 0;
+  for (std::sregex_iterator page(index.begin(), index.end(), page_name), end; page != end; ++page, ++pages) {
+    const std::string text = source_text(page->str());
+    INFO(page->str());
+    CHECK(std::count(text.begin(), text.end(), '\n') <= 400);
+    const size_t start = text.find("\n## ");
+    REQUIRE(start != std::string::npos);
+    sections += text.substr(start);
+    // The index names every macro of the page.
+    const std::regex macro_heading(R"(\n## (tirefe\.|model:)(\w+)\n)");
+    for (std::sregex_iterator macro(text.begin(), text.end(), macro_heading); macro != end; ++macro) {
+      INFO("macro " << (*macro)[0]);
+      const std::string name = (*macro)[2], full = (*macro)[1].str() + name;
+      CHECK((index.find("`" + name + "`") != std::string::npos || index.find("`" + full + "`") != std::string::npos));
+    }
+  }
+  CHECK(pages == 4);
+  CHECK(sections == reference.substr(first_section));
+}
+
+namespace {
 
 // The repository's text files: sources, decks, scripts, docs, data. Build folders (those
 // holding a CMakeCache.txt) and hidden folders are not the repository's.
@@ -126,4 +162,25 @@ TEST_CASE("code quoted in docs/coupling.md is the built and tested file", "[docs
 
 TEST_CASE("the C++ host quoted in docs/spindle.md is the built and tested file", "[docs]") {
   CHECK(check_quoted_sources("docs/spindle.md") == 1);  // examples/spindle_host.cpp
+}
+
+TEST_CASE("the worked examples quoted in docs/extending.md are the built and tested files", "[docs]") {
+  CHECK(check_quoted_sources("docs/extending.md") == 5);  // examples/extending/: element, surface, macro, deck, output
+}
+
+TEST_CASE("the deck docs/first_deck.md reads is the shipped one", "[docs]") {
+  CHECK(check_quoted_sources("docs/first_deck.md") == 1);  // inputs/cantilever_elastica.lua
+}
+
+TEST_CASE("docs/README.md, the index of the docs, names every page", "[docs]") {
+  const std::string index = source_text("docs/README.md");
+  int pages = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(TIREFE_SOURCE_DIR) / "docs")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".md" || name == "README.md") continue;
+    INFO("docs/" << name << " is not in docs/README.md");
+    CHECK(index.find("docs/" + name) != std::string::npos);
+    ++pages;
+  }
+  CHECK(pages > 20);
 }

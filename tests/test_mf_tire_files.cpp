@@ -1,6 +1,6 @@
-// Standard tire property files (src/tire/mf_tire_file.hpp, docs/tire.md "Your tire from a
-// standard file"): the public MF-Tyre files of inputs/tires/ read as published, what they
-// state, the ring built from them, the errors, and the fit of inputs/identify_tir.lua.
+// Standard tire property files (src/tire/mf_tire_file.hpp, docs/mf_tire_files.md): the
+// public MF-Tyre files of inputs/tires/ read as published, what they state, the ring built
+// from them, the errors, and the fit of inputs/identify_tir.lua.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -195,9 +195,9 @@ TEST_CASE("inputs/identify_tir.lua: rings fitted to five standard files reproduc
   CHECK(macros::load_tire_parameters(folder.path("out/mf_swift_205_60R15_ring.tir")).outer_diameter == 0.627);
 }
 
-TEST_CASE("docs/tire.md lists the sections tirefe reads in standard files and the keys it does not use",
+TEST_CASE("docs/mf_tire_files.md lists the sections tirefe reads in standard files and the keys it does not use",
           "[docs][tire_file][mf]") {
-  std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/docs/tire.md");
+  std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/docs/mf_tire_files.md");
   const std::string doc{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   const std::string table = doc.substr(doc.find("| section | used | present in standard files, not used |"));
   for (const auto& [section, keys] : MfTireFile::unused_keys()) {
