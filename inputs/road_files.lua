@@ -1,4 +1,4 @@
--- Road files (docs/contact.md): the chuckhole of the vehicle experiment
+-- Road files (docs/roads.md): the chuckhole of the vehicle experiment
 -- (inputs/vehicle_pothole.lua: 760 mm long, 100 mm deep, vertical walls, under the left
 -- wheels only) read from a road data file (inputs/roads/chuckhole.rdf, a poly_line in mm
 -- with a left and a right track) and from a CSV file (inputs/roads/chuckhole.csv), placed

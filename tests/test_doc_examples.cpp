@@ -127,12 +127,12 @@ TEST_CASE("the commands of docs/restart.md run, and the restarted run's file equ
 }
 
 TEST_CASE(
-    "the examples of docs/tire.md, docs/mf_tire_files.md, docs/contact.md and docs/output.md run and pass their "
+    "the examples of docs/tire.md, docs/mf_tire_files.md, docs/roads.md and docs/output.md run and pass their "
     "checks",
     "[docs]") {
   CHECK(run_examples("docs/tire.md") == 3);
   CHECK(run_examples("docs/mf_tire_files.md") == 1);
-  CHECK(run_examples("docs/contact.md") == 4);
+  CHECK(run_examples("docs/roads.md") == 4);
   CHECK(run_examples("docs/output.md") == 1);
 }
 

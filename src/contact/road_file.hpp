@@ -1,7 +1,6 @@
 // Road files: the 2D roads of ADAMS road data files (.rdf, TeimOrbit format), road profiles
 // measured into CSV files and the ASCII OpenCRG road surfaces of ASAM (.crg), read as the
-// shapes of tirefe's rigid surfaces (docs/contact.md, "Road files", gives the keys and the
-// mapping).
+// shapes of tirefe's rigid surfaces (docs/roads.md gives the keys and the mapping).
 //
 // A road data file's [MODEL] METHOD = '2D' road types map onto the surfaces:
 //   flat                    a flat road at height OFFSET

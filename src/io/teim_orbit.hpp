@@ -1,6 +1,6 @@
 // TeimOrbit property files: the text format of tire data (.tir) and road data (.rdf) that
 // ADAMS/Tire, MF-Tyre, FTire and Chrono read, and that tirefe reads and writes for its own
-// tire parameters (docs/tire.md) and 2D roads (docs/contact.md).
+// tire parameters (docs/tire.md) and 2D roads (docs/roads.md).
 //
 //   $------------------------------------------------ units   <- '$' starts a comment
 //   [UNITS]                                                    <- a section
