@@ -68,10 +68,14 @@ typedef struct tirefe_options {
                               spin, My = 0); 0: the host gives the spin angle and gets the drive torque;
                               nothing else */
   int heading;             /* +1 (default): the wheel heads along +x of the tire's plane; -1: along -x */
-  const char* road;        /* NULL (default): a flat road. Else a road file (docs/contact.md): a road data file
-                              (.rdf, a flat or profile road) or a CSV profile (.csv), its x along the heading and
-                              its height 0 at the level the tire touches with the spindle at z = 0 */
-  const char* road_track;  /* "left" or "right": the track of a file with two (NULL: its only one) */
+  const char* road;        /* NULL (default): a flat road. Else a road file (docs/roads.md): a road data file
+                              (.rdf, a flat or profile road), a CSV profile (.csv) or an ASCII OpenCRG road
+                              (.crg), its x (an OpenCRG road's u) along the heading and its height 0 at the
+                              level the tire touches with the spindle at z = 0 */
+  const char* road_track;  /* "left" or "right": the track of a .rdf or .csv file with two (NULL: its only one) */
+  double road_lateral;     /* an OpenCRG road's track: its lateral offset v from the reference line [m], left
+                              positive, within the road's long sections (default 0: the reference line); must
+                              be 0 for other roads */
   double road_start;       /* where the road file's x = 0 lies along the heading [m] (default 0) */
   double road_edge_radius; /* rounding of the road's convex corners [m] (default 0) */
   double start_z;          /* where the host takes the spindle over: the tire is pressed quasi-statically from

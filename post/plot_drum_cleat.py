@@ -16,6 +16,7 @@ The spectra are computed here with numpy's FFT (zero-padded) from the same sampl
 read; the script checks that each window's FFT peak is the deck's spectrum reading within
 an FFT bin and exits with status 3 if not.
 """
+import argparse
 import math
 import os
 import sys
@@ -323,11 +324,18 @@ def plot_snapshots(run, stem, passage):
 
 
 def main(argv):
-    if len(argv) != 2:
-        print(__doc__)
-        return 2
-    run = Run(argv[1])
-    stem = os.path.splitext(argv[1])[0]
+    parser = argparse.ArgumentParser(prog=os.path.basename(argv[0]), description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("result", help="the HDF5 result file of a drum-cleat run (inputs/drum_cleat.lua)")
+    path = parser.parse_args(argv[1:]).result
+    try:
+        run = Run(path)
+    except OSError as error:  # one line naming the file, no traceback
+        sys.exit(f"{parser.prog}: {path}: not a readable HDF5 result file ({error})")
+    except KeyError as error:  # another deck's result file
+        sys.exit(f"{parser.prog}: {path}: not a drum-cleat result file ({error.args[0]}; "
+                 "post/plot_results.py plots any result file)")
+    stem = os.path.splitext(path)[0]
     written = [plot_forces(run, stem)]
     passage = run.last_full_speed_passage()
     disagreements = []

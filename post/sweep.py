@@ -7,6 +7,8 @@ parallel, each in its own output folder, summarised in a manifest (docs/sweeps.m
     sweep.py slurm SPEC.json                             write OUTPUT/sweep.slurm, a Slurm job array
     sweep.py collect SPEC.json                           build OUTPUT/manifest.csv and manifest.json
     sweep.py one SPEC.json RUN_ID                        run one combination (joblist and slurm call this)
+
+Each takes --output DIR (the sweep's folder) and --tirefe PATH (the binary) over the spec's.
 """
 import argparse
 import concurrent.futures
@@ -68,6 +70,7 @@ class Spec:
         self.tirefe = os.path.join(folder, raw["tirefe"]) if "tirefe" in raw else default_tirefe
         self.output = os.path.join(folder, raw.get("output", stem))
         self.output_overridden = False
+        self.tirefe_overridden = False
         self.jobs = int(raw.get("jobs", os.cpu_count() or 1))
         self.timeout = raw.get("timeout")
         self.metrics = raw.get("metrics", {})
@@ -262,7 +265,7 @@ def write_manifest(spec):
 
 def command_run(spec, arguments):
     if not os.access(spec.tirefe, os.X_OK):
-        sys.exit(f"sweep: no tirefe binary at {spec.tirefe} (build it, or set 'tirefe' in the spec)")
+        sys.exit(f"sweep: no tirefe binary at {spec.tirefe} (build it, or set 'tirefe' in the spec or --tirefe)")
     pending = spec.pending(arguments.retry_failed)
     jobs = arguments.jobs or spec.jobs
     print(f"sweep: {len(spec.runs)} runs, {len(spec.runs) - len(pending)} already finished (skipped), "
@@ -285,8 +288,9 @@ def command_one(spec, arguments):
 
 
 def script_command(spec, command):
-    """This script's command line for a subcommand on the spec, with any --output override."""
-    return [sys.executable, SCRIPT, command, spec.path, *(["--output", spec.output] if spec.output_overridden else [])]
+    """This script's command line for a subcommand on the spec, with any --output and --tirefe override."""
+    return [sys.executable, SCRIPT, command, spec.path, *(["--output", spec.output] if spec.output_overridden else []),
+            *(["--tirefe", spec.tirefe] if spec.tirefe_overridden else [])]
 
 
 def one_command(spec, identifier):
@@ -338,6 +342,7 @@ def main():
         sub = commands.add_parser(name)
         sub.add_argument("spec", help="sweep specification (JSON)")
         sub.add_argument("--output", help="the sweep's folder instead of the spec's 'output'")
+        sub.add_argument("--tirefe", help="the tirefe binary instead of the spec's 'tirefe'")
         sub.set_defaults(handler=handler)
         if name == "run":
             sub.add_argument("--jobs", type=int, help="runs at a time (default: the spec's, else the CPU count)")
@@ -348,6 +353,8 @@ def main():
     spec = Spec(arguments.spec)
     if arguments.output:
         spec.output, spec.output_overridden = os.path.abspath(arguments.output), True
+    if arguments.tirefe:
+        spec.tirefe, spec.tirefe_overridden = os.path.abspath(arguments.tirefe), True
     sys.exit(arguments.handler(spec, arguments))
 
 

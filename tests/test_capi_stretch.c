@@ -2,10 +2,12 @@
  * tirefe_advance lands where and when asked, in equal steps of at most the size asked, and
  * says where it stopped when it cannot go on; a tire opened at start_z holds the static force of that press and
  * keeps it while held there (the spindle handed over at rest); a road file's flat track is
- * the flat road, its hole is where the heading says; bad options are refused naming them.
+ * the flat road, its hole is where the heading says; an OpenCRG road's track is chosen by
+ * its lateral offset; bad options are refused naming them.
  * Prints one line per failed check; exits 1 if any failed.
  *
- *   capi_stretch ROAD_CSV      (inputs/roads/chuckhole.csv: a hole from x = 0 to 0.76 m) */
+ *   capi_stretch ROAD_CSV ROAD_CRG   (inputs/roads/chuckhole.csv: a hole from x = 0 to 0.76 m;
+ *                                     inputs/roads/handmade_straight.crg) */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -133,20 +135,12 @@ static void check_stretches(void) {
   tirefe_close(tire);
 }
 
-/* The wheel pressed 5 mm at x = 0, 0.1 m before the hole (along its heading), then rolled
- * 0.175 m ahead in 0.2 s: then it is over the hole, whichever way it heads, touching the
- * road no more (what is left is the belt's swing). Returns Fz before and after (the track
- * "right" of the file is flat: then the same as a flat road). */
-static void roll_toward_the_hole(const char* road, const char* track, int heading, double fz[2]) {
-  tirefe_options options;
-  tirefe_default_options(&options);
-  options.road = road;
-  options.road_track = track;
-  options.road_start = 0.1;
-  options.heading = heading;
-  options.start_z = -5e-3;
-  options.hht_alpha = -0.1;
-  tirefe_tire* tire = open_with(&options);
+/* The wheel pressed 5 mm at x = 0, then rolled 0.175 m ahead in 0.2 s on 'options' road.
+ * Returns Fz before and after. */
+static void roll_on(tirefe_options* options, double fz[2]) {
+  options->start_z = -5e-3;
+  options->hht_alpha = -0.1;
+  tirefe_tire* tire = open_with(options);
   fz[0] = fz[1] = NAN;
   if (!tire) return;
   tirefe_spindle_state state;
@@ -159,7 +153,7 @@ static void roll_toward_the_hole(const char* road, const char* track, int headin
     const double end_rate = s * s * (3.0 - 2.0 * s);
     const tirefe_spindle_path path = {0.01, {rate, 0.0, 0.0}, {x, -5e-3, 0.0}, {end_rate, 0.0, 0.0}};
     if (tirefe_advance(tire, &path, 1e-3, NULL) != TIREFE_OK) {
-      check(0, "rolling toward the hole", tirefe_message(tire));
+      check(0, "rolling on the road", tirefe_message(tire));
       break;
     }
     rate = end_rate;
@@ -167,6 +161,19 @@ static void roll_toward_the_hole(const char* road, const char* track, int headin
   tirefe_state(tire, &state);
   fz[1] = state.force[1];
   tirefe_close(tire);
+}
+
+/* Rolled from 0.1 m before the hole (along its heading): then it is over the hole,
+ * whichever way it heads, touching the road no more (what is left is the belt's swing).
+ * The track "right" of the file is flat: then the same as a flat road. */
+static void roll_toward_the_hole(const char* road, const char* track, int heading, double fz[2]) {
+  tirefe_options options;
+  tirefe_default_options(&options);
+  options.road = road;
+  options.road_track = track;
+  options.road_start = 0.1;
+  options.heading = heading;
+  roll_on(&options, fz);
 }
 
 static void check_roads(const char* road) {
@@ -204,15 +211,70 @@ static void check_roads(const char* road) {
   check(tire == NULL, "no tire after a refused road", NULL);
 }
 
+/* Rolled from u = 1 m of handmade_straight.crg on the track road_lateral picks: 1 m left of
+ * the reference line it is flat to u = 2 m (the flat road's forces); 0.75 m left it rises
+ * 5.6 mm per metre from u = 1 m (loaded more). Returns the rise of Fz over the roll. */
+static double roll_on_the_crg(const char* crg, double lateral, double fz[2]) {
+  tirefe_options options;
+  tirefe_default_options(&options);
+  options.road = crg;
+  options.road_lateral = lateral;
+  options.road_start = -1.0;
+  roll_on(&options, fz);
+  return fz[1] - fz[0];
+}
+
+static void check_opencrg(const char* crg) {
+  double flat[2], left[2], rising[2];
+  tirefe_options options;
+  tirefe_default_options(&options);
+  roll_on(&options, flat);
+  roll_on_the_crg(crg, 1.0, left);
+  char detail[160];
+  snprintf(detail, sizeof detail, "flat %g -> %g N, v = 1 m %g -> %g N", flat[0], flat[1], left[0], left[1]);
+  check(fabs(left[0] - flat[0]) < 1e-9 * flat[0] && fabs(left[1] - flat[1]) < 1e-6 * flat[0],
+        "the OpenCRG road's flat track 1 m left is the flat road", detail);
+  const double gain = roll_on_the_crg(crg, 0.75, rising) - (flat[1] - flat[0]);
+  snprintf(detail, sizeof detail, "v = 0.75 m: %g -> %g N; flat: %g -> %g N", rising[0], rising[1], flat[0], flat[1]);
+  /* 168 N more than on the flat road: the road under the wheel rose 0.97 mm in the roll. */
+  check(gain > 140.0 && gain < 200.0, "its track 0.75 m left rises under the wheel", detail);
+
+  options.road = crg;
+  char error[512];
+  tirefe_tire* tire = NULL;
+  options.road_lateral = 1.6;
+  check(tirefe_open("tires.145SR12", NULL, 0, &options, &tire, error, sizeof error) == TIREFE_MODEL_ERROR &&
+            strstr(error, "handmade_straight.crg:") &&
+            strstr(error, "lateral position v = 1.6 m lies outside the road's long sections (v from -1.5 to 1.5 m)"),
+        "a track beside the road is refused, naming the file and the road's width", error);
+  options.road_lateral = NAN;
+  check(tirefe_open("tires.145SR12", NULL, 0, &options, &tire, error, sizeof error) == TIREFE_INVALID_ARGUMENT &&
+            strstr(error, "options.road_lateral must be a finite"),
+        "a NaN offset is refused, naming road_lateral", error);
+  options.road_lateral = 0.0;
+  options.road_track = "left";
+  check(tirefe_open("tires.145SR12", NULL, 0, &options, &tire, error, sizeof error) == TIREFE_INVALID_ARGUMENT &&
+            strstr(error, "road_track") && strstr(error, "road_lateral"),
+        "road_track on an OpenCRG road is refused, naming road_lateral", error);
+  options.road_track = NULL;
+  options.road = NULL;
+  options.road_lateral = 0.5;
+  check(tirefe_open("tires.145SR12", NULL, 0, &options, &tire, error, sizeof error) == TIREFE_INVALID_ARGUMENT &&
+            strstr(error, "road_lateral"),
+        "road_lateral on the flat road is refused", error);
+  check(tire == NULL, "no tire after a refused road", NULL);
+}
+
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    fprintf(stderr, "usage: capi_stretch ROAD_CSV\n");
+  if (argc != 3) {
+    fprintf(stderr, "usage: capi_stretch ROAD_CSV ROAD_CRG\n");
     return 2;
   }
   check_start_z();
   check_stretches();
   check_equal_steps();
   check_roads(argv[1]);
+  check_opencrg(argv[2]);
   printf("%s\n", failures ? "C API stretches and roads: failed" : "C API stretches and roads: passed");
   return failures ? 1 : 0;
 }

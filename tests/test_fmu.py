@@ -246,6 +246,32 @@ def test_road_file(folder):
     assert np.abs(left["Fz"] - flat["Fz"]).max() > 100.0  # the hole unloads the wheel
 
 
+def test_opencrg_road(folder):
+    """An OpenCRG road from the FMU's resources, its track chosen by road_lateral: 1 m left of
+    the reference line it is flat to u = 2 m (the flat road's forces), 0.75 m left it rises
+    5.6 mm per metre from u = 1 m (the rolled wheel loaded more); the wheel starts at u = 1 m.
+    An offset beside the road is refused at initialization with the file and the road's width."""
+    case = fmu_rolling.Case(speed=2.0, ramp=0.05, cruise=0.2, start_x=1.0)
+    inputs = os.path.join(folder, "crg.csv")
+    fmu_rolling.write_inputs(inputs, case)
+    runs = {}
+    for lateral in (None, 1.0, 0.75):
+        settings = [] if lateral is None else ["road=roads/handmade_straight.crg", f"road_lateral={lateral!r}"]
+        runs[lateral], _, stopped = fmu_rolling.run_master(os.environ["FMI_MASTER"], unpacked(folder), inputs, 1e-3,
+                                                           case.duration, folder, settings)
+        assert stopped is None, (lateral, stopped)
+    flat, level, rising = runs[None]["Fz"], runs[1.0]["Fz"], runs[0.75]["Fz"]
+    assert np.abs(level - flat).max() < 1e-6 * np.abs(flat).max(), np.abs(level - flat).max()
+    assert 50.0 < rising[-1] - flat[-1] < 1000.0, (rising[-1], flat[-1])
+    run = subprocess.run([os.environ["FMI_MASTER"], unpacked(folder), "--step", "0.001", "--stop", "0.01", "--input",
+                          inputs, "--output", os.path.join(folder, "beside.csv"), "--set",
+                          "road=roads/handmade_straight.crg", "--set", "road_lateral=1.6"],
+                         capture_output=True, text=True, timeout=100)
+    assert run.returncode == 1 and "could not be initialized" in run.stderr, run.stderr
+    assert re.search(r"handmade_straight\.crg:38: the track's lateral position v = 1\.6 m lies outside the road's "
+                     r"long sections \(v from -1\.5 to 1\.5 m\)", run.stderr), run.stderr
+
+
 def test_the_rolling_bench_runs_as_documented(folder):
     """bench/fmu_rolling.py as docs/coupling.md runs it, shortened: a slow roll onto the cleat
     at two communication steps prints its table, every run getting through."""

@@ -7,6 +7,9 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <regex>
+#include <sstream>
+#include <vector>
 
 #include "deck_support.hpp"
 #include "io/teim_orbit.hpp"
@@ -190,9 +193,39 @@ tirefe.check{ name = "longer sidewall", value = narrow.sidewall_length > tp.side
 TEST_CASE("inputs/identify_tir.lua: rings fitted to five standard files reproduce their stiffness and modes",
           "[tire][tire_file][mf][fit][decks]") {
   TempDir folder;
-  testing::check_deck_passes(std::string(TIREFE_SOURCE_DIR) + "/inputs/identify_tir.lua", folder.path("out"), 14);
+  testing::check_deck_passes(std::string(TIREFE_SOURCE_DIR) + "/inputs/identify_tir.lua", folder.path("out"), 34);
   // The fitted rings are written as tirefe's own files: they read back.
   CHECK(macros::load_tire_parameters(folder.path("out/mf_swift_205_60R15_ring.tir")).outer_diameter == 0.627);
+}
+
+TEST_CASE("docs/mf_tire_files.md's table of the fitted rings holds the numbers inputs/identify_tir.lua checks",
+          "[docs][tire_file][mf]") {
+  const auto text_of = [](const std::string& path) {
+    std::ifstream in(std::string(TIREFE_SOURCE_DIR) + "/" + path);
+    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  };
+  const std::string deck = text_of("inputs/identify_tir.lua"), doc = text_of("docs/mf_tire_files.md");
+  // The number after the '/' of a "file / built" cell, or the first of a cell.
+  const auto built = [](const std::string& cell) { return std::stod(cell.substr(cell.find('/') + 1)); };
+  const std::regex entry(
+      R"re(name = "([^"]+)"[\s\S]*?built = \{ width = ([0-9.]+), half_load = ([0-9.]+), translation = ([0-9.]+), rotation = ([0-9.]+) \})re");
+  int rows = 0;
+  for (auto match = std::sregex_iterator(deck.begin(), deck.end(), entry); match != std::sregex_iterator(); ++match) {
+    const std::string name = (*match)[1];
+    INFO(name);
+    const size_t row = doc.find("\n| " + name + " ");
+    REQUIRE(row != std::string::npos);
+    std::vector<std::string> cells;
+    std::istringstream line(doc.substr(row + 1, doc.find('\n', row + 1) - row - 1));
+    for (std::string cell; std::getline(line, cell, '|');) cells.push_back(cell);
+    REQUIRE(cells.size() >= 9);  // "", file, p, FNOMIN, w, K, F(d/2), f1, f0, ...
+    CHECK(std::stod(cells[4]) == std::stod((*match)[2]));
+    CHECK(built(cells[6]) == std::stod((*match)[3]));
+    CHECK(built(cells[7]) == std::stod((*match)[4]));
+    CHECK(built(cells[8]) == std::stod((*match)[5]));
+    ++rows;
+  }
+  CHECK(rows == 5);
 }
 
 TEST_CASE("docs/mf_tire_files.md lists the sections tirefe reads in standard files and the keys it does not use",

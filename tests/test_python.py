@@ -128,6 +128,68 @@ def test_advance_in_steps_of_its_own(folder):
     assert report["steps"] == 10 and report["time"] == advanced.state()["time"], report
 
 
+def crg_sections(path):
+    """The long sections of an LRFI OpenCRG file without placement keys or reference-line
+    channels, read here by hand: {v: heights along u (None: missing)}, v = -1.5 to 1.5 m in
+    steps of 0.5 m as inputs/roads/handmade_straight.crg has them."""
+    with open(path) as f:
+        data = f.read().split("$$$$$$$$10", 1)[1].splitlines()[1:]
+    rows = [[None if line[i:i + 10].strip().startswith("*") else float(line[i:i + 10]) for i in range(0, 70, 10)]
+            for line in data if line.strip()]
+    return {-1.5 + 0.5 * k: [row[k] for row in rows] for k in range(7)}
+
+
+def test_opencrg_road(folder):
+    """road=.crg with road_lateral: the track 0.75 m left of the reference line (halfway
+    between two long sections) gives the forces of the same track written as a CSV profile,
+    bit for bit, over a 0.2 m roll up its rise from u = 1 m; an offset outside the road, a
+    track through a missing value, a NaN, or road_track on a .crg: one message naming it."""
+    tirefe = module()
+    crg = os.path.join(SOURCE, "inputs", "roads", "handmade_straight.crg")
+    sections = crg_sections(crg)
+    csv = os.path.join(folder, "track_0.75.csv")
+    with open(csv, "w") as f:
+        f.write("x,z\n" + "".join(f"{u}.0,{0.5 * a + 0.5 * b!r}\n" for u, (a, b) in enumerate(zip(sections[0.5],
+                                                                                                   sections[1.0]))))
+    forces = []
+    for road, lateral in ((crg, 0.75), (csv, 0.0)):
+        tire = tirefe.Tire("tires.145SR12", hht_alpha=-0.1, road=road, road_lateral=lateral, road_start=-1.0,
+                           start_z=-5e-3)
+        history, rate = [tire.state()["force"]], 0.0
+        for k in range(1, 21):  # 1 m/s, reached smoothly in 50 ms
+            t = 0.01 * k
+            s = min(t / 0.05, 1.0)
+            x = 0.05 * s ** 3 * (1 - 0.5 * s) if t <= 0.05 else 0.025 + (t - 0.05)
+            end_rate = s * s * (3 - 2 * s)
+            tire.advance(0.01, [rate, 0.0, 0.0], [x, -5e-3, 0.0], [end_rate, 0.0, 0.0], 1e-3)
+            rate = end_rate
+            history.append(tire.state()["force"])
+        forces.append(np.array(history))
+        tire.close()
+    assert np.array_equal(forces[0], forces[1]), np.abs(forces[0] - forces[1]).max()
+    # The track rises 5.6 mm per metre from u = 1 m: the roll loads the wheel.
+    assert forces[0][-1, 1] - forces[0][0, 1] > 50.0, forces[0][:, 1]
+    refusals = (
+        ({"road_lateral": 1.6}, tirefe.ModelError,
+         "handmade_straight.crg:38: the track's lateral position v = 1.6 m lies outside the road's long sections "
+         "(v from -1.5 to 1.5 m)"),
+        ({"road_lateral": 1.5}, tirefe.ModelError, "no height at u = 7 m (a missing value): the track at v = 1.5 m"),
+        ({"road_lateral": float("nan")}, ValueError, "options.road_lateral must be a finite offset"),
+        ({"road_track": "left"}, ValueError, "the track of the OpenCRG road"),
+    )
+    for options, kind, says in refusals:
+        try:
+            tirefe.Tire("tires.145SR12", road=crg, **options)
+            raise AssertionError(f"opened on {options}")
+        except kind as error:
+            assert says in str(error) and str(error).count("\n") == 0, (options, str(error))
+    try:
+        tirefe.Tire("tires.145SR12", road=csv, road_lateral=0.5)
+        raise AssertionError("road_lateral taken for a CSV road")
+    except ValueError as error:
+        assert "road_lateral picks the track of an OpenCRG road" in str(error) and "track_0.75.csv" in str(error), error
+
+
 def test_run_deck(folder):
     tirefe = module()
     deck = os.path.join(folder, "deck.lua")

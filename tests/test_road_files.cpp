@@ -391,6 +391,9 @@ TEST_CASE("OpenCRG files: a track along the reference line from the long section
                     Contains("road.crg:23: no height at u = 0.2 m (a missing value): the track at v = -0.5 m"));
   CHECK_THROWS_WITH(read_opencrg(path, 0.6),
                     Contains("v = 0.6 m lies outside the road's long sections (v from -0.5 to 0.5 m)"));
+  // A NaN passed the range check, to be reported as a missing height on the first row.
+  CHECK_THROWS_WITH(read_opencrg(path, std::nan("")),
+                    Contains("road.crg: the track's lateral position v is not a finite number of metres"));
   // LDFI: 20 characters a value, 4 values a record, so a row of six goes on in a second record.
   const std::string ldfi = folder.write(
       "double.crg", replaced(opencrg(kCrgKeys, "", ""), "#:LRFI", "#:LDFI") +

@@ -29,11 +29,11 @@ sweep = importlib.util.module_from_spec(spec_loader)
 spec_loader.loader.exec_module(sweep)
 
 
-def write_spec(folder, output):
-    """Six grid runs, one run the deck refuses (failed), one whose self-check fails."""
+def write_spec(folder, output, binary_in_spec=True):
+    """Six grid runs, one run the deck refuses (failed), one whose self-check fails; the binary
+    under test named in the spec, or else to be given by --tirefe."""
     spec = {
         "deck": DECK,
-        "tirefe": TIREFE,
         "output": output,
         "grid": {"elements": [4, 6, 8], "load_parameter": [0.005, 0.01]},
         "runs": [{"elements": 4, "load_parameter": -1},
@@ -45,6 +45,8 @@ def write_spec(folder, output):
             "frequency": {"channel": "tip_uy", "reduce": "dominant_frequency"},
         },
     }
+    if binary_in_spec:
+        spec["tirefe"] = TIREFE
     path = os.path.join(folder, output + ".json")
     with open(path, "w") as f:
         json.dump(spec, f, indent=1)
@@ -105,12 +107,13 @@ def test_resume_skips_finished_runs(folder):
 
 
 def test_joblist_with_xargs_then_collect_gives_the_same_manifest(folder):
-    spec = write_spec(folder, "joblist")
-    result = sweep_command("joblist", spec)
+    spec = write_spec(folder, "joblist", binary_in_spec=False)  # each job line carries --tirefe on
+    result = sweep_command("joblist", spec, "--tirefe", TIREFE)
     assert result.returncode == 0, result.stderr
     joblist = os.path.join(folder, "joblist", "joblist.txt")
     with open(joblist) as f:
-        assert len(f.read().splitlines()) == 8
+        lines = f.read().splitlines()
+    assert len(lines) == 8 and all(f"--tirefe {TIREFE}" in line for line in lines), lines
     with open(joblist) as f:
         subprocess.run(["xargs", "-P", "2", "-I{}", "sh", "-c", "{}"], stdin=f, capture_output=True)
     assert sweep_command("collect", spec).returncode == 1  # same statuses: not all ok
@@ -118,12 +121,12 @@ def test_joblist_with_xargs_then_collect_gives_the_same_manifest(folder):
 
 
 def test_slurm_array_then_collect_gives_the_same_manifest(folder):
-    spec = write_spec(folder, "slurm")
-    assert sweep_command("slurm", spec).returncode == 0
+    spec = write_spec(folder, "slurm", binary_in_spec=False)
+    assert sweep_command("slurm", spec, "--tirefe", TIREFE).returncode == 0
     script = os.path.join(folder, "slurm", "sweep.slurm")
     with open(script) as f:
         text = f.read()
-    assert "#SBATCH --array=0-7" in text, text
+    assert "#SBATCH --array=0-7" in text and f"--tirefe {TIREFE}" in text, text
     for task in range(8):  # what Slurm does: one task per array index
         subprocess.run(["bash", script], env={**os.environ, "SLURM_ARRAY_TASK_ID": str(task)}, capture_output=True)
     sweep_command("collect", spec)
@@ -180,7 +183,7 @@ def test_the_documented_cleat_sweep_runs_as_written(folder):
     with open(spec) as f:
         assert f.read() == documented
     output = os.path.join(folder, "cleat_speeds")
-    result = sweep_command("run", spec, "--output", output)
+    result = sweep_command("run", spec, "--output", output, "--tirefe", TIREFE)  # the build under test
     assert result.returncode == 0, result.stdout + result.stderr
     with open(os.path.join(output, "manifest.csv"), newline="") as f:
         rows = list(csv.DictReader(f))

@@ -117,6 +117,25 @@ def test_plot_results_on_the_finished_run(folder):
     assert "Traceback" not in missing.stderr, missing.stderr
 
 
+def test_plot_drum_cleat_usage_and_bad_files(folder):
+    """post/plot_drum_cleat.py: --help prints its usage (it opened '--help' as a result file);
+    a missing file, a file that is not HDF5 and another deck's result file each give one line
+    naming the file, no traceback. Its plots of a drum-cleat run: tests/test_bad_decks.cpp."""
+    script = os.path.join(os.path.dirname(HERE), "post", "plot_drum_cleat.py")
+    usage = subprocess.run([sys.executable, script, "--help"], capture_output=True, text=True)
+    assert usage.returncode == 0 and "usage: plot_drum_cleat.py" in usage.stdout and "result" in usage.stdout, usage
+    text = os.path.join(folder, "text.h5")
+    with open(text, "w") as f:
+        f.write("not HDF5\n")
+    for path, says in ((os.path.join(folder, "no_such.h5"), "not a readable HDF5 result file"),
+                       (text, "not a readable HDF5 result file"),
+                       (os.path.join(folder, "run", "xdmf.h5"), "not a drum-cleat result file")):
+        bad = subprocess.run([sys.executable, script, path], capture_output=True, text=True)
+        assert bad.returncode == 1 and bad.stdout == "", bad
+        assert bad.stderr.startswith(f"plot_drum_cleat.py: {path}: {says}"), bad.stderr
+        assert bad.stderr.count("\n") == 1 and "Traceback" not in bad.stderr, bad.stderr
+
+
 def test_the_other_grids_show_the_rim_and_the_turning_drum(folder):
     index, h5 = os.path.join(folder, "run", "xdmf.xmf"), os.path.join(folder, "run", "xdmf.h5")
     grids = collections(index)

@@ -269,14 +269,26 @@ std::shared_ptr<const RigidSurface> file_road(const tirefe_options& options, dou
     for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return lower == extension;
   };
+  const bool crg = ends_with(".crg");
+  if (crg && track)
+    throw std::invalid_argument(
+        "options.road_track picks a track of a .rdf or .csv file; the track of the OpenCRG "
+        "road '" +
+        file + "' is chosen by options.road_lateral");
+  if (!crg && options.road_lateral != 0.0)
+    throw std::invalid_argument("options.road_lateral picks the track of an OpenCRG road (.crg); '" + file +
+                                "' is not one (leave it 0)");
   RoadShape shape;
   try {
     if (ends_with(".rdf"))
       shape = read_road_data_file(file, track);
     else if (ends_with(".csv"))
       shape.points = read_road_csv(file, track);
+    else if (crg)
+      shape.points = read_opencrg(file, options.road_lateral);
     else
-      throw ModelError("road file '" + file + "': name a road data file (.rdf) or a CSV profile (.csv)");
+      throw ModelError("road file '" + file +
+                       "': name a road data file (.rdf), a CSV profile (.csv) or an OpenCRG road (.crg)");
   } catch (const ModelError&) {
     throw;
   } catch (const std::runtime_error& error) {  // the readers' own errors name the file and line
@@ -300,6 +312,13 @@ void check_options(const tirefe_options& options) {
     throw std::invalid_argument("options.heading must be +1 (along +x) or -1 (along -x)");
   if (!std::isfinite(options.road_start) || !std::isfinite(options.start_z))
     throw std::invalid_argument("options.road_start and options.start_z must be finite");
+  if (!std::isfinite(options.road_lateral))
+    throw std::invalid_argument(
+        "options.road_lateral must be a finite offset from the OpenCRG road's reference line [m]");
+  if (options.road_lateral != 0.0 && !(options.road && *options.road))
+    throw std::invalid_argument(
+        "options.road_lateral picks the track of an OpenCRG road (.crg); the flat road has "
+        "none (leave it 0)");
   if (!(options.road_edge_radius >= 0.0 && std::isfinite(options.road_edge_radius)))
     throw std::invalid_argument("options.road_edge_radius must be a finite number >= 0");
   if (options.free_spin != 0 && options.free_spin != 1)
@@ -539,6 +558,7 @@ void tirefe_default_options(tirefe_options* options) {
   options->heading = 1;
   options->road = nullptr;
   options->road_track = nullptr;
+  options->road_lateral = 0.0;
   options->road_start = 0.0;
   options->road_edge_radius = 0.0;
   options->start_z = 0.0;

@@ -551,11 +551,12 @@ std::vector<Eigen::Vector2d> OpenCrgFile::track(double v) const {
   for (size_t i = 1; i < sections.size(); ++i)
     if (sections[i].first == sections[i - 1].first)
       fail(channels_[sections[i].second].line, "two long sections at v = " + number_text(sections[i].first) + " m");
+  if (!std::isfinite(v)) fail(0, "the track's lateral position v is not a finite number of metres");
   const double tolerance = 1e-9 * std::max(1.0, std::abs(v));
   if (v < sections.front().first - tolerance || v > sections.back().first + tolerance)
-    fail(definition_line_, "v = " + number_text(v) + " m lies outside the road's long sections (v from " +
-                               number_text(sections.front().first) + " to " + number_text(sections.back().first) +
-                               " m)");
+    fail(definition_line_,
+         "the track's lateral position v = " + number_text(v) + " m lies outside the road's long sections (v from " +
+             number_text(sections.front().first) + " to " + number_text(sections.back().first) + " m)");
   size_t right = 0;
   while (right + 1 < sections.size() && sections[right + 1].first <= v + tolerance) ++right;
   const size_t left = std::min(right + 1, sections.size() - 1);

@@ -42,6 +42,7 @@ enum Reference : fmi2ValueReference {
   kHhtAlpha = 13,
   kMaxStep = 15,
   kRoadEdgeRadius = 16,
+  kRoadLateral = 17,
   kFreeSpin = 14,  // Boolean parameter
   kTire = 20,      // String parameters
   kRoad = 21,
@@ -66,7 +67,7 @@ const char* phase_name(Phase phase) {
 struct Parameters {
   std::string tire = "145SR12.tir", road, road_track, tire_parameters;
   double pressure = 0.0;  // 0: the tire file's
-  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0;
+  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0, road_lateral = 0.0;
   bool free_spin = true;
 };
 
@@ -202,6 +203,7 @@ fmi2Status build_tire(Instance& instance) {
   options.free_spin = p.free_spin ? 1 : 0;
   options.road = road.empty() ? nullptr : road.c_str();
   options.road_track = p.road_track.empty() ? nullptr : p.road_track.c_str();
+  options.road_lateral = p.road_lateral;
   options.road_start = -input[kX];  // the tire is built at x = 0 of its own: the road moves under it
   options.road_edge_radius = p.road_edge_radius;
   options.start_z = input[kZ];
@@ -237,6 +239,7 @@ double* real_variable(Instance& instance, fmi2ValueReference reference) {
     case kHhtAlpha: return &p.hht_alpha;
     case kMaxStep: return &p.max_step;
     case kRoadEdgeRadius: return &p.road_edge_radius;
+    case kRoadLateral: return &p.road_lateral;
     default: return nullptr;
   }
 }

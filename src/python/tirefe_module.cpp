@@ -67,7 +67,8 @@ class Tire {
  public:
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
        bool free_spin, const std::string& heading, const std::optional<std::string>& road,
-       const std::optional<std::string>& road_track, double road_start, double road_edge_radius, double start_z) {
+       const std::optional<std::string>& road_track, double road_lateral, double road_start, double road_edge_radius,
+       double start_z) {
     tirefe_options options;
     tirefe_default_options(&options);
     options.friction = friction;
@@ -78,6 +79,7 @@ class Tire {
     options.heading = heading == "+x" ? 1 : -1;
     options.road = road ? road->c_str() : nullptr;
     options.road_track = road_track ? road_track->c_str() : nullptr;
+    options.road_lateral = road_lateral;
     options.road_start = road_start;
     options.road_edge_radius = road_edge_radius;
     options.start_z = start_z;
@@ -461,19 +463,23 @@ ISO 8855 wheel axes (x the heading, z up, y the spin axis): motions (x, z, spin)
 forces (Fx, Fz, My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz > 0).
 Usable as a context manager; close() frees it.)")
       .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool, const std::string&,
-                    const std::optional<std::string>&, const std::optional<std::string>&, double, double, double>(),
+                    const std::optional<std::string>&, const std::optional<std::string>&, double, double, double,
+                    double>(),
            py::arg("source") = "tires.145SR12", py::arg("parameters") = std::map<std::string, double>{},
            py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true,
            py::arg("heading") = "+x", py::arg("road") = py::none(), py::arg("road_track") = py::none(),
-           py::arg("road_start") = 0.0, py::arg("road_edge_radius") = 0.0, py::arg("start_z") = 0.0,
+           py::arg("road_lateral") = 0.0, py::arg("road_start") = 0.0, py::arg("road_edge_radius") = 0.0,
+           py::arg("start_z") = 0.0,
            R"(Builds, inflates and puts the tire on its road.
 
 source: a tire property file (.tir) or a shipped parameter module; parameters: overrides by
 name (keys of model:tire); friction: Coulomb coefficient; hht_alpha: 0 Newmark, [-1/3, 0)
 HHT; free_spin: the wheel turns freely (My = 0) or the spin is given; heading: "+x" or "-x";
-road: None (flat) or a road file (.rdf, .csv), its x along the heading from road_start and
-its height 0 where the tire touches at z = 0, road_track "left" or "right" for a file with
-two, its convex corners rounded by road_edge_radius [m]; start_z: the spindle's height [m]
+road: None (flat) or a road file (.rdf, .csv, or an ASCII OpenCRG road .crg), its x (an
+OpenCRG road's u) along the heading from road_start and its height 0 where the tire touches
+at z = 0, road_track "left" or "right" for a .rdf or .csv file with two, road_lateral [m]
+the track of a .crg road (its lateral offset from the reference line, left positive; 0: the
+reference line), its convex corners rounded by road_edge_radius [m]; start_z: the spindle's height [m]
 when handed over (pressed quasi-statically from touching).
 Raises ModelError for a tire that cannot be built, ValueError for bad arguments.)")
       .def("solve", method(&Tire::solve), py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,

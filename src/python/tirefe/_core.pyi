@@ -26,6 +26,7 @@ class Tire:
         heading: str = "+x",
         road: Optional[str] = None,
         road_track: Optional[str] = None,
+        road_lateral: float = 0.0,
         road_start: float = 0.0,
         road_edge_radius: float = 0.0,
         start_z: float = 0.0,
