@@ -10,7 +10,6 @@
 #include <limits>
 
 #include "io/temporary_file.hpp"
-#include "tire/wheel_axes.hpp"
 #include "tirefe/version.hpp"
 
 namespace tirefe::io {
@@ -50,7 +49,7 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
   file_.write_attribute("/", "title", metadata.title);
   file_.write_attribute("/", "deck_path", metadata.deck_path);
   file_.write_attribute("/", "units", std::string("SI: m, N, s, rad, kg, Pa"));
-  file_.write_attribute("/", "axes", std::string(wheel_axes_statement()));  // of spindle forces; "heading" with a tire
+  if (!metadata.axes.empty()) file_.write_attribute("/", "axes", metadata.axes);  // "heading" with a tire
   file_.write_string_dataset("/deck", metadata.deck_text);
   // Numbers as numbers (post-processing reads the drum size or the speed from here).
   for (const auto& [name, text] : metadata.parameters) {

@@ -1,6 +1,6 @@
 // ResultFile: one run's HDF5 output. Layout (docs/output.md):
 //   /                 attributes: tirefe_version, git_commit, created, deck_path, units, title,
-//                     axes (the spindle forces' axes and signs, tire/wheel_axes.hpp) and,
+//                     axes (the spindle forces' axes and signs, as the deck gives them) and,
 //                     with a tire, its heading ("+x" or "-x")
 //   /deck             the deck's full text
 //   /parameters       attributes: the deck's parameters after command-line overrides
@@ -76,6 +76,7 @@ struct RunMetadata {
   std::string deck_path;
   std::string deck_text;
   std::vector<std::pair<std::string, std::string>> parameters;  // the deck's parameters, as text
+  std::string axes;  // the axes and signs of the spindle forces; none when empty
 };
 
 /// A name that becomes part of a path in the result file (a history channel, a surface, a

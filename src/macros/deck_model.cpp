@@ -212,7 +212,8 @@ int DeckModel::load_function(const std::string& name) const {
 
 void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval) {
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
-  const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters};
+  const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters,
+                                 wheel_axes_statement()};
   // Every process claims the names, so that every rank refuses a clash alike.
   if (fs::path(file).extension() == ".xmf")
     throw ModelError("a result file named '" + file +
