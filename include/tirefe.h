@@ -222,7 +222,9 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
  * error of a state far from converged feeds the next steps' accelerations and grows).
  * max_time T > 0 [s] ends Newton in the same way once a solve has taken T of wall time
  * (after its first iteration), and counts every step whose solves and commit took longer
- * (a time miss). Holds for tirefe_solve and for the steps of tirefe_advance. */
+ * (a time miss). A budget also starts every step from the zero-acceleration predictor
+ * (docs/dynamics.md), which spares a rolling tire iterations and failed steps; no budget
+ * gives the tire its own back. Holds for tirefe_solve and for the steps of tirefe_advance. */
 typedef struct tirefe_step_budget {
   int max_iterations;  /* Newton iterations per step; 0: to convergence */
   double max_time;     /* [s] of wall time per step; 0: none */

@@ -1,8 +1,9 @@
 // The step budget of the C API (tirefe_set_step_budget): Newton ends at the budget's
 // iterations with the step taken and its residual reported, close to the converged step,
 // or goes on where the residual is above the budget's bound (an overrun); a wall-time
-// budget ends it after its first iteration and counts every step over it; no budget is the
-// default, and {0, 0, 0} gives it back; bad budgets are refused naming the field.
+// budget ends it after its first iteration and counts every step over it; a budget starts
+// the steps from the zero-acceleration predictor; no budget is the default, and {0, 0, 0}
+// gives it back; bad budgets are refused naming the field.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -140,4 +141,49 @@ TEST_CASE("bad step budgets are refused, naming the field", "[capi][budget]") {
   CHECK(tirefe_step_budget_report(nullptr, &report) == TIREFE_INVALID_ARGUMENT);
   CHECK(tirefe_set_step_budget(nullptr, nullptr) == TIREFE_INVALID_ARGUMENT);
   tirefe_close(tire);
+}
+
+TEST_CASE("a step budget starts the steps from the zero-acceleration predictor, and no budget from the tire's own",
+          "[capi][budget]") {
+  // A bound on the residual below Newton's tolerance: every step converges, so that only
+  // the predictor differs: the same forces to the tolerance, from other iterates.
+  tirefe_tire* plain = open_pressed();
+  tirefe_tire* budgeted = open_pressed();
+  const tirefe_step_budget converging{1, 0.0, 1e-300};
+  REQUIRE(tirefe_set_step_budget(budgeted, &converging) == TIREFE_OK);
+  int plain_iterations = 0, budgeted_iterations = 0;
+  double largest_difference = 0.0;
+  for (int k = 1; k <= 20; ++k) {
+    const tirefe_spindle_motion m = motion(k);
+    tirefe_spindle_force a{}, b{};
+    REQUIRE(tirefe_solve(plain, &m, &a) == TIREFE_OK);
+    REQUIRE(tirefe_solve(budgeted, &m, &b) == TIREFE_OK);
+    REQUIRE(tirefe_commit(plain) == TIREFE_OK);
+    REQUIRE(tirefe_commit(budgeted) == TIREFE_OK);
+    plain_iterations += a.newton_iterations;
+    budgeted_iterations += b.newton_iterations;
+    largest_difference = std::max(largest_difference, std::abs(a.force[1] - b.force[1]));
+  }
+  INFO(plain_iterations << " iterations from the tire's predictor, " << budgeted_iterations
+                        << " from zero acceleration; Fz up to " << largest_difference << " N apart");
+  CHECK(largest_difference > 0.0);  // another start: not the same iterates (1.3e-11 N found)
+  CHECK(largest_difference < 1e-3);
+  // No budget again: the tire's own predictor, the same iterations as the plain tire's.
+  REQUIRE(tirefe_set_step_budget(budgeted, nullptr) == TIREFE_OK);
+  tirefe_saved_state* saved = nullptr;
+  REQUIRE(tirefe_save_state(plain, &saved) == TIREFE_OK);
+  REQUIRE(tirefe_restore_state(budgeted, saved) == TIREFE_OK);
+  for (int k = 21; k <= 25; ++k) {
+    const tirefe_spindle_motion m = motion(k);
+    tirefe_spindle_force a{}, b{};
+    REQUIRE(tirefe_solve(plain, &m, &a) == TIREFE_OK);
+    REQUIRE(tirefe_solve(budgeted, &m, &b) == TIREFE_OK);
+    CHECK(a.newton_iterations == b.newton_iterations);
+    CHECK(a.force[1] == b.force[1]);
+    REQUIRE(tirefe_commit(plain) == TIREFE_OK);
+    REQUIRE(tirefe_commit(budgeted) == TIREFE_OK);
+  }
+  tirefe_free_state(saved);
+  tirefe_close(plain);
+  tirefe_close(budgeted);
 }

@@ -46,7 +46,16 @@ class BudgetWatch {
   using Clock = std::chrono::steady_clock;
   static constexpr double kDefaultResidual = 1e-4;
 
-  void set(const tirefe_step_budget& budget, tirefe::NewtonSettings& newton) {
+  /// Sets the budget on the analysis's Newton; a budget starts every step from the zero-
+  /// acceleration predictor (docs/dynamics.md), no budget from the analysis's own again.
+  void set(const tirefe_step_budget& budget, tirefe::Analysis& analysis) {
+    using tirefe::Predictor;
+    if (!own_predictor_) own_predictor_ = analysis.integrator().predictor();
+    const bool budgeted = budget.max_iterations > 0 || budget.max_time > 0.0;
+    const Predictor predictor = budgeted ? Predictor::ZeroAcceleration : *own_predictor_;
+    if (analysis.integrator().predictor() != predictor)
+      analysis.set_integrator(analysis.integrator().with_predictor(predictor));
+    tirefe::NewtonSettings& newton = analysis.newton_settings();
     budget_ = budget;
     newton.budget_iterations = budget.max_iterations;
     newton.budget_time = budget.max_time;
@@ -88,7 +97,8 @@ class BudgetWatch {
  private:
   tirefe_step_budget budget_{0, 0.0, 0.0};
   tirefe_budget_report report_{};
-  double pending_time_ = 0.0;  // [s] of the pending step's solves
+  std::optional<tirefe::Predictor> own_predictor_;  // the analysis's before any budget
+  double pending_time_ = 0.0;                       // [s] of the pending step's solves
   bool pending_converged_ = true;
   double pending_residual_ = 0.0;
   int pending_iterations_ = 0;
@@ -817,7 +827,7 @@ tirefe_status tirefe_set_step_budget(tirefe_tire* tire, const tirefe_step_budget
       return refuse(t, TIREFE_INVALID_ARGUMENT, "budget.max_time must be a finite number >= 0 [s] (0: none)");
     if (!(chosen.max_residual >= 0.0))
       return refuse(t, TIREFE_INVALID_ARGUMENT, "budget.max_residual must be a number >= 0 (0: 1e-4)");
-    t.budget.set(chosen, t.analysis->newton_settings());
+    t.budget.set(chosen, *t.analysis);
     return TIREFE_OK;
   });
 }
