@@ -501,7 +501,8 @@ two, its convex corners rounded by road_edge_radius [m]; start_z: the spindle's 
 when handed over (pressed quasi-statically from touching); max_iterations, max_time [s],
 max_residual: a step budget for real time (tirefe_set_step_budget; 0: none, max_residual
 1e-4): Newton ends after that many iterations or that much wall time at a relative residual
-within max_residual, the step taken unconverged and counted (budget_report).
+within max_residual, the step taken unconverged and counted (budget_report); a budget starts
+every step from the zero-acceleration predictor.
 Raises ModelError for a tire that cannot be built, ValueError for bad arguments.)")
       .def("solve", method(&Tire::solve), py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
            R"(Solves the trial step of time_step [s] to the wheel centre's position (x, z, spin).
