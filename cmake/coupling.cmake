@@ -159,3 +159,7 @@ target_link_libraries(bench_capi_step PRIVATE tirefe::tirefe Eigen3::Eigen PkgCo
 target_compile_definitions(bench_capi_step PRIVATE TIREFE_FMU_BINARY="$<TARGET_FILE:tirefe_fmu>"
   TIREFE_FMU_GUID="${TIREFE_FMU_GUID}" TIREFE_FMU_RESOURCES="${TIREFE_FMU_DIR}/resources")
 add_dependencies(bench_capi_step tirefe_tire_fmu)
+
+# The C API's step on a rough road with cleats, as a real-time host sees it (docs/performance.md).
+add_executable(bench_rough_road bench/capi/bench_rough_road.cpp)
+target_link_libraries(bench_rough_road PRIVATE tirefe::tirefe)

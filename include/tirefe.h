@@ -218,6 +218,37 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state);
 tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* overrides, size_t count,
                                    const double* deflections, size_t n, double* forces, char* error, size_t error_size);
 
+/* A step budget for real-time hosts (docs/performance.md). By default (all 0) every step
+ * iterates to the tire's Newton tolerance or fails. With max_iterations N > 0, a step's
+ * Newton ends after N iterations when its relative residual |R| / R_ref is within
+ * max_residual, converged or not: the step is taken with the force of that state and the
+ * residual is reported; above max_residual it goes on to convergence (an overrun: the
+ * error of a state far from converged feeds the next steps' accelerations and grows).
+ * max_time T > 0 [s] ends Newton in the same way once a solve has taken T of wall time
+ * (after its first iteration), and counts every step whose solves and commit took longer
+ * (a time miss). A budget also starts every step from the zero-acceleration predictor
+ * (docs/dynamics.md), which spares a rolling tire iterations and failed steps; no budget
+ * gives the tire its own back. Holds for tirefe_solve and for the steps of tirefe_advance. */
+typedef struct tirefe_step_budget {
+  int max_iterations;  /* Newton iterations per step; 0: to convergence */
+  double max_time;     /* [s] of wall time per step; 0: none */
+  double max_residual; /* the largest |R| / R_ref a step may end with; 0: 1e-4 (HUGE_VAL: any) */
+} tirefe_step_budget;
+
+/* The committed steps since the budget was last set (or the tire opened). */
+typedef struct tirefe_budget_report {
+  long steps;            /* committed */
+  long unconverged;      /* ended by the budget before Newton's tolerance */
+  double worst_residual; /* the largest |R| / R_ref a step ended with (0: every step converged) */
+  long overruns;         /* took more than max_iterations (their residual above max_residual there) */
+  long time_misses;      /* took longer than max_time (when set) */
+  double worst_time;     /* the longest step: its solves and its commit [s] */
+} tirefe_budget_report;
+
+/* Sets the budget (NULL: none) and starts its report afresh. */
+tirefe_status tirefe_set_step_budget(tirefe_tire* tire, const tirefe_step_budget* budget);
+tirefe_status tirefe_step_budget_report(tirefe_tire* tire, tirefe_budget_report* report);
+
 /* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
  * a host that steps back in time (a co-simulation master repeating a macro step)
  * saves the tire and restores it later. A pending trial step is discarded by a restore.

@@ -316,6 +316,33 @@ def test_python_driver(folder):
         assert "README.md" in str(error) and "not an FMU" in str(error), error
 
 
+def test_step_budget_parameters(folder):
+    """max_iterations, max_time and max_residual reach the tire: a fixed single iteration
+    per tire step gives a press within 1 % of the default's, and fmi2Terminate logs the
+    budget's report."""
+    sys.path.insert(0, os.environ["TIREFE_PYTHON"])
+    import tirefe
+    z = (np.array([0.0, 0.1, 0.2]), np.array([0.0, -0.005, -0.005]))
+    forces = {}
+    for iterations in (0, 1):
+        with tirefe.Fmu(TIREFE, logging=True) as fmu:
+            fmu.set(max_iterations=iterations, max_residual=1e300 if iterations else 0.0)
+            assert fmu.get("max_iterations") == iterations and fmu.get("max_time") == 0.0
+            forces[iterations] = fmu.simulate(0.2, 1e-3, {"z": z})["Fz"]
+            fmu.terminate()
+            logged = [text for _, _, text in fmu.messages if text.startswith("step budget:")]
+        assert len(logged) == 1, fmu.messages
+        if iterations:
+            assert re.match(r"step budget: 400 steps, [1-9]\d* ended unconverged", logged[0]), logged
+    assert forces[1][-1] > 500.0 and abs(forces[1][-1] - forces[0][-1]) < 0.01 * forces[0][-1], forces
+    with tirefe.Fmu(TIREFE) as fmu:
+        try:
+            fmu.set(max_iterations=-2)
+            raise AssertionError("a negative iteration budget was taken")
+        except tirefe.FmuError as error:
+            assert "max_iterations" in str(error), error
+
+
 def test_the_python_check_of_the_docs(folder):
     """examples/check_fmu.py (docs/coupling.md): pressed 10 mm and held, the FMU carries the
     static curve's force there (tirefe.static_forces, frictionless) to 0.1 % (found 1e-5)."""

@@ -329,5 +329,32 @@ def test_ksw_fit_as_in_cpp(folder):
     assert abs(k_python - k_cpp) < 0.1, (k_python, k_cpp)
 
 
+def test_step_budget(folder):
+    """Tire(max_iterations=..., max_residual=...) holds a step budget: one iteration a step,
+    Fz within 1e-3 N of the converged step's (5e-6 N in tests/test_step_budget.cpp), the
+    unconverged steps and their residual in budget_report(); no budget by default; a bad
+    budget is a ValueError naming the field."""
+    tirefe = module()
+    plain = tirefe.Tire(hht_alpha=-0.1, start_z=-0.01)
+    fixed = tirefe.Tire(hht_alpha=-0.1, start_z=-0.01, max_iterations=1, max_residual=float("inf"))
+    for step in range(1, 21):  # rolling off and pressed 1 mm further, as tests/test_step_budget.cpp does
+        s = step / 20
+        motion = (1e-3, 2.5e-6 * step * step, -0.01 - 1e-3 * s * s * (3 - 2 * s))
+        converged, _ = plain.solve(*motion)
+        plain.commit()
+        limited, _ = fixed.solve(*motion)
+        fixed.commit()
+    assert converged[1] > 1000.0 and abs(limited[1] - converged[1]) < 1e-3, (limited, converged)
+    report = fixed.budget_report()
+    assert report["steps"] == 20 and report["unconverged"] > 0 and report["overruns"] == 0, report
+    assert report["worst_residual"] > 1e-9 and report["worst_time"] > 0.0, report
+    assert plain.budget_report()["unconverged"] == 0, plain.budget_report()
+    try:
+        tirefe.Tire(max_iterations=-1)
+        raise AssertionError("a negative iteration budget was taken")
+    except ValueError as error:
+        assert "max_iterations" in str(error), error
+
+
 if __name__ == "__main__":
     script_tests.run(globals(), "tirefe_python_")

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -37,6 +38,72 @@ struct DeckHold {
   std::unique_ptr<tirefe::macros::LuaSandbox> sandbox;
 };
 
+/// A host's step budget (tirefe_set_step_budget) and what it saw: the wall time, the
+/// iterations and the Newton ending of the pending step, added to the report when the step
+/// is committed.
+class BudgetWatch {
+ public:
+  using Clock = std::chrono::steady_clock;
+  static constexpr double kDefaultResidual = 1e-4;
+
+  /// Sets the budget on the analysis's Newton; a budget starts every step from the zero-
+  /// acceleration predictor (docs/dynamics.md), no budget from the analysis's own again.
+  void set(const tirefe_step_budget& budget, tirefe::Analysis& analysis) {
+    using tirefe::Predictor;
+    if (!own_predictor_) own_predictor_ = analysis.integrator().predictor();
+    const bool budgeted = budget.max_iterations > 0 || budget.max_time > 0.0;
+    const Predictor predictor = budgeted ? Predictor::ZeroAcceleration : *own_predictor_;
+    if (analysis.integrator().predictor() != predictor)
+      analysis.set_integrator(analysis.integrator().with_predictor(predictor));
+    tirefe::NewtonSettings& newton = analysis.newton_settings();
+    budget_ = budget;
+    newton.budget_iterations = budget.max_iterations;
+    newton.budget_time = budget.max_time;
+    newton.budget_residual = budget.max_residual > 0.0 ? budget.max_residual : kDefaultResidual;
+    report_ = tirefe_budget_report{};
+    forget();
+  }
+  /// A solve of the pending step took 'seconds'; 'newton' is its report when it succeeded.
+  void solved(double seconds, const tirefe::NewtonReport* newton) {
+    pending_time_ += seconds;
+    pending_converged_ = !newton || newton->converged;
+    pending_residual_ = newton ? newton->relative_residual : 0.0;
+    pending_iterations_ = newton ? newton->iterations : 0;
+  }
+  /// The pending step was committed, its commit taking 'seconds'.
+  void committed(double seconds) {
+    const double step_time = pending_time_ + seconds;
+    ++report_.steps;
+    if (!pending_converged_) {
+      ++report_.unconverged;
+      report_.worst_residual = std::max(report_.worst_residual, pending_residual_);
+    }
+    if (budget_.max_iterations > 0 && pending_iterations_ > budget_.max_iterations) ++report_.overruns;
+    if (budget_.max_time > 0.0 && step_time > budget_.max_time) ++report_.time_misses;
+    report_.worst_time = std::max(report_.worst_time, step_time);
+    forget();
+  }
+  /// The pending step was reverted.
+  void forget() {
+    pending_time_ = 0.0;
+    pending_converged_ = true;
+    pending_iterations_ = 0;
+  }
+  const tirefe_budget_report& report() const { return report_; }
+  static double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+ private:
+  tirefe_step_budget budget_{0, 0.0, 0.0};
+  tirefe_budget_report report_{};
+  std::optional<tirefe::Predictor> own_predictor_;  // the analysis's before any budget
+  double pending_time_ = 0.0;                       // [s] of the pending step's solves
+  bool pending_converged_ = true;
+  double pending_residual_ = 0.0;
+  int pending_iterations_ = 0;
+};
+
 /// An open tire, behind its tirefe_tire* handle.
 struct OpenTire {
   std::mutex mutex;  // one caller at a time per tire
@@ -50,6 +117,7 @@ struct OpenTire {
   tirefe::TireSpindle* spindle = nullptr;
   tirefe::Heading heading = tirefe::Heading::PlusX;  // of the wheel axes every value crosses the API in
   bool has_trial = false;                            // a solved step waits for commit or revert
+  BudgetWatch budget;
   std::string message;
 };
 
@@ -444,7 +512,14 @@ tirefe_status solve(OpenTire& tire, const SpindleInput& input, double jacobian_s
   if (const std::string problem = time_step_problem(input.time_step); !problem.empty())
     return refuse(tire, TIREFE_INVALID_ARGUMENT, problem);
   tire.has_trial = false;
-  copy_reply(tire.spindle->solve_step(input), tire.heading, jacobian_scale, out);
+  const BudgetWatch::Clock::time_point start = BudgetWatch::Clock::now();
+  try {
+    copy_reply(tire.spindle->solve_step(input), tire.heading, jacobian_scale, out);
+  } catch (...) {
+    tire.budget.solved(BudgetWatch::seconds_since(start), nullptr);
+    throw;
+  }
+  tire.budget.solved(BudgetWatch::seconds_since(start), &tire.analysis->last_newton_report());
   tire.has_trial = true;
   return TIREFE_OK;
 }
@@ -486,19 +561,24 @@ class SpindlePath final : public SteppedSystem {
     const Eigen::Vector3d plane = plane_motion(position_at(end_time), tire_.heading);
     SpindleInput input{step, plane.x(), plane.y(), plane.z()};
     input.jacobian = false;  // nobody reads it
+    const BudgetWatch::Clock::time_point start = BudgetWatch::Clock::now();
     try {
       record.newton_iterations = tire_.spindle->solve_step(input).newton_iterations;
     } catch (const StepFailure&) {
+      tire_.budget.solved(BudgetWatch::seconds_since(start), nullptr);
       failed_at_ = end_time;
       ++report_.cuts;
       return false;
     }
+    tire_.budget.solved(BudgetWatch::seconds_since(start), &tire_.analysis->last_newton_report());
     report_.newton_iterations += record.newton_iterations;
     return true;
   }
 
   void commit_step(double step, StepRecord& record) override {
+    const BudgetWatch::Clock::time_point start = BudgetWatch::Clock::now();
     tire_.spindle->commit();
+    tire_.budget.committed(BudgetWatch::seconds_since(start));
     record.time = time();
     record.step_size = step;
     ++report_.steps;
@@ -725,7 +805,9 @@ tirefe_status tirefe_commit(tirefe_tire* tire) {
   return guarded(tire, [](OpenTire& t) {
     if (!t.has_trial) return refuse(t, TIREFE_INVALID_CALL, "tirefe_commit: no solved trial step to accept");
     t.has_trial = false;
+    const BudgetWatch::Clock::time_point start = BudgetWatch::Clock::now();
     t.spindle->commit();
+    t.budget.committed(BudgetWatch::seconds_since(start));
     return TIREFE_OK;
   });
 }
@@ -733,6 +815,7 @@ tirefe_status tirefe_commit(tirefe_tire* tire) {
 tirefe_status tirefe_revert(tirefe_tire* tire) {
   return guarded(tire, [](OpenTire& t) {
     t.has_trial = false;
+    t.budget.forget();
     t.spindle->revert();
     return TIREFE_OK;
   });
@@ -751,6 +834,28 @@ tirefe_status tirefe_state(tirefe_tire* tire, tirefe_spindle_state* state) {
       state->velocity[c] = wheel_velocity[c];
       state->force[c] = force[c];
     }
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_set_step_budget(tirefe_tire* tire, const tirefe_step_budget* budget) {
+  return guarded(tire, [&](OpenTire& t) {
+    const tirefe_step_budget chosen = budget ? *budget : tirefe_step_budget{0, 0.0, 0.0};
+    if (chosen.max_iterations < 0)
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "budget.max_iterations must be >= 0 (0: Newton to convergence)");
+    if (!(chosen.max_time >= 0.0 && std::isfinite(chosen.max_time)))
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "budget.max_time must be a finite number >= 0 [s] (0: none)");
+    if (!(chosen.max_residual >= 0.0))
+      return refuse(t, TIREFE_INVALID_ARGUMENT, "budget.max_residual must be a number >= 0 (0: 1e-4)");
+    t.budget.set(chosen, *t.analysis);
+    return TIREFE_OK;
+  });
+}
+
+tirefe_status tirefe_step_budget_report(tirefe_tire* tire, tirefe_budget_report* report) {
+  return guarded(tire, [&](OpenTire& t) {
+    if (!report) return refuse(t, TIREFE_INVALID_ARGUMENT, "report must not be NULL");
+    *report = t.budget.report();
     return TIREFE_OK;
   });
 }
@@ -776,6 +881,7 @@ tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* 
           saved ? "saved is no state of tirefe_save_state (freed, or never saved)" : "saved must not be NULL");
     if (t.has_trial) t.spindle->revert();
     t.has_trial = false;
+    t.budget.forget();
     if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is restored with tirefe --restart");
     io::restore_checkpoint(state->checkpoint, *t.analysis, nullptr);
     return TIREFE_OK;

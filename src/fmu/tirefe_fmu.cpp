@@ -42,9 +42,12 @@ enum Reference : fmi2ValueReference {
   kHhtAlpha = 13,
   kMaxStep = 15,
   kRoadEdgeRadius = 16,
-  kRoadLateral = 17,
-  kFreeSpin = 14,  // Boolean parameter
-  kTire = 20,      // String parameters
+  kRoadLateral = 24,
+  kMaxTime = 18,
+  kMaxResidual = 19,
+  kMaxIterations = 17,  // Integer parameter
+  kFreeSpin = 14,       // Boolean parameter
+  kTire = 20,           // String parameters
   kRoad = 21,
   kRoadTrack = 22,
   kTireParameters = 23
@@ -68,6 +71,8 @@ struct Parameters {
   std::string tire = "145SR12.tir", road, road_track, tire_parameters;
   double pressure = 0.0;  // 0: the tire file's
   double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0, road_lateral = 0.0;
+  double max_time = 0.0, max_residual = 0.0;  // the step budget (tirefe_set_step_budget); 0: none
+  int max_iterations = 0;                     // 0: Newton to convergence
   bool free_spin = true;
 };
 
@@ -211,6 +216,9 @@ fmi2Status build_tire(Instance& instance) {
   if (tirefe_open(tire.c_str(), overrides.data(), overrides.size(), &options, &instance.tire, error, sizeof error) !=
       TIREFE_OK)
     return report(instance, fmi2Error, std::string("cannot build the tire: ") + error);
+  const tirefe_step_budget budget{p.max_iterations, p.max_time, p.max_residual};
+  if (tirefe_set_step_budget(instance.tire, &budget) != TIREFE_OK)
+    return report(instance, fmi2Error, std::string("cannot set the step budget: ") + tirefe_message(instance.tire));
   tirefe_spindle_state state;
   tirefe_state(instance.tire, &state);
   std::memcpy(instance.now.force, state.force, sizeof state.force);
@@ -240,6 +248,8 @@ double* real_variable(Instance& instance, fmi2ValueReference reference) {
     case kMaxStep: return &p.max_step;
     case kRoadEdgeRadius: return &p.road_edge_radius;
     case kRoadLateral: return &p.road_lateral;
+    case kMaxTime: return &p.max_time;
+    case kMaxResidual: return &p.max_residual;
     default: return nullptr;
   }
 }
@@ -359,7 +369,13 @@ fmi2Status fmi2Terminate(fmi2Component c) {
   return on_instance(c, [&](Instance& instance) {
     if (refused_in_phase(instance, "fmi2Terminate", Phase::Stepping)) return fmi2Error;
     instance.phase = Phase::Terminated;
-    return fmi2OK;
+    tirefe_budget_report budget{};
+    tirefe_step_budget_report(instance.tire, &budget);
+    std::ostringstream text;
+    text << "step budget: " << budget.steps << " steps, " << budget.unconverged << " ended unconverged (worst |R|/Rref "
+         << budget.worst_residual << "), " << budget.overruns << " overran max_iterations, " << budget.time_misses
+         << " max_time; the longest " << budget.worst_time << " s";
+    return report(instance, fmi2OK, text.str());
   });
 }
 
@@ -405,6 +421,8 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
       if (!std::isfinite(value[i]))
         return report(instance, fmi2Error, "the Real with value reference " + std::to_string(vr[i]) + " is not finite");
       if (vr[i] == kMaxStep && !(value[i] > 0.0)) return report(instance, fmi2Error, "max_step must be > 0");
+      if ((vr[i] == kMaxTime || vr[i] == kMaxResidual) && value[i] < 0.0)
+        return report(instance, fmi2Error, "max_time and max_residual must be >= 0 (0: none, 1e-4)");
       *variable = value[i];
       if (instance.phase != Phase::Stepping) instance.tire_current = false;
     }
@@ -412,14 +430,29 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
   });
 }
 
-fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference[], size_t nvr, fmi2Integer[]) {
+fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[]) {
   return on_instance(c, [&](Instance& instance) {
-    return nvr == 0 ? fmi2OK : report(instance, fmi2Error, "the tire has no Integer variables");
+    if (nvr > 0 && (!vr || !value)) return report(instance, fmi2Error, "fmi2GetInteger: NULL arrays");
+    for (size_t i = 0; i < nvr; ++i) {
+      if (vr[i] != kMaxIterations)
+        return report(instance, fmi2Error, "no Integer with value reference " + std::to_string(vr[i]));
+      value[i] = instance.parameters.max_iterations;
+    }
+    return fmi2OK;
   });
 }
-fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference[], size_t nvr, const fmi2Integer[]) {
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[]) {
   return on_instance(c, [&](Instance& instance) {
-    return nvr == 0 ? fmi2OK : report(instance, fmi2Error, "the tire has no Integer variables");
+    if (nvr > 0 && (!vr || !value)) return report(instance, fmi2Error, "fmi2SetInteger: NULL arrays");
+    for (size_t i = 0; i < nvr; ++i) {
+      if (vr[i] != kMaxIterations)
+        return report(instance, fmi2Error, "no Integer with value reference " + std::to_string(vr[i]));
+      if (check_settable(instance, vr[i]) != fmi2OK) return fmi2Error;
+      if (value[i] < 0) return report(instance, fmi2Error, "max_iterations must be >= 0 (0: Newton to convergence)");
+      instance.parameters.max_iterations = value[i];
+      instance.tire_current = false;
+    }
+    return fmi2OK;
   });
 }
 

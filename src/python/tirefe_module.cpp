@@ -68,7 +68,7 @@ class Tire {
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
        bool free_spin, const std::string& heading, const std::optional<std::string>& road,
        const std::optional<std::string>& road_track, double road_lateral, double road_start, double road_edge_radius,
-       double start_z) {
+       double start_z, int max_iterations, double max_time, double max_residual) {
     tirefe_options options;
     tirefe_default_options(&options);
     options.friction = friction;
@@ -91,6 +91,14 @@ class Tire {
       status = tirefe_open(source.c_str(), overrides.data(), overrides.size(), &options, &tire_, error, sizeof error);
     }
     check(status, error);
+    if (max_iterations != 0 || max_time != 0.0 || max_residual != 0.0) {
+      const tirefe_step_budget budget{max_iterations, max_time, max_residual};
+      if (tirefe_set_step_budget(tire_, &budget) != TIREFE_OK) {
+        const std::string message = tirefe_message(tire_);
+        tirefe_close(tire_);
+        throw py::value_error(message);
+      }
+    }
     constructed().insert(this);
   }
   ~Tire() {
@@ -109,6 +117,19 @@ class Tire {
   void close() {
     tirefe_close(tire_);
     tire_ = nullptr;
+  }
+
+  py::dict budget_report() {
+    tirefe_budget_report report{};
+    check_call(tirefe_step_budget_report(open(), &report));
+    py::dict answer;
+    answer["steps"] = report.steps;
+    answer["unconverged"] = report.unconverged;
+    answer["worst_residual"] = report.worst_residual;
+    answer["overruns"] = report.overruns;
+    answer["time_misses"] = report.time_misses;
+    answer["worst_time"] = report.worst_time;
+    return answer;
   }
 
   py::tuple solve(double time_step, double x, double z, double spin) {
@@ -464,12 +485,13 @@ forces (Fx, Fz, My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz 
 Usable as a context manager; close() frees it.)")
       .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool, const std::string&,
                     const std::optional<std::string>&, const std::optional<std::string>&, double, double, double,
-                    double>(),
+                    double, int, double, double>(),
            py::arg("source") = "tires.145SR12", py::arg("parameters") = std::map<std::string, double>{},
            py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true,
            py::arg("heading") = "+x", py::arg("road") = py::none(), py::arg("road_track") = py::none(),
            py::arg("road_lateral") = 0.0, py::arg("road_start") = 0.0, py::arg("road_edge_radius") = 0.0,
-           py::arg("start_z") = 0.0,
+           py::arg("start_z") = 0.0, py::arg("max_iterations") = 0, py::arg("max_time") = 0.0,
+           py::arg("max_residual") = 0.0,
            R"(Builds, inflates and puts the tire on its road.
 
 source: a tire property file (.tir) or a shipped parameter module; parameters: overrides by
@@ -480,7 +502,11 @@ OpenCRG road's u) along the heading from road_start and its height 0 where the t
 at z = 0, road_track "left" or "right" for a .rdf or .csv file with two, road_lateral [m]
 the track of a .crg road (its lateral offset from the reference line, left positive; 0: the
 reference line), its convex corners rounded by road_edge_radius [m]; start_z: the spindle's height [m]
-when handed over (pressed quasi-statically from touching).
+when handed over (pressed quasi-statically from touching); max_iterations, max_time [s],
+max_residual: a step budget for real time (tirefe_set_step_budget; 0: none, max_residual
+1e-4): Newton ends after that many iterations or that much wall time at a relative residual
+within max_residual, the step taken unconverged and counted (budget_report); a budget starts
+every step from the zero-acceleration predictor.
 Raises ModelError for a tire that cannot be built, ValueError for bad arguments.)")
       .def("solve", method(&Tire::solve), py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
            R"(Solves the trial step of time_step [s] to the wheel centre's position (x, z, spin).
@@ -501,6 +527,10 @@ path before ended with) to position (x, z, spin) with velocity at the end, along
 that meets both ends; steps that do not converge are halved and grow back. Returns {"time", "steps", "cuts", "newton_iterations"}.
 Raises StepFailed when a step fails even at its smallest: the tire stays at the last step
 it committed.)")
+      .def("budget_report", method(&Tire::budget_report),
+           R"(The committed steps as the step budget saw them: {"steps", "unconverged" (ended by the
+budget), "worst_residual" (their largest |R|/R_ref), "overruns" (more than max_iterations),
+"time_misses" (over max_time), "worst_time" [s]}.)")
       .def("commit", method(&Tire::commit), "Accepts the last trial step: the tire advances to it.")
       .def("revert", method(&Tire::revert), "Forgets the last trial step.")
       .def("state", method(&Tire::state),

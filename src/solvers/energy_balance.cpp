@@ -39,7 +39,7 @@ void EnergyBalance::add_step(const State& old_state, const State& state, double 
   record.dissipated = record.initial + record.external_work - stored.kinetic - stored.strain;
 
   block_forces(state, dashpots_, unstored_);
-  const Eigen::VectorXd step = state.displacement - old_state.displacement;
+  const auto step = state.displacement - old_state.displacement;  // an expression: no allocation per step
   if (carried_.dashpot_forces.size() == step.size() && carried_.unstored_forces.size() == step.size()) {
     record.damping += 0.5 * (carried_.dashpot_forces + dashpots_).dot(step);
     record.unstored_work -= 0.5 * (carried_.unstored_forces + unstored_).dot(step);

@@ -1,5 +1,6 @@
 #include "solvers/newton.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -29,6 +30,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
   report_.residual_only = 0;
   report_.retaken = 0;
   report_.chords = 0;
+  report_.converged = true;
   report_.residual_norms.clear();
   report_.residual_norms.reserve(settings_.max_iterations * (settings_.max_backtracks + 1) + 1);
   double relative_increment = 0.0;
@@ -39,6 +41,14 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
   bool with_tangent = !(settings_.residual_only_when_converging && equations.start_expected_converged());
   bool chord_taken = false;  // in this solve
   const bool may_skip_tangent = settings_.residual_only_when_converging && !equations.wants_converged_tangent();
+  using Clock = std::chrono::steady_clock;
+  const bool timed = settings_.budget_time > 0.0;
+  const Clock::time_point start = timed ? Clock::now() : Clock::time_point{};
+  auto budget_spent = [&] {
+    return (settings_.budget_iterations > 0 && report_.iterations >= settings_.budget_iterations) ||
+           (timed && report_.iterations >= 1 &&
+            std::chrono::duration<double>(Clock::now() - start).count() > settings_.budget_time);
+  };
   for (;;) {
     double force_level = 0.0;
     equations.evaluate(with_tangent, residual_, force_level);
@@ -47,6 +57,7 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     report_.residual_norms.push_back(norm);
     if (report_.iterations == 0) report_.reference_force = std::max({norm, force_level, 1e-300});
     const double relative = norm / report_.reference_force;
+    report_.relative_residual = relative;
     if (settings_.log) *settings_.log << format_norms(report_.iterations, norm, relative, relative_increment);
 
     const bool converged = relative <= settings_.residual_tolerance ||
@@ -71,6 +82,10 @@ const NewtonReport& NewtonSolver::solve(StepEquations& equations, LinearSolver& 
     if (relative > settings_.divergence_ratio)
       throw ConvergenceFailure("Newton iterations diverge (|R|/Rref = " + std::to_string(relative) + " at iteration " +
                                std::to_string(report_.iterations) + ")");
+    if (relative <= settings_.budget_residual && budget_spent()) {
+      report_.converged = false;  // the budget is spent: this state, its residual reported
+      return report_;
+    }
     if (report_.iterations == settings_.max_iterations)
       throw ConvergenceFailure("no convergence in " + std::to_string(settings_.max_iterations) +
                                " Newton iterations (|R|/Rref = " + std::to_string(relative) + ")");

@@ -26,6 +26,13 @@
 // converge (StepEquations::start_expected_converged(): a trial moved by its linear
 // response); then the residual alone, and the same state again with the tangent if it
 // does not converge. NewtonSettings::residual_only_when_converging turns off both.
+//
+// A step budget (real-time hosts): once budget_iterations increments are taken, or after
+// the first one once budget_time seconds of wall time have passed, the solve ends at the
+// state just evaluated when its residual is within budget_residual (NewtonReport::converged
+// false, its residual reported); above that it goes on as plain Newton does. An
+// unconverged state's error feeds the next step's accelerations (over h^2): the bound keeps
+// it small enough that it dies out rather than grows.
 #pragma once
 
 #include <Eigen/Dense>
@@ -51,6 +58,9 @@ struct NewtonSettings {
   int line_search_from = 2;  // increments taken whole before backtracking starts
   int max_backtracks = 4;
   bool residual_only_when_converging = true;  // the last evaluation, or an expected start, without the tangent (above)
+  int budget_iterations = 0;                  // a step budget (above); 0: none
+  double budget_time = 0.0;                   // [s] of wall time per solve; 0: none
+  double budget_residual = 1e-4;              // the largest |R|/R_ref a budget ends a solve with
   std::ostream* log = nullptr;                // per-iteration lines when set
 };
 
@@ -61,6 +71,8 @@ struct NewtonReport {
   int retaken = 0;        // of those, the ones that did not converge: evaluated again with the tangent
   int chords = 0;         // increments with the last factors (after a residual-only evaluation)
   double reference_force = 0.0;
+  bool converged = true;               // false: a step budget ended the solve unconverged
+  double relative_residual = 0.0;      // |R| / R_ref of the last evaluation
   std::vector<double> residual_norms;  // |R| at each evaluation, the last one converged
 };
 
