@@ -42,11 +42,13 @@ enum Reference : fmi2ValueReference {
   kHhtAlpha = 13,
   kMaxStep = 15,
   kRoadEdgeRadius = 16,
+  kRhoInf = 17,
   kFreeSpin = 14,  // Boolean parameter
   kTire = 20,      // String parameters
   kRoad = 21,
   kRoadTrack = 22,
-  kTireParameters = 23
+  kTireParameters = 23,
+  kIntegrator = 24
 };
 
 // The FMI 2.0 co-simulation states (section 4.2.4) an instance is in.
@@ -64,9 +66,9 @@ const char* phase_name(Phase phase) {
 
 /// The parameters with their start values (modelDescription.xml's).
 struct Parameters {
-  std::string tire = "145SR12.tir", road, road_track, tire_parameters;
+  std::string tire = "145SR12.tir", road, road_track, tire_parameters, integrator;
   double pressure = 0.0;  // 0: the tire file's
-  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0;
+  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0, rho_inf = 0.9;
   bool free_spin = true;
 };
 
@@ -103,7 +105,7 @@ struct Instance {
   tirefe_tire* tire = nullptr;
   bool tire_current = false;  // built with the parameters and inputs set now
   std::set<SavedInstance*> states;
-  std::string string_value[4];  // what fmi2GetString hands out
+  std::string string_value[5];  // what fmi2GetString hands out
 };
 
 // Every live instance: a call with anything else (a freed instance, a stray pointer, NULL)
@@ -199,6 +201,8 @@ fmi2Status build_tire(Instance& instance) {
   tirefe_default_options(&options);
   options.friction = p.friction;
   options.hht_alpha = p.hht_alpha;
+  options.integrator = p.integrator.empty() ? nullptr : p.integrator.c_str();
+  options.rho_inf = p.rho_inf;
   options.free_spin = p.free_spin ? 1 : 0;
   options.road = road.empty() ? nullptr : road.c_str();
   options.road_track = p.road_track.empty() ? nullptr : p.road_track.c_str();
@@ -237,6 +241,7 @@ double* real_variable(Instance& instance, fmi2ValueReference reference) {
     case kHhtAlpha: return &p.hht_alpha;
     case kMaxStep: return &p.max_step;
     case kRoadEdgeRadius: return &p.road_edge_radius;
+    case kRhoInf: return &p.rho_inf;
     default: return nullptr;
   }
 }
@@ -248,6 +253,7 @@ std::string* string_variable(Instance& instance, fmi2ValueReference reference) {
     case kRoad: return &p.road;
     case kRoadTrack: return &p.road_track;
     case kTireParameters: return &p.tire_parameters;
+    case kIntegrator: return &p.integrator;
     default: return nullptr;
   }
 }

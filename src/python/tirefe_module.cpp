@@ -67,7 +67,8 @@ class Tire {
  public:
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
        bool free_spin, const std::string& heading, const std::optional<std::string>& road,
-       const std::optional<std::string>& road_track, double road_start, double road_edge_radius, double start_z) {
+       const std::optional<std::string>& road_track, double road_start, double road_edge_radius, double start_z,
+       const std::optional<std::string>& integrator, double rho_inf) {
     tirefe_options options;
     tirefe_default_options(&options);
     options.friction = friction;
@@ -81,6 +82,8 @@ class Tire {
     options.road_start = road_start;
     options.road_edge_radius = road_edge_radius;
     options.start_z = start_z;
+    options.integrator = integrator ? integrator->c_str() : nullptr;
+    options.rho_inf = rho_inf;
     const std::vector<tirefe_parameter> overrides = parameter_list(parameters);
     char error[512] = "";
     tirefe_status status;
@@ -461,11 +464,13 @@ ISO 8855 wheel axes (x the heading, z up, y the spin axis): motions (x, z, spin)
 forces (Fx, Fz, My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz > 0).
 Usable as a context manager; close() frees it.)")
       .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool, const std::string&,
-                    const std::optional<std::string>&, const std::optional<std::string>&, double, double, double>(),
+                    const std::optional<std::string>&, const std::optional<std::string>&, double, double, double,
+                    const std::optional<std::string>&, double>(),
            py::arg("source") = "tires.145SR12", py::arg("parameters") = std::map<std::string, double>{},
            py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true,
            py::arg("heading") = "+x", py::arg("road") = py::none(), py::arg("road_track") = py::none(),
            py::arg("road_start") = 0.0, py::arg("road_edge_radius") = 0.0, py::arg("start_z") = 0.0,
+           py::arg("integrator") = py::none(), py::arg("rho_inf") = 0.9,
            R"(Builds, inflates and puts the tire on its road.
 
 source: a tire property file (.tir) or a shipped parameter module; parameters: overrides by
@@ -474,7 +479,9 @@ HHT; free_spin: the wheel turns freely (My = 0) or the spin is given; heading: "
 road: None (flat) or a road file (.rdf, .csv), its x along the heading from road_start and
 its height 0 where the tire touches at z = 0, road_track "left" or "right" for a file with
 two, its convex corners rounded by road_edge_radius [m]; start_z: the spindle's height [m]
-when handed over (pressed quasi-statically from touching).
+when handed over (pressed quasi-statically from touching); integrator: None (hht_alpha
+decides) or a scheme by name, "newmark", "hht", "wbz" or "generalized_alpha" (the last two
+with rho_inf in [0, 1]).
 Raises ModelError for a tire that cannot be built, ValueError for bad arguments.)")
       .def("solve", method(&Tire::solve), py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
            R"(Solves the trial step of time_step [s] to the wheel centre's position (x, z, spin).

@@ -29,6 +29,8 @@ class Tire:
         road_start: float = 0.0,
         road_edge_radius: float = 0.0,
         start_z: float = 0.0,
+        integrator: Optional[str] = None,
+        rho_inf: float = 0.9,
     ) -> None: ...
     def solve(
         self, time_step: float, x: float, z: float, spin: float = 0.0
