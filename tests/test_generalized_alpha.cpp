@@ -3,7 +3,8 @@
 // single-DOF oscillator (Chung & Hulbert 1993), its spectral radius at omega h -> infinity
 // and at 0.1, 1, 10 and the leading term of the period error; each against an
 // amplification matrix built here from the convention and against runs of the
-// integrator itself. Also the registry's names, a checkpoint's round trip and the deck.
+// integrator itself. Also the registry's names, a checkpoint's round trip, the deck and
+// docs/dynamics.md's example of a new preset.
 #include <catch2/catch.hpp>
 
 #include <Eigen/Eigenvalues>
@@ -15,6 +16,7 @@
 
 #include "deck_support.hpp"
 #include "elements/point_mass.hpp"
+#include "io/checkpoint.hpp"
 #include "solvers/analysis.hpp"
 #include "test_support.hpp"
 
@@ -268,7 +270,7 @@ TEST_CASE("relative period error at small omega h: closed form's leading term, t
   }
 }
 
-TEST_CASE("a generalized-alpha analysis continues from a snapshot as it would have run on; reactions are physical",
+TEST_CASE("a generalized-alpha analysis continues from a checkpoint as it would have run on; reactions are physical",
           "[dynamics][integrator]") {
   // A damped oscillator, and a second grounded spring-mass node moved by a prescribed
   // motion: its reaction is the physical residual the step equations are turned into.
@@ -294,7 +296,14 @@ TEST_CASE("a generalized-alpha analysis continues from a snapshot as it would ha
     analysis->set_initial_velocity(dof_index(0, kUx), 1.0);
   }
   whole.advance(1.0);
-  const CarriedState halfway = whole.snapshot();
+  // Through a checkpoint file: alpha_m and M a_n are among the fields it keeps.
+  testing::TempDir folder;
+  const std::string file = folder.path("halfway.ckpt.h5");
+  io::write_checkpoint(file, io::capture_checkpoint(whole, nullptr, 1, "generalized-alpha"));
+  const CarriedState halfway = io::read_checkpoint(file).analysis;
+  CHECK(halfway.integrator == scheme.record());
+  CHECK(halfway.integrator.alpha_m == Approx(0.2 / 1.6).epsilon(1e-15));  // (2 rho - 1)/(rho + 1)
+  CHECK(halfway.old_inertia_forces.size() == whole_model.mesh().dof_count());
   whole.advance(1.0);
   resumed.restore(halfway);
   resumed.advance(1.0);
@@ -306,7 +315,7 @@ TEST_CASE("a generalized-alpha analysis continues from a snapshot as it would ha
   CHECK(whole.reactions()[dof_index(1, kUx)] ==
         Approx(3.0 * state.acceleration[dof_index(1, kUx)] + 50.0 * state.displacement[dof_index(1, kUx)])
             .epsilon(1e-12));
-  // A snapshot of another scheme is refused.
+  // A checkpoint of another scheme is refused.
   Model other_model;
   build(other_model);
   Analysis other(other_model);
