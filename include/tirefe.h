@@ -80,6 +80,11 @@ typedef struct tirefe_options {
   double road_edge_radius; /* rounding of the road's convex corners [m] (default 0) */
   double start_z;          /* where the host takes the spindle over: the tire is pressed quasi-statically from
                               touching the road to this height [m] (default 0), its spin and x as built */
+  const char* integrator;  /* NULL (default): hht_alpha decides. Else a scheme by name (docs/dynamics.md):
+                              "newmark" (average acceleration), "hht" (with hht_alpha), "wbz" or
+                              "generalized_alpha" (with rho_inf) */
+  double rho_inf;          /* wbz and generalized_alpha: spectral radius at omega h -> infinity, in [0, 1]
+                              (default 0.9) */
 } tirefe_options;
 
 /* The spindle at the end of the step to solve: the step h from the committed time and

@@ -29,17 +29,27 @@ function stepping.run(model, args)
   return record, totals
 end
 
--- Sets the model's time integrator by name: "hht" with args.alpha, or "newmark" with
+-- The model:integrator arguments of each scheme from a deck's parameters: "newmark" with
 -- args.gamma and beta = (gamma + 1/2)^2 / 4 (unconditionally stable, dissipative for
--- gamma > 1/2). Any other name is an error.
+-- gamma > 1/2), "hht" with args.alpha, "wbz" and "generalized_alpha" with args.rho_inf.
+local schemes = {
+  newmark = function(args) return { type = "newmark", gamma = args.gamma, beta = (args.gamma + 0.5) ^ 2 / 4 } end,
+  hht = function(args) return { type = "hht", alpha = args.alpha } end,
+  wbz = function(args) return { type = "wbz", rho_inf = args.rho_inf } end,
+  generalized_alpha = function(args) return { type = "generalized_alpha", rho_inf = args.rho_inf } end,
+}
+
+-- Sets the model's time integrator by name (args.type); any other name is an error.
 function stepping.integrator(model, args)
-  if args.type == "hht" then
-    model:integrator{ type = "hht", alpha = args.alpha }
-  elseif args.type == "newmark" then
-    model:integrator{ type = "newmark", gamma = args.gamma, beta = (args.gamma + 0.5) ^ 2 / 4 }
-  else
-    error("parameter integrator must be hht or newmark, not '" .. args.type .. "'")
+  local arguments = schemes[args.type]
+  if not arguments then
+    local names = {}
+    for name in pairs(schemes) do names[#names + 1] = name end
+    table.sort(names)
+    error("parameter integrator must be one of " .. table.concat(names, ", ") .. ", not '" .. tostring(args.type)
+          .. "'")
   end
+  model:integrator(arguments(args))
 end
 
 -- Writes the totals as results NAME_steps, NAME_newton_iterations, NAME_cpu_time and prints them.

@@ -112,20 +112,7 @@ double spectral_radius(const Eigen::Matrix3d& map) {
 /// Algorithmic damping ratio of a root lambda = exp(omega_bar h (-xi_bar +- i)).
 double damping_ratio(std::complex<double> root) { return -std::log(std::abs(root)) / std::arg(root); }
 
-/// Least-squares fit of u_{n+2} = p u_{n+1} - q u_n over samples [first, end): a free
-/// response made of one complex pair lambda has p = 2 Re(lambda), q = |lambda|^2.
-std::complex<double> fitted_root(const std::vector<double>& u, int first) {
-  const int rows = static_cast<int>(u.size()) - 2 - first;
-  Eigen::MatrixXd basis(rows, 2);
-  Eigen::VectorXd target(rows);
-  for (int r = 0; r < rows; ++r) {
-    basis.row(r) << u[first + r + 1], -u[first + r];
-    target[r] = u[first + r + 2];
-  }
-  const Eigen::Vector2d pq = basis.colPivHouseholderQr().solve(target);
-  const double modulus = std::sqrt(pq[1]);
-  return std::polar(modulus, std::acos(std::clamp(pq[0] / (2.0 * modulus), -1.0, 1.0)));
-}
+using testing::fitted_root;
 
 BeamSection slender_section(double bending_stiffness, double mass_per_length, double stiffness_ratio, double length) {
   BeamSection section;
@@ -325,7 +312,7 @@ TEST_CASE("Newmark and HHT accept exactly their unconditionally stable parameter
 
 TEST_CASE("the registry makes each scheme; its factors, predictor and rate changes are the closed forms",
           "[dynamics][integrator]") {
-  CHECK(integrator_names() == std::vector<std::string>{"static", "newmark", "hht"});
+  CHECK(integrator_names() == std::vector<std::string>{"static", "newmark", "hht", "wbz", "generalized_alpha"});
   IntegratorParameters parameters;
   parameters.beta = 0.3;
   parameters.gamma = 0.6;

@@ -302,13 +302,24 @@ def test_python_driver(folder):
         result = fmu.simulate(case.duration, 2e-3, signals)
     for name in ("time", "Fx", "Fz", "My"):
         assert np.array_equal(result[name], master[name]), name
-    with tirefe.Fmu(TIREFE) as fmu:
-        fmu.set(tire="no_such.tir")
-        try:
-            fmu.initialize()
-            raise AssertionError("a missing tire file was taken")
-        except tirefe.FmuError as error:
-            assert error.status == "Error" and "no_such.tir" in str(error), error
+    with tirefe.Fmu(TIREFE) as fmu:  # the tire's integrator by name
+        fmu.set(integrator="generalized_alpha", rho_inf=0.8)
+        fmu.initialize()
+        assert fmu.get("integrator") == "generalized_alpha" and fmu.get("rho_inf") == 0.8
+    def refusal(**settings):
+        """The FmuError of initialize() with these parameters."""
+        with tirefe.Fmu(TIREFE) as fmu:
+            fmu.set(**settings)
+            try:
+                fmu.initialize()
+            except tirefe.FmuError as error:
+                return error
+        raise AssertionError(f"initialized with {settings}")
+    error = refusal(integrator="generalised_alpha")
+    assert "no integrator named 'generalised_alpha' (known: static, newmark, hht, wbz, generalized_alpha)" in str(
+        error), error
+    error = refusal(tire="no_such.tir")
+    assert error.status == "Error" and "no_such.tir" in str(error), error
     try:
         tirefe.Fmu(os.path.join(SOURCE, "README.md"))
         raise AssertionError("a text file was loaded as an FMU")

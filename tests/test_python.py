@@ -77,6 +77,30 @@ def test_tire_class(folder):
         assert isinstance(error, RuntimeError) and "k_sww" in str(error), error
 
 
+def test_integrator_by_name(folder):
+    """The tire's integrator by name: "hht" with hht_alpha is the scheme hht_alpha alone
+    gives (the same forces, bit for bit); generalized-alpha with rho_inf steps; a misspelt
+    name is refused with the known ones."""
+    tirefe = module()
+    forces = []
+    for options in ({"hht_alpha": -0.1}, {"integrator": "hht", "hht_alpha": -0.1},
+                    {"integrator": "generalized_alpha", "rho_inf": 0.8}):
+        with tirefe.Tire("tires.145SR12", **options) as tire:
+            for step in range(1, 5):
+                force, _ = tire.solve(1e-3, 0.0, -0.25e-3 * step)
+                tire.commit()
+            forces.append(force)
+    assert np.array_equal(forces[0], forces[1]), forces
+    assert np.all(np.isfinite(forces[2])) and forces[2][1] * forces[0][1] > 0, forces
+    assert not np.array_equal(forces[2], forces[0]), forces
+    try:
+        tirefe.Tire("tires.145SR12", integrator="generalised_alpha")
+        raise AssertionError("a misspelt integrator was taken")
+    except tirefe.ModelError as error:
+        assert "no integrator named 'generalised_alpha' (known: static, newmark, hht, wbz, generalized_alpha)" in str(
+            error), error
+
+
 def test_errors_say_why(folder):
     """A commit without a trial says so (the message was read before the call that wrote
     it: freed memory, RuntimeError('-')); a Tire whose __init__ never ran raises instead of

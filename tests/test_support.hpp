@@ -11,6 +11,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <complex>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -260,6 +261,21 @@ inline CommandResult run_command(const std::string& command) {
   while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
+}
+
+/// Least-squares fit of u_{n+2} = p u_{n+1} - q u_n over samples [first, end): a free
+/// response made of one complex pair lambda has p = 2 Re(lambda), q = |lambda|^2.
+inline std::complex<double> fitted_root(const std::vector<double>& u, int first) {
+  const int rows = static_cast<int>(u.size()) - 2 - first;
+  Eigen::MatrixXd basis(rows, 2);
+  Eigen::VectorXd target(rows);
+  for (int r = 0; r < rows; ++r) {
+    basis.row(r) << u[first + r + 1], -u[first + r];
+    target[r] = u[first + r + 2];
+  }
+  const Eigen::Vector2d pq = basis.colPivHouseholderQr().solve(target);
+  const double modulus = std::sqrt(pq[1]);
+  return std::polar(modulus, std::acos(std::clamp(pq[0] / (2.0 * modulus), -1.0, 1.0)));
 }
 
 /// A fresh temporary folder, removed with its contents at scope exit.

@@ -411,7 +411,12 @@ std::unique_ptr<OpenTire> open_tire(const char* source, const std::vector<Parame
                        " m: " + failure.what());
     }
   }
-  const Integrator integrator = Integrator::hht_or_average_acceleration(options.hht_alpha);
+  IntegratorParameters scheme;
+  scheme.alpha = options.hht_alpha;
+  scheme.rho_inf = options.rho_inf;
+  const Integrator integrator = options.integrator && *options.integrator
+                                    ? make_integrator(options.integrator, scheme)
+                                    : Integrator::hht_or_average_acceleration(options.hht_alpha);
   handle->spindle = &handle->tire->drive(integrator, options.free_spin ? SpinMode::Free : SpinMode::Driven);
   handle->analysis = &handle->tire->analysis();
   handle->spindle_node = handle->tire->tire().spindle;
@@ -642,6 +647,8 @@ void tirefe_default_options(tirefe_options* options) {
   options->road_start = 0.0;
   options->road_edge_radius = 0.0;
   options->start_z = 0.0;
+  options->integrator = nullptr;
+  options->rho_inf = 0.9;
 }
 
 tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides, size_t count,

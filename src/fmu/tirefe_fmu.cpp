@@ -43,6 +43,7 @@ enum Reference : fmi2ValueReference {
   kMaxStep = 15,
   kRoadEdgeRadius = 16,
   kRoadLateral = 24,
+  kRhoInf = 25,
   kMaxTime = 18,
   kMaxResidual = 19,
   kMaxIterations = 17,  // Integer parameter
@@ -50,7 +51,8 @@ enum Reference : fmi2ValueReference {
   kTire = 20,           // String parameters
   kRoad = 21,
   kRoadTrack = 22,
-  kTireParameters = 23
+  kTireParameters = 23,
+  kIntegrator = 26
 };
 
 // The FMI 2.0 co-simulation states (section 4.2.4) an instance is in.
@@ -68,9 +70,9 @@ const char* phase_name(Phase phase) {
 
 /// The parameters with their start values (modelDescription.xml's).
 struct Parameters {
-  std::string tire = "145SR12.tir", road, road_track, tire_parameters;
+  std::string tire = "145SR12.tir", road, road_track, tire_parameters, integrator;
   double pressure = 0.0;  // 0: the tire file's
-  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0, road_lateral = 0.0;
+  double friction = 0.8, hht_alpha = -0.1, max_step = 5e-4, road_edge_radius = 0.0, road_lateral = 0.0, rho_inf = 0.9;
   double max_time = 0.0, max_residual = 0.0;  // the step budget (tirefe_set_step_budget); 0: none
   int max_iterations = 0;                     // 0: Newton to convergence
   bool free_spin = true;
@@ -109,7 +111,7 @@ struct Instance {
   tirefe_tire* tire = nullptr;
   bool tire_current = false;  // built with the parameters and inputs set now
   std::set<SavedInstance*> states;
-  std::string string_value[4];  // what fmi2GetString hands out
+  std::string string_value[kIntegrator - kTire + 1];  // what fmi2GetString hands out, by value reference
 };
 
 // Every live instance: a call with anything else (a freed instance, a stray pointer, NULL)
@@ -205,6 +207,8 @@ fmi2Status build_tire(Instance& instance) {
   tirefe_default_options(&options);
   options.friction = p.friction;
   options.hht_alpha = p.hht_alpha;
+  options.integrator = p.integrator.empty() ? nullptr : p.integrator.c_str();
+  options.rho_inf = p.rho_inf;
   options.free_spin = p.free_spin ? 1 : 0;
   options.road = road.empty() ? nullptr : road.c_str();
   options.road_track = p.road_track.empty() ? nullptr : p.road_track.c_str();
@@ -250,6 +254,7 @@ double* real_variable(Instance& instance, fmi2ValueReference reference) {
     case kRoadLateral: return &p.road_lateral;
     case kMaxTime: return &p.max_time;
     case kMaxResidual: return &p.max_residual;
+    case kRhoInf: return &p.rho_inf;
     default: return nullptr;
   }
 }
@@ -261,6 +266,7 @@ std::string* string_variable(Instance& instance, fmi2ValueReference reference) {
     case kRoad: return &p.road;
     case kRoadTrack: return &p.road_track;
     case kTireParameters: return &p.tire_parameters;
+    case kIntegrator: return &p.integrator;
     default: return nullptr;
   }
 }

@@ -157,6 +157,7 @@ int integrator_macro(lua_State*, DeckModel& deck, const MacroArguments& argument
   parameters.beta = arguments.number("beta");
   parameters.gamma = arguments.number("gamma");
   parameters.alpha = arguments.number("alpha");
+  parameters.rho_inf = arguments.number("rho_inf");
   parameters.predictor = predictor_named(arguments.string("predictor"));
   deck.analysis().set_integrator(make_integrator(arguments.string("type"), parameters));
   return 0;
@@ -555,11 +556,14 @@ void add_model_macros(MacroTable& table) {
        "model:load{ node = tip, fy = -10.0 }"},
       load_macro);
   add({"integrator",
-       "Chooses the solution procedure: quasi-static, Newmark or HHT-alpha (docs/dynamics.md).",
-       {{"type", VT::String, true, "", "static, newmark or hht", std::nullopt, Range::Any, integrator_names()},
+       "Chooses the solution procedure: quasi-static or a generalized-alpha preset (docs/dynamics.md).",
+       {{"type", VT::String, true, "", "quasi-static or a generalized-alpha preset", std::nullopt, Range::Any,
+         integrator_names()},
         {"beta", VT::Number, false, "", "Newmark beta", std::string("0.25"), Range::Positive},
         {"gamma", VT::Number, false, "", "Newmark gamma", std::string("0.5"), Range::Positive},
         {"alpha", VT::Number, false, "", "HHT alpha in [-1/3, 0]", std::string("-0.05")},
+        {"rho_inf", VT::Number, false, "", "wbz and generalized_alpha: spectral radius at omega h -> infinity, [0, 1]",
+         std::string("0.9")},
         {"predictor", VT::String, false, "",
          "start of each step: same_acceleration (smooth motion), zero_acceleration (accelerations that jump, "
          "as in a contact patch rolling at speed) or same_displacement",

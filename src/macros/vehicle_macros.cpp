@@ -195,7 +195,7 @@ VehicleCorners corners_of(lua_State* L, const MacroArguments& arguments) {
   return read;
 }
 
-/// The vehicle integrates as its tires do: Newmark (alpha = 0) or HHT with the same alpha.
+/// The vehicle integrates as its tires do, with their scheme.
 VehicleSettings settings_of(const MacroArguments& arguments, const std::vector<DeckModel*>& decks) {
   const bool threads = arguments.boolean("threads");
   for (DeckModel* deck : decks)
@@ -206,12 +206,10 @@ VehicleSettings settings_of(const MacroArguments& arguments, const std::vector<D
     if (!deck->analysis().integrator().same_scheme(scheme))
       throw ModelError("every corner's tire needs the same integrator (model:integrator{...})");
   // A quasi-static tire is refused where it is driven (it has no rates).
-  const std::optional<double> alpha = scheme.is_dynamic() ? scheme.hht_alpha() : 0.0;
-  if (!alpha)
-    throw ModelError("the vehicle integrates with HHT or Newmark average acceleration: give the tires one of them");
   VehicleSettings settings;
+  // The body keeps the default predictor (its motion is smooth), whatever the tires start from.
+  if (scheme.is_dynamic()) settings.scheme = scheme.with_predictor(Integrator::Predictor::SameAcceleration);
   settings.gravity = arguments.number("gravity");
-  settings.alpha = *alpha;
   settings.residual_tolerance = arguments.number("tolerance");
   settings.jacobian = arguments.string("jacobian") == "direct" ? SpindleJacobianSource::Direct
                                                                : SpindleJacobianSource::FiniteDifference;
@@ -402,7 +400,7 @@ void add_vehicle_macros(MacroTable& table) {
         "pitch and roll) and corners, each a wheel carrier on a suspension (spring table or rate, damper table or "
         "rate, jounce bumper, fore-aft bushing) riding on the tire of its own model (tirefe.model{...} with "
         "model:tire, a road and contact, pressed and made dynamic; its spindle then spins freely). The vehicle "
-        "integrates like its tires (HHT or Newmark), each corrector iteration asking every tire for its spindle "
+        "integrates like its tires (their generalized-alpha scheme), each corrector iteration asking every tire for its spindle "
         "force and Jacobian, the tires in concurrent threads. Every corner's result file gets the channels "
         "vehicle_heave (and _pitch, _roll), jounce, wheel_z, wheel_x. Returns {steps, corrector_iterations, "
         "tire_solves, tire_newton_iterations, cuts, backtracks, wall_time, time, heave, pitch, roll, "

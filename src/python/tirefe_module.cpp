@@ -68,7 +68,8 @@ class Tire {
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
        bool free_spin, const std::string& heading, const std::optional<std::string>& road,
        const std::optional<std::string>& road_track, double road_lateral, double road_start, double road_edge_radius,
-       double start_z, int max_iterations, double max_time, double max_residual) {
+       double start_z, int max_iterations, double max_time, double max_residual,
+       const std::optional<std::string>& integrator, double rho_inf) {
     tirefe_options options;
     tirefe_default_options(&options);
     options.friction = friction;
@@ -83,6 +84,8 @@ class Tire {
     options.road_start = road_start;
     options.road_edge_radius = road_edge_radius;
     options.start_z = start_z;
+    options.integrator = integrator ? integrator->c_str() : nullptr;
+    options.rho_inf = rho_inf;
     const std::vector<tirefe_parameter> overrides = parameter_list(parameters);
     char error[512] = "";
     tirefe_status status;
@@ -485,13 +488,13 @@ forces (Fx, Fz, My) [N, N, N m] the tire exerts on the wheel (a loaded tire: Fz 
 Usable as a context manager; close() frees it.)")
       .def(py::init<const std::string&, const std::map<std::string, double>&, double, double, bool, const std::string&,
                     const std::optional<std::string>&, const std::optional<std::string>&, double, double, double,
-                    double, int, double, double>(),
+                    double, int, double, double, const std::optional<std::string>&, double>(),
            py::arg("source") = "tires.145SR12", py::arg("parameters") = std::map<std::string, double>{},
            py::arg("friction") = 0.8, py::arg("hht_alpha") = 0.0, py::arg("free_spin") = true,
            py::arg("heading") = "+x", py::arg("road") = py::none(), py::arg("road_track") = py::none(),
            py::arg("road_lateral") = 0.0, py::arg("road_start") = 0.0, py::arg("road_edge_radius") = 0.0,
            py::arg("start_z") = 0.0, py::arg("max_iterations") = 0, py::arg("max_time") = 0.0,
-           py::arg("max_residual") = 0.0,
+           py::arg("max_residual") = 0.0, py::arg("integrator") = py::none(), py::arg("rho_inf") = 0.9,
            R"(Builds, inflates and puts the tire on its road.
 
 source: a tire property file (.tir) or a shipped parameter module; parameters: overrides by
@@ -507,6 +510,8 @@ max_residual: a step budget for real time (tirefe_set_step_budget; 0: none, max_
 1e-4): Newton ends after that many iterations or that much wall time at a relative residual
 within max_residual, the step taken unconverged and counted (budget_report); a budget starts
 every step from the zero-acceleration predictor.
+integrator: None (hht_alpha decides) or a scheme by name, "newmark", "hht", "wbz" or
+"generalized_alpha" (the last two with rho_inf in [0, 1]).
 Raises ModelError for a tire that cannot be built, ValueError for bad arguments.)")
       .def("solve", method(&Tire::solve), py::arg("time_step"), py::arg("x"), py::arg("z"), py::arg("spin") = 0.0,
            R"(Solves the trial step of time_step [s] to the wheel centre's position (x, z, spin).

@@ -158,7 +158,8 @@ void Analysis::evaluate(bool with_tangent, Eigen::VectorXd& free_residual, doubl
     assembler_.assemble(context, trial_, residual_all_);
   }
 
-  integrator_.add_load_terms(external_new_, carried_.old_internal_forces, carried_.external_old, residual_all_);
+  integrator_.add_load_terms(external_new_, carried_.old_internal_forces, carried_.old_inertia_forces,
+                             carried_.external_old, residual_all_);
 
   const DofMap& dofs = model_.dof_map();
   free_residual.resize(dofs.equation_count());
@@ -221,12 +222,13 @@ bool Analysis::try_step(double step, double end_time, StepRecord& record) {
   driven_.impose(integrator_, carried_.state, step, trial_);
   model_.external_forces(trial_.time, external_new_);
   if (integrator_.weights_old_forces() && !carried_.old_forces_valid) {
-    // g_n = f_int(u_n) + C v_n at the committed state, for HHT's weighting.
+    // g_n = f_int(u_n) + C v_n (and M a_n) at the committed state, for the weighting.
     EvaluationContext context;
     context.time = carried_.state.time;
     context.factors = Integrator::internal_force_factors();
     context.want_tangent = false;
     assembler_.query(context, carried_.state, carried_.old_internal_forces);
+    if (integrator_.old_inertia_weight() != 0.0) query_inertia_forces(carried_.state, carried_.old_inertia_forces);
     model_.external_forces(carried_.state.time, carried_.external_old);
     carried_.old_forces_valid = true;
   }
@@ -264,15 +266,17 @@ void Analysis::finish_step(double step) {
   // prescribed entries are the reactions: the last Newton evaluation's, as the integrator
   // turns it.
   integrator_.to_physical_residual(
-      carried_.external_old, external_new_, carried_.old_internal_forces,
-      [this, step](Eigen::VectorXd& internal) {
+      carried_.external_old, external_new_, carried_.old_internal_forces, carried_.old_inertia_forces,
+      [this, step](Eigen::VectorXd& internal, Eigen::VectorXd& inertia) {
         // The last Newton evaluation's element forces, here residual_all_ + w_new F_{n+1},
-        // are wK g_{n+1} + wM M a_{n+1} (wK = wC): g_{n+1} follows from the masses alone.
+        // are wK g_{n+1} + wM M a_{n+1} (wK = wC): either part follows from the other.
         const IntegratorFactors weights = integrator_.factors(step);
+        const bool with_inertia = integrator_.old_inertia_weight() != 0.0;
         if (weights.force_damping == weights.force_stiffness && assembler_.inertia_forces(trial_, inertia_forces_)) {
           internal =
               (residual_all_ + integrator_.new_force_weight() * external_new_ - weights.force_mass * inertia_forces_) /
               weights.force_stiffness;
+          if (with_inertia) inertia = inertia_forces_;
           return;
         }
         EvaluationContext context;
@@ -281,6 +285,10 @@ void Analysis::finish_step(double step) {
         context.want_tangent = false;
         context.factors = Integrator::internal_force_factors();
         assembler_.assemble(context, trial_, internal);
+        if (with_inertia)
+          inertia =
+              (residual_all_ + integrator_.new_force_weight() * external_new_ - weights.force_stiffness * internal) /
+              weights.force_mass;
       },
       residual_all_);
   const double work =
@@ -297,6 +305,15 @@ void Analysis::finish_step(double step) {
   carried_.old_forces_valid = integrator_.weights_old_forces();
   ++carried_.accepted_steps;
   energy_.add_step(trial_, carried_.state, work);  // trial_ holds the old state now
+}
+
+void Analysis::query_inertia_forces(const State& state, Eigen::VectorXd& inertia) {
+  if (assembler_.inertia_forces(state, inertia)) return;
+  EvaluationContext context;
+  context.time = state.time;
+  context.factors = IntegratorFactors::inertia_force();
+  context.want_tangent = false;
+  assembler_.query(context, state, inertia);
 }
 
 void Analysis::restart_energy_balance() {
@@ -487,7 +504,8 @@ void Analysis::restore(const CarriedState& s) {
   const int dofs = model_.mesh().dof_count();
   CarriedState::for_each_field(s, [&s, dofs](const char*, const auto& field) {
     if constexpr (std::is_same_v<std::decay_t<decltype(field)>, Eigen::VectorXd>)
-      if (field.size() != dofs && (&field != &s.old_internal_forces || s.old_forces_valid))
+      if (field.size() != dofs && (&field != &s.old_internal_forces || s.old_forces_valid) &&
+          (&field != &s.old_inertia_forces || (s.old_forces_valid && s.integrator.alpha_m != 0.0)))
         throw ModelError("the checkpoint holds " + std::to_string(field.size()) + " DOFs, the model has " +
                          std::to_string(dofs));
   });

@@ -154,6 +154,8 @@ class Analysis : private StepEquations, private SteppedSystem {
  private:
   void prepare();
   void size_state();
+  /// M a at 'state' (generalized-alpha's old inertia force).
+  void query_inertia_forces(const State& state, Eigen::VectorXd& inertia);
   void start_steps();
   // SteppedSystem
   double time() const override { return carried_.state.time; }

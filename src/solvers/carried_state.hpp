@@ -39,10 +39,11 @@ struct CarriedState {
   StepSizes steps;
   Eigen::VectorXd external_old;         // F_n, the loads at the committed time
   Eigen::VectorXd old_internal_forces;  // g_n = f_int(u_n) + C v_n, HHT's weighting
+  Eigen::VectorXd old_inertia_forces;   // M a_n, generalized-alpha's (alpha_m != 0)
   Eigen::VectorXd reactions;            // at prescribed and driven DOFs, zero elsewhere
   Eigen::VectorXd dashpot_forces;       // C v_n of the blocks with dashpots, for the energy balance
   Eigen::VectorXd unstored_forces;      // f_n of the blocks that store no energy, for the energy balance
-  bool old_forces_valid = false;        // old_internal_forces belongs to the committed state
+  bool old_forces_valid = false;        // the old forces belong to the committed state
   bool acceleration_pending = false;    // the committed acceleration is to be put in equilibrium
   bool reactions_valid = false;         // reactions belong to the committed state
   bool energy_started = false;
@@ -87,6 +88,8 @@ struct CarriedState {
     visit("/analysis/reactions_valid", self.reactions_valid);
     visit("/analysis/energy_started", self.energy_started);
     visit("/analysis/integrator_kind", self.integrator.kind);
+    visit("/analysis/alpha_m", self.integrator.alpha_m);
+    visit("/analysis/old_inertia_forces", self.old_inertia_forces);
   }
 };
 

@@ -1,7 +1,7 @@
 // Integrator: the time scheme an Analysis steps with, as a cheap value (a shared, immutable
 // TimeScheme and the predictor that starts each step's Newton iterations). The schemes
 // and their formulas are in integrators/ (time_scheme.hpp: the convention); the deck names
-// them in one registry, integrator_schemes().
+// the generalized-alpha presets in one registry, alpha_presets().
 #pragma once
 
 #include <memory>
@@ -11,7 +11,7 @@
 
 #include "core/element.hpp"
 #include "core/state.hpp"
-#include "solvers/integrators/time_scheme.hpp"
+#include "solvers/integrators/generalized_alpha.hpp"
 
 namespace tirefe {
 
@@ -27,6 +27,8 @@ class Integrator {
   static Integrator newmark(double beta = 0.25, double gamma = 0.5);
   /// HHT-alpha with alpha in [-1/3, 0] (ModelError with the range otherwise).
   static Integrator hht(double alpha);
+  /// Generalized-alpha (Chung-Hulbert) with rho_inf in [0, 1] (ModelError otherwise).
+  static Integrator generalized_alpha(double rho_inf);
   /// HHT-alpha, or Newmark average acceleration for alpha = 0 (a vehicle's schemes).
   static Integrator hht_or_average_acceleration(double alpha) { return alpha == 0.0 ? newmark() : hht(alpha); }
 
@@ -39,11 +41,12 @@ class Integrator {
   bool same_scheme(const Integrator& other) const { return record() == other.record(); }
   /// alpha of an HHT-alpha scheme (Newmark average acceleration: 0), none otherwise.
   std::optional<double> hht_alpha() const { return scheme_->hht_alpha(); }
-  /// The Newmark parameters of the rate formulas and HHT's alpha (quasi-static: average
-  /// acceleration's, unused).
+  /// The Newmark parameters of the rate formulas, HHT's alpha (-alpha_f) and alpha_m
+  /// (quasi-static: average acceleration's, unused).
   double beta() const { return record().beta; }
   double gamma() const { return record().gamma; }
   double alpha() const { return record().alpha; }
+  double alpha_m() const { return record().alpha_m; }
   Predictor predictor() const { return predictor_; }
   /// This scheme with another predictor (the default keeps the acceleration).
   Integrator with_predictor(Predictor predictor) const {
@@ -62,34 +65,43 @@ class Integrator {
   /// Residual g = f_int + C v with the tangent M: the initial acceleration's M a = F - g.
   static IntegratorFactors initial_acceleration_factors();
 
-  /// Weight of the new (t_{n+1}) and old (t_n) force levels: 1 + alpha and -alpha for HHT.
+  /// Weight of the new (t_{n+1}) and old (t_n) force levels: 1 - alpha_f and alpha_f
+  /// (HHT: 1 + alpha and -alpha); the old inertia force's, alpha_m.
   double new_force_weight() const { return scheme_->new_force_weight(); }
   double old_force_weight() const { return scheme_->old_force_weight(); }
-  /// True when the step equations hold the old forces (HHT): g_n must be known.
-  bool weights_old_forces() const { return old_force_weight() != 0.0; }
-  /// Adds the loads to the element forces of the step equations (element forces weighted
-  /// by factors()): - w_new F_{n+1} + w_old (g_n - F_n).
+  double old_inertia_weight() const { return scheme_->old_inertia_weight(); }
+  /// True when the step equations hold old forces (HHT, generalized-alpha): g_n, and M a_n
+  /// for alpha_m != 0, must be known.
+  bool weights_old_forces() const { return old_force_weight() != 0.0 || old_inertia_weight() != 0.0; }
+  /// Adds the loads and the old levels to the element forces of the step equations
+  /// (element forces weighted by factors()): - w_new F_{n+1} + w_old (g_n - F_n) + alpha_m M a_n.
   void add_load_terms(const Eigen::VectorXd& external_new, const Eigen::VectorXd& internal_old,
-                      const Eigen::VectorXd& external_old, Eigen::VectorXd& residual) const {
+                      const Eigen::VectorXd& inertia_old, const Eigen::VectorXd& external_old,
+                      Eigen::VectorXd& residual) const {
     residual -= new_force_weight() * external_new;
-    const double old_weight = old_force_weight();
+    const double old_weight = old_force_weight(), inertia_weight = old_inertia_weight();
     if (old_weight != 0.0) residual += old_weight * (internal_old - external_old);
+    if (inertia_weight != 0.0) residual += inertia_weight * inertia_old;
   }
   /// Turns the converged residual of the step equations into the physical one
   /// M a + g_{n+1} - F_{n+1}, whose prescribed entries are the reactions. With weights
-  /// adding up to one it differs from it by w_old [(g_n - F_n) - (g_{n+1} - F_{n+1})]:
-  /// 'internal' holds g_n on entry and g_{n+1} on return, from one call of
-  /// assemble_internal(internal) (which the next step's weighting needs anyway). Nothing
-  /// to do without old forces.
-  template <class AssembleInternal>
+  /// adding up to one it differs from it by
+  /// w_old [(g_n - F_n) - (g_{n+1} - F_{n+1})] + alpha_m (M a_n - M a_{n+1}):
+  /// 'internal' and 'inertia' hold g_n and M a_n on entry and g_{n+1} and M a_{n+1} on
+  /// return, from one call of assemble(internal, inertia) made when the old levels are
+  /// off the residual (the next step's weighting needs them anyway; 'inertia' only for
+  /// alpha_m != 0). Nothing to do without old forces.
+  template <class AssembleNewLevel>
   void to_physical_residual(const Eigen::VectorXd& external_old, const Eigen::VectorXd& external_new,
-                            Eigen::VectorXd& internal, AssembleInternal&& assemble_internal,
+                            Eigen::VectorXd& internal, Eigen::VectorXd& inertia, AssembleNewLevel&& assemble,
                             Eigen::VectorXd& residual) const {
-    const double old_weight = old_force_weight();
-    if (old_weight == 0.0) return;
-    residual -= old_weight * (internal - external_old);
-    assemble_internal(internal);
-    residual += old_weight * (internal - external_new);
+    const double old_weight = old_force_weight(), inertia_weight = old_inertia_weight();
+    if (old_weight == 0.0 && inertia_weight == 0.0) return;
+    if (old_weight != 0.0) residual -= old_weight * (internal - external_old);
+    if (inertia_weight != 0.0) residual -= inertia_weight * inertia;
+    assemble(internal, inertia);
+    if (old_weight != 0.0) residual += old_weight * (internal - external_new);
+    if (inertia_weight != 0.0) residual += inertia_weight * inertia;
   }
 
   /// Predicts the state at t_n + step from the committed state (every DOF).
@@ -114,17 +126,20 @@ class Integrator {
   Predictor predictor_ = Predictor::SameAcceleration;
 };
 
-/// The deck's integrators by name (model:integrator{ type = ... }): one entry per scheme,
-/// made from the parameters the deck gives.
+/// The deck's integrators by name (model:integrator{ type = ... }, a vehicle's tires, the
+/// C API): "static" and the generalized-alpha presets, made from the parameters given.
 struct IntegratorParameters {
-  double beta = 0.25, gamma = 0.5, alpha = -0.05;
+  double beta = 0.25, gamma = 0.5, alpha = -0.05, rho_inf = 0.9;
   Integrator::Predictor predictor = Integrator::Predictor::SameAcceleration;
 };
-struct IntegratorScheme {
+/// A preset: its name, its checkpoint number (never reused) and its four numbers.
+struct AlphaPreset {
   const char* name;
-  Integrator (*make)(const IntegratorParameters& parameters);
+  int kind;
+  AlphaParameters (*parameters)(const IntegratorParameters& given);
 };
-const std::vector<IntegratorScheme>& integrator_schemes();
+const std::vector<AlphaPreset>& alpha_presets();
+/// "static" and the presets' names.
 std::vector<std::string> integrator_names();
 /// ModelError naming the known schemes for an unknown name.
 Integrator make_integrator(const std::string& name, const IntegratorParameters& parameters);

@@ -24,7 +24,7 @@ Vehicle::Vehicle(Body body, std::vector<Corner> corners, TireExchange& tires, Ve
       corners_(std::move(corners)),
       tires_(tires),
       settings_(settings),
-      integrator_(Integrator::hht_or_average_acceleration(settings.alpha)) {
+      integrator_(settings.scheme ? *settings.scheme : Integrator::hht_or_average_acceleration(settings.alpha)) {
   if (corners_.empty()) throw ModelError("a vehicle needs at least one corner");
   if (tires_.size() != static_cast<int>(corners_.size()))
     throw ModelError("a vehicle with " + std::to_string(corners_.size()) + " corners needs as many tires (got " +
@@ -209,8 +209,9 @@ bool Vehicle::solve_step(double h) {
       }
     }
     suspension_forces(trial_, forces_);
-    residual_ = mass_.cwiseProduct(trial_.acceleration) + integrator_.new_force_weight() * forces_ +
-                integrator_.old_force_weight() * old_forces_ + weight_;
+    residual_ = mass_.cwiseProduct(factors.force_mass * trial_.acceleration +
+                                   integrator_.old_inertia_weight() * committed_.acceleration) +
+                integrator_.new_force_weight() * forces_ + integrator_.old_force_weight() * old_forces_ + weight_;
     for (int i = 0; i < static_cast<int>(corners_.size()); ++i) {
       residual_[wheel_fore_aft_dof(i)] += replies_[i].force[0];
       residual_[wheel_vertical_dof(i)] += replies_[i].force[1];

@@ -10,18 +10,20 @@
 // a displacement from the design position, where the tires touch the road unloaded.
 // Gravity acts on the body and the carriers (the tires carry no weight).
 //
-// Integration: HHT-alpha (Newmark with alpha = 0), the tires' own scheme, step h.
+// Integration: the tires' own generalized-alpha scheme (Newmark, HHT, ...), step h.
 // Its corrector is Newton on the end-of-step displacements q:
-//     r(q) = M a + (1+alpha) f(q, v) - alpha f_n + W + sum_i P_i^T f_s,i(q) = 0,
-//     J    = M / (beta h^2) + (1+alpha) (K + gamma/(beta h) C) + sum_i P_i^T H_i P_i,
+//     r(q) = M [(1-alpha_m) a + alpha_m a_n] + (1-alpha_f) f(q, v) + alpha_f f_n + W
+//            + sum_i P_i^T f_s,i(q) = 0,
+//     J    = (1-alpha_m) M / (beta h^2) + (1-alpha_f) (K + gamma/(beta h) C) + sum_i P_i^T H_i P_i,
 // with f the suspension forces, W the weights, f_s,i the spindle force of tire i (the
-// force the carrier applies to the tire, HHT-weighted by the tire: docs/spindle.md), P_i
+// force the carrier applies to the tire, weighted by the tire: docs/spindle.md), P_i
 // picking carrier i's (x_w, z_w), and H_i the tire's spindle Jacobian (eq. 27) or, for
 // comparison, its forward finite difference (two more tire solves per tire).
 #pragma once
 
 #include <Eigen/Dense>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +61,8 @@ enum class SpindleJacobianSource { Direct, FiniteDifference };
 
 struct VehicleSettings {
   double gravity = 9.81;             // [m/s^2]
-  double alpha = 0.0;                // HHT alpha, as the tires' integrator
+  double alpha = 0.0;                // HHT alpha, as the tires' integrator (0: Newmark) ...
+  std::optional<Integrator> scheme;  // ... unless the tires' scheme is given here
   double residual_tolerance = 1e-8;  // on |r|_inf / total weight
   int max_iterations = 25;           // corrector iterations before the step is cut
   int max_cuts = 4;                  // halvings of one step

@@ -33,6 +33,8 @@ class Tire:
         max_iterations: int = 0,
         max_time: float = 0.0,
         max_residual: float = 0.0,
+        integrator: Optional[str] = None,
+        rho_inf: float = 0.9,
     ) -> None: ...
     def solve(
         self, time_step: float, x: float, z: float, spin: float = 0.0

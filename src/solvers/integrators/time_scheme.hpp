@@ -1,14 +1,19 @@
-// TimeScheme: one member of the integrators' family (quasi-static, Newmark, HHT-alpha),
-// the step formulas an Analysis asks for. Each scheme is a file pair in this folder and
-// one line of the deck's registry (integrator.cpp); Integrator is the value callers hold.
+// TimeScheme: one member of the integrators' family (quasi-static, or generalized-alpha and
+// its presets Newmark, HHT-alpha, WBZ-alpha), the step formulas an Analysis asks for. The
+// schemes are in this folder; the deck's registry of presets is in integrator.cpp;
+// Integrator is the value callers hold.
 //
-// Convention (Hilber-Hughes-Taylor 1977; Newmark is alpha = 0, quasi-static drops M, C):
-//   M a_{n+1} + (1+alpha) g(u_{n+1}, v_{n+1}) - alpha g(u_n, v_n)
-//       = (1+alpha) F(t_{n+1}) - alpha F(t_n),           g = f_int(u) + C v,
+// Convention (Chung & Hulbert 1993; quasi-static drops M and C):
+//   M a_{n+1-alpha_m} + g(u_{n+1-alpha_f}, v_{n+1-alpha_f}) = F(t_{n+1-alpha_f}),
+//   x_{n+1-alpha} = (1 - alpha) x_{n+1} + alpha x_n,      g = f_int(u) + C v,
+// each force level weighted as a whole (g_{n+1-alpha_f} = (1-alpha_f) g_{n+1} + alpha_f g_n,
+// as HHT does), with Newmark's update formulas
 //   u_{n+1} = u_n + h v_n + h^2 [(1/2 - beta) a_n + beta a_{n+1}],
 //   v_{n+1} = v_n + h [(1 - gamma) a_n + gamma a_{n+1}].
+// Newmark is alpha_m = alpha_f = 0, HHT-alpha alpha_m = 0 and alpha_f = -alpha.
 // Elements see only the weights and tangent factors (element.hpp):
-//   w = (1+alpha, 1+alpha, 1),  c = ((1+alpha), (1+alpha) gamma/(beta h), 1/(beta h^2)).
+//   w = (1-alpha_f, 1-alpha_f, 1-alpha_m),
+//   c = (1-alpha_f, (1-alpha_f) gamma/(beta h), (1-alpha_m)/(beta h^2)).
 // Predictors (the start of each step's Newton iterations):
 //   SameAcceleration  a_{n+1} = a_n: follows smooth motion (a rolling tire, a car body);
 //   ZeroAcceleration  a_{n+1} = 0, u and v from the Newmark formulas: better where
@@ -28,13 +33,16 @@ namespace tirefe {
 
 enum class Predictor { SameAcceleration, ZeroAcceleration, SameDisplacement };
 
-/// What names a scheme in a checkpoint (attributes integrator_kind, beta, gamma, alpha
-/// of docs/restart.md): a restore continues only with the same scheme.
+/// What names a scheme in a checkpoint (attributes integrator_kind, beta, gamma, alpha,
+/// alpha_m of docs/restart.md): a restore continues only with the same scheme.
 struct SchemeRecord {
   int kind = 0;  // each scheme's own number, never reused: files already written hold it
-  double beta = 0.0, gamma = 0.0, alpha = 0.0;
+  double beta = 0.0, gamma = 0.0;
+  double alpha = 0.0;    // -alpha_f: HHT's alpha
+  double alpha_m = 0.0;  // the inertia's
   bool operator==(const SchemeRecord& other) const {
-    return kind == other.kind && beta == other.beta && gamma == other.gamma && alpha == other.alpha;
+    return kind == other.kind && beta == other.beta && gamma == other.gamma && alpha == other.alpha &&
+           alpha_m == other.alpha_m;
   }
   bool operator!=(const SchemeRecord& other) const { return !(*this == other); }
 };
@@ -71,6 +79,8 @@ class TimeScheme {
   /// Weights of the new (t_{n+1}) and old (t_n) force levels; they add up to one.
   virtual double new_force_weight() const { return 1.0; }
   virtual double old_force_weight() const { return 0.0; }
+  /// Weight alpha_m of the old inertia force M a_n (that of M a_{n+1} is 1 - alpha_m).
+  virtual double old_inertia_weight() const { return 0.0; }
 
   /// Predicts the state at t_n + step from the committed state (every DOF).
   virtual void predict(const State& committed, double step, Predictor predictor, State& trial) const = 0;
