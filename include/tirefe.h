@@ -189,7 +189,7 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
                                     tirefe_spindle_force* out);
 
 /* Advances the tire along 'path' in steps of its own, each committed as it converges:
- * equal, at most max_step long (> 0), the last ending on the end; halved when one does not
+ * equal, at most max_step long (> 0) and at least 1e-7 s, the last ending on the end; halved when one does not
  * converge and grown back after easy ones (the step control of docs/dynamics.md, at most
  * 10 cuts). A pending trial step is forgotten first. TIREFE_STEP_FAILED when a step fails
  * even at its smallest: the tire then stays at the last step it committed (report->time),

@@ -306,6 +306,25 @@ static void abuse_steps(void) {
   expect("the message after a success is empty", tirefe_message(tire)[0] == '\0' ? TIREFE_OK : TIREFE_INTERNAL_ERROR,
          TIREFE_OK, NULL, "");
   expect("road level", tirefe_road_level(tire, &level), TIREFE_OK, NULL, "");
+
+  tirefe_spindle_path path = {1e-3, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  EXPECT(tire, "advance along a NULL path", tirefe_advance(tire, NULL, 1e-3, NULL), TIREFE_INVALID_ARGUMENT,
+         "path must not be NULL");
+  EXPECT(tire, "advance with max_step 0", tirefe_advance(tire, &path, 0.0, NULL), TIREFE_INVALID_ARGUMENT,
+         "the path's duration and max_step must be finite numbers > 0");
+  EXPECT(tire, "advance with max_step NaN", tirefe_advance(tire, &path, NAN, NULL), TIREFE_INVALID_ARGUMENT,
+         "max_step must be finite numbers > 0");
+  path.position[1] = NAN;
+  EXPECT(tire, "advance to a NaN height", tirefe_advance(tire, &path, 1e-3, NULL), TIREFE_INVALID_ARGUMENT,
+         "the path's rates and end position must be finite");
+  path.position[1] = 0.0;
+  path.duration = 1e-12;
+  EXPECT(tire, "advance over 1e-12 s", tirefe_advance(tire, &path, 1e-3, NULL), TIREFE_INVALID_ARGUMENT,
+         "a path of 1e-12 s in steps of at most 0.001 s: the time step 1e-12 s is below 1e-07 s");
+  path.duration = 1e-3;
+  EXPECT(tire, "advance in steps of at most 1e-12 s", tirefe_advance(tire, &path, 1e-12, NULL), TIREFE_INVALID_ARGUMENT,
+         "a path of 0.001 s in steps of at most 1e-12 s: the time step 1e-12 s is below");
+  EXPECT(tire, "advance as it should be", tirefe_advance(tire, &path, 1e-3, NULL), TIREFE_OK, "");
 #undef SOLVE
   tirefe_close(tire);
 }

@@ -678,12 +678,17 @@ tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path,
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's duration and max_step must be finite numbers > 0");
     if (!finite(path->start_velocity, 3) || !finite(path->position, 3) || !finite(path->velocity, 3))
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's rates and end position must be finite");
-    if (t.has_trial) t.spindle->revert();
-    t.has_trial = false;
     // Equal steps that end on the stretch's end: a step's size changing from one to the next
     // sets the tire's contact patch ringing (rolling fast, its Fx), so every stretch starts
     // afresh with them, only cut where they do not converge.
     const double count = std::ceil(path->duration / max_step * (1.0 - 1e-12));
+    if (const std::string problem = time_step_problem(path->duration / count); !problem.empty()) {
+      std::ostringstream text;
+      text << "a path of " << path->duration << " s in steps of at most " << max_step << " s: " << problem;
+      return refuse(t, TIREFE_INVALID_ARGUMENT, text.str());
+    }
+    if (t.has_trial) t.spindle->revert();
+    t.has_trial = false;
     StepSizes sizes{path->duration / count, path->duration / count};
     SpindlePath stretch(t, *path);
     StepController controller(sizes);

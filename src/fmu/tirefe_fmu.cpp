@@ -49,6 +49,11 @@ enum Reference : fmi2ValueReference {
   kTireParameters = 23
 };
 
+// The C API's shortest step (include/tirefe.h).
+constexpr double kMinCommunicationStep = 1e-7;
+// The most of the tire's steps one fmi2DoStep may take (some 15 min of stepping).
+constexpr double kMaxTireSteps = 1e6;
+
 // The FMI 2.0 co-simulation states (section 4.2.4) an instance is in.
 enum class Phase { Instantiated, Initializing, Stepping, Terminated };
 
@@ -573,9 +578,20 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
                     "the tire stopped at t = " + seconds(fmu.now.time) +
                         " after a discarded step: restore a saved FMU state, or reset the FMU");
     if (!std::isfinite(t) || !(h > 0.0 && std::isfinite(h)))
+      return report(
+          fmu, fmi2Error,
+          "fmi2DoStep needs a finite time and a finite step > 0 (got t = " + seconds(t) + ", h = " + seconds(h) + ")");
+    if (h < kMinCommunicationStep)
       return report(fmu, fmi2Error,
-                    "fmi2DoStep needs a finite time and a finite step > 0 (got t = " + std::to_string(t) +
-                        ", h = " + std::to_string(h) + ")");
+                    "fmi2DoStep over " + seconds(h) + ": the tire takes no step below " +
+                        seconds(kMinCommunicationStep) + " (round-off swamps its inertia there)");
+    // No one can stop a call (fmi2CancelStep has nothing to cancel): its steps are bounded.
+    if (h / fmu.parameters.max_step > kMaxTireSteps)
+      return report(fmu, fmi2Error,
+                    "fmi2DoStep over " + seconds(h) + " in the tire's steps of at most " +
+                        seconds(fmu.parameters.max_step) +
+                        " would take more than the 1000000 steps one call may take: communicate more often, or "
+                        "set a larger max_step");
     if (std::abs(t - fmu.now.time) > 1e-9 * std::max(1.0, std::abs(t)))
       return report(fmu, fmi2Error,
                     "fmi2DoStep from t = " + seconds(t) + ", but the FMU is at t = " + seconds(fmu.now.time));
