@@ -216,7 +216,8 @@ tirefe_status tirefe_static_forces(const char* source, const tirefe_parameter* o
 
 /* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
  * a host that steps back in time (a co-simulation master repeating a macro step)
- * saves the tire and restores it later. A pending trial step is discarded by a restore.
+ * saves the tire and restores it later, into it or a tire built with the same parameters
+ * (another: TIREFE_INVALID_ARGUMENT). A pending trial step is discarded by a restore.
  * Free the copy with tirefe_free_state. */
 typedef struct tirefe_saved_state tirefe_saved_state;
 tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved);

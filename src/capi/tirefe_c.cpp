@@ -762,6 +762,12 @@ tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* 
     if (t.has_trial) t.spindle->revert();
     t.has_trial = false;
     if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is restored with tirefe --restart");
+    const int nodes = t.analysis->model().mesh().node_count();
+    if (state->checkpoint.node_count != nodes)
+      return refuse(t, TIREFE_INVALID_ARGUMENT,
+                    "saved is the state of another tire (of " + std::to_string(state->checkpoint.node_count) +
+                        " nodes, this one has " + std::to_string(nodes) +
+                        "): restore a state into a tire built with the same parameters");
     io::restore_checkpoint(state->checkpoint, *t.analysis, nullptr);
     return TIREFE_OK;
   });
