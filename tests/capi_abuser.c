@@ -222,6 +222,10 @@ static void abuse_open(void) {
   OPEN_WITH("free_spin 2", "tires.145SR12", NULL, 0, &options, TIREFE_INVALID_ARGUMENT,
             "options.free_spin must be 1 (the wheel turns freely) or 0 (the host drives the spin)");
   tirefe_default_options(&options);
+  options.road_track = "middle";
+  OPEN_WITH("a road track without a road", "tires.145SR12", NULL, 0, &options, TIREFE_INVALID_ARGUMENT,
+            "options.road_track is \"middle\" but options.road names no road file: give both, or neither");
+  tirefe_default_options(&options);
   options.heading = 2;
   OPEN_WITH("heading 2", "tires.145SR12", NULL, 0, &options, TIREFE_INVALID_ARGUMENT, "options.heading must be +1");
 

@@ -90,8 +90,8 @@ static void expect(const char* what, fmi2Status got, fmi2Status expected, const 
   } while (0)
 
 static const fmi2ValueReference X_Z_SPIN[] = {0, 1, 2}, FZ[] = {4}, PRESSURE[] = {10}, FRICTION[] = {12},
-                                MAX_STEP[] = {15}, FREE_SPIN[] = {14}, TIRE[] = {20}, TIRE_PARAMETERS[] = {23},
-                                UNKNOWN[] = {99};
+                                MAX_STEP[] = {15}, FREE_SPIN[] = {14}, TIRE[] = {20}, ROAD_TRACK[] = {22},
+                                TIRE_PARAMETERS[] = {23}, UNKNOWN[] = {99};
 
 static fmi2Component instantiated(void) {
   fmi2Component fmu =
@@ -208,7 +208,11 @@ static void abuse_variables(void) {
         "no settable Real with value reference 4");
   PROBE("fmi2SetReal of NaN", SetReal(fmu, PRESSURE, 1, &not_a_number), fmi2Error,
         "the Real with value reference 10 is not finite");
-  PROBE("fmi2SetReal of max_step 0", SetReal(fmu, MAX_STEP, 1, &zero), fmi2Error, "max_step must be > 0");
+  PROBE("fmi2SetReal of max_step 0", SetReal(fmu, MAX_STEP, 1, &zero), fmi2Error, "max_step must be at least 1e-07 s");
+  PROBE("fmi2SetReal of max_step 1e-12", SetReal(fmu, MAX_STEP, 1, &(fmi2Real){1e-12}), fmi2Error,
+        "max_step must be at least 1e-07 s");
+  PROBE("fmi2SetReal of a negative pressure", SetReal(fmu, PRESSURE, 1, &negative), fmi2Error,
+        "pressure must be >= 0 (0: the tire file's)");
   PROBE("fmi2SetReal with NULL arrays", SetReal(fmu, NULL, 1, NULL), fmi2Error, "fmi2SetReal: NULL arrays");
   PROBE("fmi2GetReal with NULL arrays", GetReal(fmu, NULL, 1, NULL), fmi2Error, "fmi2GetReal: NULL arrays");
   PROBE("fmi2SetInteger of anything", SetInteger(fmu, UNKNOWN, 1, &(fmi2Integer){1}), fmi2Error,
@@ -235,6 +239,10 @@ static void abuse_variables(void) {
   PROBE("tire_parameters with a misspelt key", SetString(fmu, TIRE_PARAMETERS, 1, &(fmi2String){"k_sww=1"}), fmi2OK,
         "");
   PROBE("initializing with tire_parameters 'k_sww=1'", ExitInitializationMode(fmu), fmi2Error, "k_sww");
+  PROBE("a road track without a road", SetString(fmu, ROAD_TRACK, 1, &(fmi2String){"left"}), fmi2OK, "");
+  PROBE("initializing with a road track but no road", ExitInitializationMode(fmu), fmi2Error,
+        "options.road_track is \"left\" but options.road names no road file");
+  PROBE("the road track cleared", SetString(fmu, ROAD_TRACK, 1, &(fmi2String){""}), fmi2OK, "");
   PROBE("tire_parameters cleared", SetString(fmu, TIRE_PARAMETERS, 1, &(fmi2String){NULL}), fmi2OK, "");
   PROBE("initializing as it should be", ExitInitializationMode(fmu), fmi2OK, "");
   PROBE("a parameter set in step mode", SetReal(fmu, PRESSURE, 1, &(fmi2Real){2e5}), fmi2Error,

@@ -304,6 +304,9 @@ void check_options(const tirefe_options& options) {
     throw std::invalid_argument("options.road_edge_radius must be a finite number >= 0");
   if (options.free_spin != 0 && options.free_spin != 1)
     throw std::invalid_argument("options.free_spin must be 1 (the wheel turns freely) or 0 (the host drives the spin)");
+  if (options.road_track && !options.road)
+    throw std::invalid_argument(std::string("options.road_track is \"") + options.road_track +
+                                "\" but options.road names no road file: give both, or neither");
 }
 
 std::unique_ptr<OpenTire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,

@@ -406,7 +406,10 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
       if (check_settable(instance, vr[i]) != fmi2OK) return fmi2Error;
       if (!std::isfinite(value[i]))
         return report(instance, fmi2Error, "the Real with value reference " + std::to_string(vr[i]) + " is not finite");
-      if (vr[i] == kMaxStep && !(value[i] > 0.0)) return report(instance, fmi2Error, "max_step must be > 0");
+      if (vr[i] == kMaxStep && !(value[i] >= kMinCommunicationStep))
+        return report(instance, fmi2Error, "max_step must be at least " + seconds(kMinCommunicationStep));
+      if (vr[i] == kPressure && value[i] < 0.0)
+        return report(instance, fmi2Error, "pressure must be >= 0 (0: the tire file's)");
       *variable = value[i];
       if (instance.phase != Phase::Stepping) instance.tire_current = false;
     }
