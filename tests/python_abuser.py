@@ -219,6 +219,27 @@ def abuse_fmu(tirefe):
         expect("Fmu of a text file", lambda: tirefe.Fmu(text.name), tirefe.FmuError, "not an FMU archive")
     fmu = tirefe.Fmu(os.environ["FMU"])
     expect("Fmu.step before initialize", lambda: fmu.step(1e-3), tirefe.FmuError, "initialize() the FMU")
+    expect("Fmu.set of a misspelt name", lambda: fmu.set(presure=1.0), KeyError, "has no variable 'presure'")
+    expect("Fmu.set of text to a Real", lambda: fmu.set(pressure="high"), TypeError,
+           "pressure is a Real variable: 'high' is not one")
+    expect("Fmu.set of a number to a String", lambda: fmu.set(tire=3), TypeError, "tire is a String variable: 3 is not")
+    expect("Fmu.set of a number to a Boolean", lambda: fmu.set(free_spin=1), TypeError,
+           "free_spin is a Boolean variable: 1 is not one")
+    expect("Fmu.set of the output Fz", lambda: fmu.set(Fz=1.0), tirefe.FmuError,
+           "setting Fz = 1.0: Error: no settable Real with value reference 4")
+    expect("Fmu.simulate in steps of -1 ms", lambda: fmu.simulate(0.01, -1e-3), ValueError,
+           "simulate in steps of -0.001 s: give a finite step_size > 0")
+    expect("Fmu.simulate to t = NaN", lambda: fmu.simulate(math.nan, 1e-3), ValueError,
+           "simulate from 0.0 s to nan s: give finite times")
+    expect("Fmu.simulate with an input of text", lambda: fmu.simulate(0.01, 1e-3, {"z": "abc"}), ValueError,
+           "input z: give a function of time or (times, values) of equal length")
+    expect("Fmu.simulate with an output as input", lambda: fmu.simulate(0.01, 1e-3, {"Fz": lambda t: 0.0}),
+           ValueError, "Fz is not an input of the FMU")
+    fmu.close()
+    expect("Fmu.close twice", fmu.close, None, "")
+    expect("Fmu.get after close", lambda: fmu.get("Fz"), tirefe.FmuError,
+           "the FMU is closed: load it again with tirefe.Fmu(path)")
+    expect("Fmu.step after close", lambda: fmu.step(1e-3), tirefe.FmuError, "the FMU is closed")
 
 
 def main():
