@@ -14,33 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmi_functions.h"
 #include "fmi_support.h"
-
-static fmi2Component (*Instantiate)(fmi2String, fmi2Type, fmi2String, fmi2String, const fmi2CallbackFunctions*,
-                                    fmi2Boolean, fmi2Boolean);
-static void (*FreeInstance)(fmi2Component);
-static fmi2Status (*SetupExperiment)(fmi2Component, fmi2Boolean, fmi2Real, fmi2Real, fmi2Boolean, fmi2Real);
-static fmi2Status (*EnterInitializationMode)(fmi2Component);
-static fmi2Status (*ExitInitializationMode)(fmi2Component);
-static fmi2Status (*Terminate)(fmi2Component);
-static fmi2Status (*Reset)(fmi2Component);
-static fmi2Status (*SetReal)(fmi2Component, const fmi2ValueReference[], size_t, const fmi2Real[]);
-static fmi2Status (*GetReal)(fmi2Component, const fmi2ValueReference[], size_t, fmi2Real[]);
-static fmi2Status (*SetInteger)(fmi2Component, const fmi2ValueReference[], size_t, const fmi2Integer[]);
-static fmi2Status (*SetBoolean)(fmi2Component, const fmi2ValueReference[], size_t, const fmi2Boolean[]);
-static fmi2Status (*GetBoolean)(fmi2Component, const fmi2ValueReference[], size_t, fmi2Boolean[]);
-static fmi2Status (*SetString)(fmi2Component, const fmi2ValueReference[], size_t, const fmi2String[]);
-static fmi2Status (*GetString)(fmi2Component, const fmi2ValueReference[], size_t, fmi2String[]);
-static fmi2Status (*DoStep)(fmi2Component, fmi2Real, fmi2Real, fmi2Boolean);
-static fmi2Status (*CancelStep)(fmi2Component);
-static fmi2Status (*GetFMUstate)(fmi2Component, fmi2FMUstate*);
-static fmi2Status (*SetFMUstate)(fmi2Component, fmi2FMUstate);
-static fmi2Status (*FreeFMUstate)(fmi2Component, fmi2FMUstate*);
-static fmi2Status (*SerializedFMUstateSize)(fmi2Component, fmi2FMUstate, size_t*);
-static fmi2Status (*GetDirectionalDerivative)(fmi2Component, const fmi2ValueReference[], size_t,
-                                              const fmi2ValueReference[], size_t, const fmi2Real[], fmi2Real[]);
-static fmi2Status (*GetRealStatus)(fmi2Component, const fmi2StatusKind, fmi2Real*);
-static fmi2Status (*GetBooleanStatus)(fmi2Component, const fmi2StatusKind, fmi2Boolean*);
 
 /* What the FMU logged since the last probe: its messages, one after the other. */
 static char logged[4096];
@@ -333,13 +308,6 @@ static void abuse_reset(void) {
   FreeInstance(fmu);
 }
 
-#define LOAD(name)                                                \
-  *(void**)(&name) = dlsym(library, "fmi2" #name);                \
-  if (!name) {                                                    \
-    printf("FAILED: the binary does not export fmi2" #name "\n"); \
-    return 1;                                                     \
-  }
-
 int main(void) {
   (void)fmi_logger; /* the suite's printing logger: this master keeps what it logs */
   if (!folder_uri(TIREFE_FMU_RESOURCES, resources, sizeof resources)) {
@@ -351,29 +319,11 @@ int main(void) {
     printf("FAILED: loading %s: %s\n", TIREFE_FMU_BINARY, dlerror());
     return 1;
   }
-  LOAD(Instantiate);
-  LOAD(FreeInstance);
-  LOAD(SetupExperiment);
-  LOAD(EnterInitializationMode);
-  LOAD(ExitInitializationMode);
-  LOAD(Terminate);
-  LOAD(Reset);
-  LOAD(SetReal);
-  LOAD(GetReal);
-  LOAD(SetInteger);
-  LOAD(SetBoolean);
-  LOAD(GetBoolean);
-  LOAD(SetString);
-  LOAD(GetString);
-  LOAD(DoStep);
-  LOAD(CancelStep);
-  LOAD(GetFMUstate);
-  LOAD(SetFMUstate);
-  LOAD(FreeFMUstate);
-  LOAD(SerializedFMUstateSize);
-  LOAD(GetDirectionalDerivative);
-  LOAD(GetRealStatus);
-  LOAD(GetBooleanStatus);
+  const char* missing = load_fmi_functions(library);
+  if (missing) {
+    printf("FAILED: the binary does not export %s\n", missing);
+    return 1;
+  }
   abuse_instantiate();
   abuse_instances();
   abuse_sequence();
