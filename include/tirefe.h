@@ -145,7 +145,7 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
 
 /* Opens the tire a deck built (docs/decks.md): runs the deck with its parameters
  * overridden by 'overrides' ("key=value" strings as on tirefe's command line; may be NULL
- * when count is 0), its result files going to 'output_dir' (NULL: "results"). The deck
+ * when count is 0), its result files going to 'output_dir' (NULL: "results"; "" is refused). The deck
  * makes its model dynamic (Newmark or HHT) and names the tire for the host at its end:
  *     host_tire = { model = model, spindle = tire.spindle }       -- free_spin = false: driven
  * The deck's model then stays alive with the handle, and every committed step is written

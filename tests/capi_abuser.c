@@ -402,6 +402,8 @@ static void abuse_decks(void) {
     if (tire) tirefe_close(tire);                                                                                 \
   } while (0)
   OPEN_DECK("NULL deck", NULL, NULL, 0, TIREFE_INVALID_ARGUMENT, "deck and tire must not be NULL");
+  expect("an empty output folder", tirefe_open_deck(deck, NULL, 0, "", &tire, error, sizeof error),
+         TIREFE_INVALID_ARGUMENT, error, "output_dir is empty: name a folder, or give NULL for \"results\"");
   const char* null_entry[] = {"depth=0.01", NULL};
   OPEN_DECK("a NULL override", deck, null_entry, 2, TIREFE_INVALID_ARGUMENT, "override 1 is NULL");
   const char* no_equals[] = {"depth"};

@@ -596,6 +596,11 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
     copy_message("tirefe_open_deck: deck and tire must not be NULL, nor overrides when count > 0", error, error_size);
     return TIREFE_INVALID_ARGUMENT;
   }
+  if (output_dir && !*output_dir) {
+    copy_message("tirefe_open_deck: output_dir is empty: name a folder, or give NULL for \"results\"", error,
+                 error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
   const tirefe_status status = without_handle(error, error_size, [&] {
     std::map<std::string, std::string> values;
     for (size_t i = 0; i < count; ++i) {
