@@ -298,6 +298,7 @@ class FmiInstance {
   FmiInstance(const FmiInstance&) = delete;
   FmiInstance& operator=(const FmiInstance&) = delete;
 
+  /// The constructor's work once the binary is loaded: its functions, then the instance.
   void instantiate(const std::string& guid, const std::string& resource_uri, const std::string& name, bool logging) {
     load("fmi2Instantiate", instantiate_);
     load("fmi2FreeInstance", free_instance_);
