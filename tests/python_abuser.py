@@ -110,6 +110,8 @@ def abuse_tire(tirefe):
     expect("a road track 'middle'",
            lambda: tirefe.Tire(road=os.path.join(SOURCE, "inputs/roads/chuckhole.csv"), road_track="middle"),
            ValueError, 'options.road_track must be "left", "right" or NULL, not "middle"')
+    expect("a road track without a road", lambda: tirefe.Tire(road_track="left"), ValueError,
+           'options.road_track is "left" but options.road names no road file: give both, or neither')
     expect("start_z NaN", lambda: tirefe.Tire(start_z=math.nan), ValueError, "options.road_start and options.start_z")
 
 
