@@ -154,7 +154,7 @@ tirefe_status tirefe_open(const char* source, const tirefe_parameter* overrides,
 
 /* Opens the tire a deck built (docs/decks.md): runs the deck with its parameters
  * overridden by 'overrides' ("key=value" strings as on tirefe's command line; may be NULL
- * when count is 0), its result files going to 'output_dir' (NULL: "results"). The deck
+ * when count is 0), its result files going to 'output_dir' (NULL: "results"; "" is refused). The deck
  * makes its model dynamic (Newmark or HHT) and names the tire for the host at its end:
  *     host_tire = { model = model, spindle = tire.spindle }       -- free_spin = false: driven
  * The deck's model then stays alive with the handle, and every committed step is written
@@ -198,7 +198,7 @@ tirefe_status tirefe_solve_velocity(tirefe_tire* tire, double time_step, const d
                                     tirefe_spindle_force* out);
 
 /* Advances the tire along 'path' in steps of its own, each committed as it converges:
- * equal, at most max_step long (> 0), the last ending on the end; halved when one does not
+ * equal, at most max_step long (> 0) and at least 1e-7 s, the last ending on the end; halved when one does not
  * converge and grown back after easy ones (the step control of docs/dynamics.md, at most
  * 10 cuts). A pending trial step is forgotten first. TIREFE_STEP_FAILED when a step fails
  * even at its smallest: the tire then stays at the last step it committed (report->time),
@@ -256,7 +256,8 @@ tirefe_status tirefe_step_budget_report(tirefe_tire* tire, tirefe_budget_report*
 
 /* A copy of a tire's committed state (its checkpoint, docs/restart.md, kept in memory):
  * a host that steps back in time (a co-simulation master repeating a macro step)
- * saves the tire and restores it later. A pending trial step is discarded by a restore.
+ * saves the tire and restores it later, into it or a tire built with the same parameters
+ * (another: TIREFE_INVALID_ARGUMENT). A pending trial step is discarded by a restore.
  * Free the copy with tirefe_free_state. */
 typedef struct tirefe_saved_state tirefe_saved_state;
 tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved);

@@ -151,8 +151,9 @@ static void abuse_handles(void) {
          TIREFE_OK, error, "");
   tirefe_saved_state* other = NULL;
   if (coarse && tirefe_save_state(coarse, &other) == TIREFE_OK) {
-    EXPECT(tire, "restore another tire's state", tirefe_restore_state(tire, other), TIREFE_MODEL_ERROR,
-           "the checkpoint is of another model");
+    EXPECT(tire, "restore another tire's state", tirefe_restore_state(tire, other), TIREFE_INVALID_ARGUMENT,
+           "saved is the state of another tire (of 61 nodes, this one has 101): restore a state into a tire built "
+           "with the same parameters");
     tirefe_free_state(other);
   }
   tirefe_close(coarse);
@@ -220,6 +221,10 @@ static void abuse_open(void) {
   options.free_spin = 2;
   OPEN_WITH("free_spin 2", "tires.145SR12", NULL, 0, &options, TIREFE_INVALID_ARGUMENT,
             "options.free_spin must be 1 (the wheel turns freely) or 0 (the host drives the spin)");
+  tirefe_default_options(&options);
+  options.road_track = "middle";
+  OPEN_WITH("a road track without a road", "tires.145SR12", NULL, 0, &options, TIREFE_INVALID_ARGUMENT,
+            "options.road_track is \"middle\" but options.road names no road file: give both, or neither");
   tirefe_default_options(&options);
   options.heading = 2;
   OPEN_WITH("heading 2", "tires.145SR12", NULL, 0, &options, TIREFE_INVALID_ARGUMENT, "options.heading must be +1");
@@ -306,6 +311,25 @@ static void abuse_steps(void) {
   expect("the message after a success is empty", tirefe_message(tire)[0] == '\0' ? TIREFE_OK : TIREFE_INTERNAL_ERROR,
          TIREFE_OK, NULL, "");
   expect("road level", tirefe_road_level(tire, &level), TIREFE_OK, NULL, "");
+
+  tirefe_spindle_path path = {1e-3, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+  EXPECT(tire, "advance along a NULL path", tirefe_advance(tire, NULL, 1e-3, NULL), TIREFE_INVALID_ARGUMENT,
+         "path must not be NULL");
+  EXPECT(tire, "advance with max_step 0", tirefe_advance(tire, &path, 0.0, NULL), TIREFE_INVALID_ARGUMENT,
+         "the path's duration and max_step must be finite numbers > 0");
+  EXPECT(tire, "advance with max_step NaN", tirefe_advance(tire, &path, NAN, NULL), TIREFE_INVALID_ARGUMENT,
+         "max_step must be finite numbers > 0");
+  path.position[1] = NAN;
+  EXPECT(tire, "advance to a NaN height", tirefe_advance(tire, &path, 1e-3, NULL), TIREFE_INVALID_ARGUMENT,
+         "the path's rates and end position must be finite");
+  path.position[1] = 0.0;
+  path.duration = 1e-12;
+  EXPECT(tire, "advance over 1e-12 s", tirefe_advance(tire, &path, 1e-3, NULL), TIREFE_INVALID_ARGUMENT,
+         "a path of 1e-12 s in steps of at most 0.001 s: the time step 1e-12 s is below 1e-07 s");
+  path.duration = 1e-3;
+  EXPECT(tire, "advance in steps of at most 1e-12 s", tirefe_advance(tire, &path, 1e-12, NULL), TIREFE_INVALID_ARGUMENT,
+         "a path of 0.001 s in steps of at most 1e-12 s: the time step 1e-12 s is below");
+  EXPECT(tire, "advance as it should be", tirefe_advance(tire, &path, 1e-3, NULL), TIREFE_OK, "");
 #undef SOLVE
   tirefe_close(tire);
 }
@@ -378,6 +402,8 @@ static void abuse_decks(void) {
     if (tire) tirefe_close(tire);                                                                                 \
   } while (0)
   OPEN_DECK("NULL deck", NULL, NULL, 0, TIREFE_INVALID_ARGUMENT, "deck and tire must not be NULL");
+  expect("an empty output folder", tirefe_open_deck(deck, NULL, 0, "", &tire, error, sizeof error),
+         TIREFE_INVALID_ARGUMENT, error, "output_dir is empty: name a folder, or give NULL for \"results\"");
   const char* null_entry[] = {"depth=0.01", NULL};
   OPEN_DECK("a NULL override", deck, null_entry, 2, TIREFE_INVALID_ARGUMENT, "override 1 is NULL");
   const char* no_equals[] = {"depth"};

@@ -31,28 +31,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmi_functions.h"
 #include "fmi_support.h"
 
 /* The FMI functions, by their standard names. */
-static fmi2Component (*Instantiate)(fmi2String, fmi2Type, fmi2String, fmi2String, const fmi2CallbackFunctions*,
-                                    fmi2Boolean, fmi2Boolean);
-static void (*FreeInstance)(fmi2Component);
-static fmi2Status (*SetupExperiment)(fmi2Component, fmi2Boolean, fmi2Real, fmi2Real, fmi2Boolean, fmi2Real);
-static fmi2Status (*EnterInitializationMode)(fmi2Component);
-static fmi2Status (*ExitInitializationMode)(fmi2Component);
-static fmi2Status (*Terminate)(fmi2Component);
-static fmi2Status (*Reset)(fmi2Component);
-static fmi2Status (*SetReal)(fmi2Component, const fmi2ValueReference[], size_t, const fmi2Real[]);
-static fmi2Status (*GetReal)(fmi2Component, const fmi2ValueReference[], size_t, fmi2Real[]);
-static fmi2Status (*SetString)(fmi2Component, const fmi2ValueReference[], size_t, const fmi2String[]);
-static fmi2Status (*GetString)(fmi2Component, const fmi2ValueReference[], size_t, fmi2String[]);
-static fmi2Status (*DoStep)(fmi2Component, fmi2Real, fmi2Real, fmi2Boolean);
-static fmi2Status (*GetFMUstate)(fmi2Component, fmi2FMUstate*);
-static fmi2Status (*SetFMUstate)(fmi2Component, fmi2FMUstate);
-static fmi2Status (*FreeFMUstate)(fmi2Component, fmi2FMUstate*);
-static fmi2Status (*GetRealStatus)(fmi2Component, const fmi2StatusKind, fmi2Real*);
-static fmi2Status (*GetBooleanStatus)(fmi2Component, const fmi2StatusKind, fmi2Boolean*);
-
 static const fmi2CallbackFunctions callbacks = {fmi_logger, calloc, free, NULL, NULL};
 static char guid[128], resources[3 * PATH_MAX];
 
@@ -264,8 +246,6 @@ static void read_guid(const char* dir) {
   guid[end - start] = '\0';
 }
 
-#define LOAD(name) *(void**)(&name) = dlsym(library, "fmi2" #name), require(name != NULL, "fmi2" #name)
-
 int main(int argc, char** argv) {
   if (argc != 4) {
     fprintf(stderr, "usage: fmu_host UNPACKED_FMU_DIR TIRE_FILE ROAD_FILE\n");
@@ -277,24 +257,8 @@ int main(int argc, char** argv) {
   require(folder_uri(folder, resources, sizeof resources), "finding the FMU's resources");
   void* library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
   require(library != NULL, "loading the binary");
+  require(load_fmi_functions(library) == NULL, "finding the FMI functions");
   read_guid(argv[1]);
-  LOAD(Instantiate);
-  LOAD(FreeInstance);
-  LOAD(SetupExperiment);
-  LOAD(EnterInitializationMode);
-  LOAD(ExitInitializationMode);
-  LOAD(Terminate);
-  LOAD(Reset);
-  LOAD(SetReal);
-  LOAD(GetReal);
-  LOAD(SetString);
-  LOAD(GetString);
-  LOAD(DoStep);
-  LOAD(GetFMUstate);
-  LOAD(SetFMUstate);
-  LOAD(FreeFMUstate);
-  LOAD(GetRealStatus);
-  LOAD(GetBooleanStatus);
 
   starting_press();
   states_and_discard();

@@ -391,6 +391,9 @@ void check_options(const tirefe_options& options) {
     throw std::invalid_argument("options.road_edge_radius must be a finite number >= 0");
   if (options.free_spin != 0 && options.free_spin != 1)
     throw std::invalid_argument("options.free_spin must be 1 (the wheel turns freely) or 0 (the host drives the spin)");
+  if (options.road_track && !options.road)
+    throw std::invalid_argument(std::string("options.road_track is \"") + options.road_track +
+                                "\" but options.road names no road file: give both, or neither");
 }
 
 std::unique_ptr<OpenTire> open_tire(const char* source, const std::vector<ParameterValue>& overrides,
@@ -700,6 +703,11 @@ tirefe_status tirefe_open_deck(const char* deck, const char* const* overrides, s
     copy_message("tirefe_open_deck: deck and tire must not be NULL, nor overrides when count > 0", error, error_size);
     return TIREFE_INVALID_ARGUMENT;
   }
+  if (output_dir && !*output_dir) {
+    copy_message("tirefe_open_deck: output_dir is empty: name a folder, or give NULL for \"results\"", error,
+                 error_size);
+    return TIREFE_INVALID_ARGUMENT;
+  }
   const tirefe_status status = without_handle(error, error_size, [&] {
     std::map<std::string, std::string> values;
     for (size_t i = 0; i < count; ++i) {
@@ -785,12 +793,17 @@ tirefe_status tirefe_advance(tirefe_tire* tire, const tirefe_spindle_path* path,
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's duration and max_step must be finite numbers > 0");
     if (!finite(path->start_velocity, 3) || !finite(path->position, 3) || !finite(path->velocity, 3))
       return refuse(t, TIREFE_INVALID_ARGUMENT, "the path's rates and end position must be finite");
-    if (t.has_trial) t.spindle->revert();
-    t.has_trial = false;
     // Equal steps that end on the stretch's end: a step's size changing from one to the next
     // sets the tire's contact patch ringing (rolling fast, its Fx), so every stretch starts
     // afresh with them, only cut where they do not converge.
     const double count = std::ceil(path->duration / max_step * (1.0 - 1e-12));
+    if (const std::string problem = time_step_problem(path->duration / count); !problem.empty()) {
+      std::ostringstream text;
+      text << "a path of " << path->duration << " s in steps of at most " << max_step << " s: " << problem;
+      return refuse(t, TIREFE_INVALID_ARGUMENT, text.str());
+    }
+    if (t.has_trial) t.spindle->revert();
+    t.has_trial = false;
     StepSizes sizes{path->duration / count, path->duration / count};
     SpindlePath stretch(t, *path);
     StepController controller(sizes);
@@ -890,6 +903,12 @@ tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* 
     t.has_trial = false;
     t.budget.forget();
     if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is restored with tirefe --restart");
+    const int nodes = t.analysis->model().mesh().node_count();
+    if (state->checkpoint.node_count != nodes)
+      return refuse(t, TIREFE_INVALID_ARGUMENT,
+                    "saved is the state of another tire (of " + std::to_string(state->checkpoint.node_count) +
+                        " nodes, this one has " + std::to_string(nodes) +
+                        "): restore a state into a tire built with the same parameters");
     io::restore_checkpoint(state->checkpoint, *t.analysis, nullptr);
     return TIREFE_OK;
   });

@@ -55,6 +55,11 @@ enum Reference : fmi2ValueReference {
   kIntegrator = 26
 };
 
+// The C API's shortest step (include/tirefe.h).
+constexpr double kMinCommunicationStep = 1e-7;
+// The most of the tire's steps one fmi2DoStep may take (some 15 min of stepping).
+constexpr double kMaxTireSteps = 1e6;
+
 // The FMI 2.0 co-simulation states (section 4.2.4) an instance is in.
 enum class Phase { Instantiated, Initializing, Stepping, Terminated };
 
@@ -426,7 +431,10 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
       if (check_settable(instance, vr[i]) != fmi2OK) return fmi2Error;
       if (!std::isfinite(value[i]))
         return report(instance, fmi2Error, "the Real with value reference " + std::to_string(vr[i]) + " is not finite");
-      if (vr[i] == kMaxStep && !(value[i] > 0.0)) return report(instance, fmi2Error, "max_step must be > 0");
+      if (vr[i] == kMaxStep && !(value[i] >= kMinCommunicationStep))
+        return report(instance, fmi2Error, "max_step must be at least " + seconds(kMinCommunicationStep));
+      if (vr[i] == kPressure && value[i] < 0.0)
+        return report(instance, fmi2Error, "pressure must be >= 0 (0: the tire file's)");
       if ((vr[i] == kMaxTime || vr[i] == kMaxResidual) && value[i] < 0.0)
         return report(instance, fmi2Error, "max_time and max_residual must be >= 0 (0: none, 1e-4)");
       *variable = value[i];
@@ -615,9 +623,20 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint, fmi2R
                     "the tire stopped at t = " + seconds(fmu.now.time) +
                         " after a discarded step: restore a saved FMU state, or reset the FMU");
     if (!std::isfinite(t) || !(h > 0.0 && std::isfinite(h)))
+      return report(
+          fmu, fmi2Error,
+          "fmi2DoStep needs a finite time and a finite step > 0 (got t = " + seconds(t) + ", h = " + seconds(h) + ")");
+    if (h < kMinCommunicationStep)
       return report(fmu, fmi2Error,
-                    "fmi2DoStep needs a finite time and a finite step > 0 (got t = " + std::to_string(t) +
-                        ", h = " + std::to_string(h) + ")");
+                    "fmi2DoStep over " + seconds(h) + ": the tire takes no step below " +
+                        seconds(kMinCommunicationStep) + " (round-off swamps its inertia there)");
+    // No one can stop a call (fmi2CancelStep has nothing to cancel): its steps are bounded.
+    if (h / fmu.parameters.max_step > kMaxTireSteps)
+      return report(fmu, fmi2Error,
+                    "fmi2DoStep over " + seconds(h) + " in the tire's steps of at most " +
+                        seconds(fmu.parameters.max_step) +
+                        " would take more than the 1000000 steps one call may take: communicate more often, or "
+                        "set a larger max_step");
     if (std::abs(t - fmu.now.time) > 1e-9 * std::max(1.0, std::abs(t)))
       return report(fmu, fmi2Error,
                     "fmi2DoStep from t = " + seconds(t) + ", but the FMU is at t = " + seconds(fmu.now.time));

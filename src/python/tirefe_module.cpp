@@ -8,7 +8,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <csignal>
 #include <cstdarg>
@@ -63,8 +65,19 @@ py::array_t<double> vector(const double (&values)[3]) {
   return array;
 }
 
+/// The objects of class T whose constructor ran: pybind11 hands a method of one made by
+/// T.__new__ alone raw memory, or none, which is none of them.
+template <class T>
+std::unordered_set<const T*>& constructed() {
+  static std::unordered_set<const T*> objects;
+  return objects;
+}
+
 class Tire {
  public:
+  static constexpr const char* kUninitialized =
+      "this tirefe.Tire was not initialized: make tires with tirefe.Tire(...)";
+
   Tire(const std::string& source, const std::map<std::string, double>& parameters, double friction, double hht_alpha,
        bool free_spin, const std::string& heading, const std::optional<std::string>& road,
        const std::optional<std::string>& road_track, double road_lateral, double road_start, double road_edge_radius,
@@ -102,17 +115,11 @@ class Tire {
         throw py::value_error(message);
       }
     }
-    constructed().insert(this);
+    constructed<Tire>().insert(this);
   }
   ~Tire() {
-    constructed().erase(this);
+    constructed<Tire>().erase(this);
     tirefe_close(tire_);
-  }
-  /// The Tires whose constructor ran: pybind11 hands a method of one made by Tire.__new__
-  /// alone raw memory, which is none of them.
-  static std::unordered_set<const Tire*>& constructed() {
-    static std::unordered_set<const Tire*> tires;
-    return tires;
   }
   Tire(const Tire&) = delete;
   Tire& operator=(const Tire&) = delete;
@@ -212,13 +219,12 @@ class Tire {
   tirefe_tire* tire_ = nullptr;
 };
 
-/// A method of Tire bound so that a Tire whose __init__ never ran (Tire.__new__(Tire))
-/// raises instead of being followed.
-template <class Result, class... Arguments>
-auto method(Result (Tire::*function)(Arguments...)) {
-  return [function](Tire* self, Arguments... arguments) -> Result {
-    if (!Tire::constructed().count(self))
-      throw py::type_error("this tirefe.Tire was not initialized: make tires with tirefe.Tire(...)");
+/// A method bound so that an object whose __init__ never ran (T.__new__(T)) raises
+/// instead of being followed.
+template <class T, class Result, class... Arguments>
+auto method(Result (T::*function)(Arguments...)) {
+  return [function](T* self, Arguments... arguments) -> Result {
+    if (!constructed<T>().count(self)) throw py::type_error(T::kUninitialized);
     return (self->*function)(arguments...);
   };
 }
@@ -256,9 +262,23 @@ py::array_t<double> static_forces(const std::string& source, const std::map<std:
 /// handed on to Python's handlers (KeyboardInterrupt for Ctrl-C).
 py::dict run_deck(const std::string& deck, const std::map<std::string, py::object>& parameters,
                   const std::string& output_dir) {
-  std::vector<std::string> arguments{"tirefe", deck};
-  for (const auto& [name, value] : parameters) arguments.push_back(name + "=" + std::string(py::str(value)));
-  arguments.insert(arguments.end(), {"--output-dir", output_dir, "--quiet"});
+  // Every argument stays what it is: a path starting with '-' is no option, a parameter's
+  // name no other argument.
+  const auto path = [](const std::string& name, const char* what) {
+    if (name.empty()) throw py::value_error(std::string(what) + " is empty: give a path");
+    return name[0] == '-' ? "./" + name : name;
+  };
+  std::vector<std::string> arguments{"tirefe", path(deck, "deck")};
+  for (const auto& [name, value] : parameters) {
+    const bool plain = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0])) &&
+                       std::all_of(name.begin(), name.end(),
+                                   [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+    if (!plain)
+      throw py::value_error("parameter name '" + name +
+                            "' is no name a deck declares (letters, digits and '_', e.g. end_time)");
+    arguments.push_back(name + "=" + std::string(py::str(value)));
+  }
+  arguments.insert(arguments.end(), {"--output-dir", path(output_dir, "output_dir"), "--quiet"});
   std::vector<char*> argv;
   for (std::string& argument : arguments) argv.push_back(argument.data());
   // The GIL stays held: no two decks write HDF5 files at once (the library is not thread-safe).
@@ -282,10 +302,30 @@ py::dict run_deck(const std::string& deck, const std::map<std::string, py::objec
 /// logger's messages are kept for Python (tirefe.Fmu reads them).
 class FmiInstance {
  public:
+  static constexpr const char* kUninitialized =
+      "this FmiInstance was not initialized: make it with FmiInstance(...) (tirefe.Fmu does)";
+
   FmiInstance(const std::string& binary, const std::string& guid, const std::string& resource_uri,
               const std::string& name, bool logging) {
     library_ = dlopen(binary.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!library_) throw std::runtime_error("cannot load the FMU's binary " + binary + ": " + dlerror());
+    try {
+      instantiate(guid, resource_uri, name, logging);
+    } catch (...) {
+      free_instance();  // the destructor of an object never made does not run
+      throw;
+    }
+    constructed<FmiInstance>().insert(this);
+  }
+  ~FmiInstance() {
+    constructed<FmiInstance>().erase(this);
+    free_instance();
+  }
+  FmiInstance(const FmiInstance&) = delete;
+  FmiInstance& operator=(const FmiInstance&) = delete;
+
+  /// The constructor's work once the binary is loaded: its functions, then the instance.
+  void instantiate(const std::string& guid, const std::string& resource_uri, const std::string& name, bool logging) {
     load("fmi2Instantiate", instantiate_);
     load("fmi2FreeInstance", free_instance_);
     load("fmi2SetupExperiment", setup_experiment_);
@@ -309,9 +349,6 @@ class FmiInstance {
                              logging ? fmi2True : fmi2False);
     if (!instance_) throw std::runtime_error("fmi2Instantiate failed: " + messages_text());
   }
-  ~FmiInstance() { free_instance(); }
-  FmiInstance(const FmiInstance&) = delete;
-  FmiInstance& operator=(const FmiInstance&) = delete;
 
   void free_instance() {
     if (instance_) free_instance_(instance_);
@@ -549,22 +586,22 @@ budget), "worst_residual" (their largest |R|/R_ref), "overruns" (more than max_i
                           "The FMI 2.0 co-simulation calls of one instance of an FMU binary (tirefe.Fmu uses it).")
       .def(py::init<const std::string&, const std::string&, const std::string&, const std::string&, bool>(),
            py::arg("binary"), py::arg("guid"), py::arg("resource_uri"), py::arg("name"), py::arg("logging"))
-      .def("setup_experiment", &FmiInstance::setup_experiment, py::arg("start"), py::arg("stop") = py::none())
-      .def("enter_initialization_mode", &FmiInstance::enter_initialization_mode)
-      .def("exit_initialization_mode", &FmiInstance::exit_initialization_mode)
-      .def("terminate", &FmiInstance::terminate)
-      .def("reset", &FmiInstance::reset)
-      .def("free", &FmiInstance::free_instance)
-      .def("do_step", &FmiInstance::do_step, py::arg("time"), py::arg("step"))
-      .def("set_real", &FmiInstance::set_real)
-      .def("set_integer", &FmiInstance::set_integer)
-      .def("set_boolean", &FmiInstance::set_boolean)
-      .def("set_string", &FmiInstance::set_string)
-      .def("get_real", &FmiInstance::get_real)
-      .def("get_integer", &FmiInstance::get_integer)
-      .def("get_boolean", &FmiInstance::get_boolean)
-      .def("get_string", &FmiInstance::get_string)
-      .def("last_successful_time", &FmiInstance::last_successful_time)
-      .def("terminated", &FmiInstance::terminated)
-      .def("take_messages", &FmiInstance::take_messages);
+      .def("setup_experiment", method(&FmiInstance::setup_experiment), py::arg("start"), py::arg("stop") = py::none())
+      .def("enter_initialization_mode", method(&FmiInstance::enter_initialization_mode))
+      .def("exit_initialization_mode", method(&FmiInstance::exit_initialization_mode))
+      .def("terminate", method(&FmiInstance::terminate))
+      .def("reset", method(&FmiInstance::reset))
+      .def("free", method(&FmiInstance::free_instance))
+      .def("do_step", method(&FmiInstance::do_step), py::arg("time"), py::arg("step"))
+      .def("set_real", method(&FmiInstance::set_real))
+      .def("set_integer", method(&FmiInstance::set_integer))
+      .def("set_boolean", method(&FmiInstance::set_boolean))
+      .def("set_string", method(&FmiInstance::set_string))
+      .def("get_real", method(&FmiInstance::get_real))
+      .def("get_integer", method(&FmiInstance::get_integer))
+      .def("get_boolean", method(&FmiInstance::get_boolean))
+      .def("get_string", method(&FmiInstance::get_string))
+      .def("last_successful_time", method(&FmiInstance::last_successful_time))
+      .def("terminated", method(&FmiInstance::terminated))
+      .def("take_messages", method(&FmiInstance::take_messages));
 }

@@ -11,6 +11,7 @@ The archive is unpacked into a temporary folder (removed by close()); the binary
 platform (binaries/linux64) is loaded with its resources folder as a file: URI. Every call
 goes through the FMI 2.0 functions; what the FMU logs is kept in `messages`.
 """
+import math
 import os
 import pathlib
 import shutil
@@ -25,6 +26,9 @@ import numpy as np
 from . import _core
 
 STATUS = ("OK", "Warning", "Discard", "Error", "Fatal", "Pending")
+# What Fmu.set takes for a variable of each type (no bool for a number, nor a number for a bool).
+VALUE_TYPES = {"Real": (int, float, np.integer, np.floating), "Integer": (int, np.integer),
+               "Enumeration": (int, np.integer), "Boolean": (bool, np.bool_), "String": (str,)}
 
 
 class FmuError(RuntimeError):
@@ -104,20 +108,22 @@ class Fmu:
     def initialize(self, start_time: float = 0.0, stop_time: Optional[float] = None) -> None:
         """fmi2SetupExperiment, fmi2EnterInitializationMode and fmi2ExitInitializationMode:
         the parameters and inputs set so far are the start."""
-        self._check(self._fmi.setup_experiment(start_time, stop_time), "fmi2SetupExperiment")
-        self._check(self._fmi.enter_initialization_mode(), "fmi2EnterInitializationMode")
-        self._check(self._fmi.exit_initialization_mode(), "fmi2ExitInitializationMode")
+        fmi = self._live()
+        self._check(fmi.setup_experiment(start_time, stop_time), "fmi2SetupExperiment")
+        self._check(fmi.enter_initialization_mode(), "fmi2EnterInitializationMode")
+        self._check(fmi.exit_initialization_mode(), "fmi2ExitInitializationMode")
         self.time = start_time
 
     def step(self, step_size: float) -> float:
         """fmi2DoStep from the current time with the inputs set (start-of-step values);
         returns the new time. A discarded step raises FmuError (status "Discard", time where
         the FMU stopped)."""
+        fmi = self._live()
         if self.time is None:
             raise FmuError("initialize() the FMU before stepping it")
-        status = self._fmi.do_step(self.time, step_size)
+        status = fmi.do_step(self.time, step_size)
         if status == 2:
-            stopped = self._fmi.last_successful_time()
+            stopped = fmi.last_successful_time()
             self._check(status, f"fmi2DoStep from t = {self.time} s", time=stopped)
         self._check(status, f"fmi2DoStep from t = {self.time} s")
         self.time += step_size
@@ -125,11 +131,11 @@ class Fmu:
 
     def reset(self) -> None:
         """fmi2Reset: back to the start values; initialize() again to simulate."""
-        self._check(self._fmi.reset(), "fmi2Reset")
+        self._check(self._live().reset(), "fmi2Reset")
         self.time = None
 
     def terminate(self) -> None:
-        self._check(self._fmi.terminate(), "fmi2Terminate")
+        self._check(self._live().terminate(), "fmi2Terminate")
 
     def close(self) -> None:
         """Frees the instance, unloads the binary and removes the unpacked archive."""
@@ -153,26 +159,30 @@ class Fmu:
     # Variables by name.
     def set(self, values: Optional[Dict[str, Value]] = None, **more: Value) -> None:
         """Sets variables by name (parameters before initialize(), inputs at any time)."""
+        fmi = self._live()
         for name, value in {**(values or {}), **more}.items():
             variable = self.variable(name)
             reference = [variable.value_reference]
+            truth = isinstance(value, (bool, np.bool_))
+            if not isinstance(value, VALUE_TYPES[variable.type]) or truth != (variable.type == "Boolean"):
+                raise TypeError(f"{name} is a {variable.type} variable: {value!r} is not one")
             if variable.type == "Real":
-                status = self._fmi.set_real(reference, [float(value)])
+                status = fmi.set_real(reference, [float(value)])
             elif variable.type in ("Integer", "Enumeration"):
-                status = self._fmi.set_integer(reference, [int(value)])
+                status = fmi.set_integer(reference, [int(value)])
             elif variable.type == "Boolean":
-                status = self._fmi.set_boolean(reference, [bool(value)])
+                status = fmi.set_boolean(reference, [bool(value)])
             else:
-                status = self._fmi.set_string(reference, [str(value)])
+                status = fmi.set_string(reference, [value])
             self._check(status, f"setting {name} = {value!r}")
 
     def get(self, *names: str):
         """The values of the named variables: one value for one name, else a tuple."""
-        values = []
+        fmi, values = self._live(), []
         for name in names:
             variable = self.variable(name)
-            getter = {"Real": self._fmi.get_real, "Integer": self._fmi.get_integer, "Enumeration":
-                      self._fmi.get_integer, "Boolean": self._fmi.get_boolean, "String": self._fmi.get_string}
+            getter = {"Real": fmi.get_real, "Integer": fmi.get_integer, "Enumeration": fmi.get_integer,
+                      "Boolean": fmi.get_boolean, "String": fmi.get_string}
             status, value = getter[variable.type]([variable.value_reference])
             self._check(status, f"getting {name}")
             values.append(value[0])
@@ -194,6 +204,11 @@ class Fmu:
         generic master does: each input (a function of time, or (times, values) interpolated
         linearly and held beyond its ends) is set at every communication point before the
         step from it. Returns {"time": ..., output: ...} at every communication point."""
+        if not (math.isfinite(start_time) and math.isfinite(stop_time) and stop_time >= start_time):
+            raise ValueError(f"simulate from {start_time} s to {stop_time} s: give finite times, the stop "
+                             "time not before the start")
+        if not (math.isfinite(step_size) and step_size > 0.0):
+            raise ValueError(f"simulate in steps of {step_size} s: give a finite step_size > 0")
         signals = {name: self._signal(name, source) for name, source in (inputs or {}).items()}
         outputs = self.names("output")
         rows = []
@@ -222,8 +237,20 @@ class Fmu:
             raise ValueError(f"{name} is not an input of the FMU")
         if callable(source):
             return source
-        times, values = (np.asarray(v, dtype=float) for v in source)
+        try:
+            times, values = (np.asarray(v, dtype=float) for v in source)
+            if times.ndim != 1 or times.shape != values.shape or times.size == 0:
+                raise ValueError
+        except (TypeError, ValueError):
+            raise ValueError(f"input {name}: give a function of time or (times, values) of equal length, "
+                             f"not {source!r}") from None
         return lambda t: float(np.interp(t, times, values))
+
+    def _live(self):
+        """The instance's FMI calls; FmuError once closed."""
+        if getattr(self, "_fmi", None) is None:
+            raise FmuError("the FMU is closed: load it again with tirefe.Fmu(path)")
+        return self._fmi
 
     def _check(self, status: int, what: str, time: Optional[float] = None) -> None:
         logged = self._fmi.take_messages()
