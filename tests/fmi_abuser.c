@@ -66,7 +66,7 @@ static void expect(const char* what, fmi2Status got, fmi2Status expected, const 
 
 static const fmi2ValueReference X_Z_SPIN[] = {0, 1, 2}, FZ[] = {4}, PRESSURE[] = {10}, FRICTION[] = {12},
                                 MAX_STEP[] = {15}, FREE_SPIN[] = {14}, TIRE[] = {20}, ROAD_TRACK[] = {22},
-                                TIRE_PARAMETERS[] = {23}, UNKNOWN[] = {99};
+                                TIRE_PARAMETERS[] = {23}, MAX_ITERATIONS[] = {17}, UNKNOWN[] = {99};
 
 static fmi2Component instantiated(void) {
   fmi2Component fmu =
@@ -190,8 +190,11 @@ static void abuse_variables(void) {
         "pressure must be >= 0 (0: the tire file's)");
   PROBE("fmi2SetReal with NULL arrays", SetReal(fmu, NULL, 1, NULL), fmi2Error, "fmi2SetReal: NULL arrays");
   PROBE("fmi2GetReal with NULL arrays", GetReal(fmu, NULL, 1, NULL), fmi2Error, "fmi2GetReal: NULL arrays");
-  PROBE("fmi2SetInteger of anything", SetInteger(fmu, UNKNOWN, 1, &(fmi2Integer){1}), fmi2Error,
-        "the tire has no Integer variables");
+  PROBE("fmi2SetInteger of an unknown reference", SetInteger(fmu, UNKNOWN, 1, &(fmi2Integer){1}), fmi2Error,
+        "no Integer with value reference 99");
+  PROBE("fmi2SetInteger of a negative max_iterations", SetInteger(fmu, MAX_ITERATIONS, 1, &(fmi2Integer){-1}),
+        fmi2Error, "max_iterations must be >= 0 (0: Newton to convergence)");
+  PROBE("fmi2GetInteger with NULL arrays", GetInteger(fmu, NULL, 1, NULL), fmi2Error, "fmi2GetInteger: NULL arrays");
   PROBE("fmi2SetBoolean of an unknown reference", SetBoolean(fmu, UNKNOWN, 1, &(fmi2Boolean){fmi2True}), fmi2Error,
         "no Boolean with value reference 99");
   PROBE("fmi2GetBoolean with NULL arrays", GetBoolean(fmu, NULL, 1, NULL), fmi2Error, "fmi2GetBoolean: NULL arrays");

@@ -9,12 +9,12 @@
 #include "fmu/fmi2.h"
 
 // clang-format off
-#define FMI_FUNCTIONS(X)                                                                               \
-  X(Instantiate) X(FreeInstance) X(SetupExperiment) X(EnterInitializationMode)                         \
-  X(ExitInitializationMode) X(Terminate) X(Reset) X(SetReal) X(GetReal) X(SetInteger) X(SetBoolean)   \
-  X(GetBoolean) X(SetString) X(GetString) X(DoStep) X(CancelStep) X(GetFMUstate) X(SetFMUstate)       \
-  X(FreeFMUstate) X(SerializedFMUstateSize) X(GetDirectionalDerivative) X(GetRealStatus)              \
-  X(GetBooleanStatus)
+#define FMI_FUNCTIONS(X)                                                                            \
+  X(Instantiate) X(FreeInstance) X(SetupExperiment) X(EnterInitializationMode)                      \
+  X(ExitInitializationMode) X(Terminate) X(Reset) X(SetReal) X(GetReal) X(SetInteger)               \
+  X(GetInteger) X(SetBoolean) X(GetBoolean) X(SetString) X(GetString) X(DoStep) X(CancelStep)       \
+  X(GetFMUstate) X(SetFMUstate) X(FreeFMUstate) X(SerializedFMUstateSize)                           \
+  X(GetDirectionalDerivative) X(GetRealStatus) X(GetBooleanStatus)
 // clang-format on
 
 #define FMI_DECLARE(name) static __typeof__(fmi2##name)* name;
