@@ -4,7 +4,7 @@ start of each communication step) at several communication steps, against a refe
 of the same tire through the C API (tirefe.Tire.advance, the spindle on the exact motion
 from each step the FMU takes inside to the next, under the same step control). Prints, per communication step, the force
 errors against the reference and the CPU time per simulated second: the table of
-docs/coupling.md.
+docs/fmu.md.
 
     fmu_rolling.py FMU_DIR FMI_MASTER PYTHON_PACKAGES [--speed 27.78] [--ramp 5] [--steps 0.5,1,2,5,10]
                    [--road FILE --track left|right | --cleat] [--start-x X] [--alpha -0.1]

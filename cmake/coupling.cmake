@@ -57,7 +57,7 @@ file(WRITE ${CMAKE_BINARY_DIR}/package/tirefe.pc
 install(FILES ${CMAKE_BINARY_DIR}/package/tirefe.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
 
-# tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/coupling.md), self-
+# tirefe_tire.fmu: the tire as an FMI 2.0 co-simulation FMU (docs/fmu.md), self-
 # contained: the model description; binaries/linux64/ with the binary (the library's
 # objects, SuiteSparse linked in statically, and the FMI functions, nothing else exported)
 # and a copy of every other shared library it loads outside the C and C++ runtimes (Lua,

@@ -273,7 +273,7 @@ def test_opencrg_road(folder):
 
 
 def test_the_rolling_bench_runs_as_documented(folder):
-    """bench/fmu_rolling.py as docs/coupling.md runs it, shortened: a slow roll onto the cleat
+    """bench/fmu_rolling.py as docs/fmu.md runs it, shortened: a slow roll onto the cleat
     at two communication steps prints its table, every run getting through."""
     run = subprocess.run([sys.executable, os.path.join(SOURCE, "bench/fmu_rolling.py"), unpacked(folder),
                           os.environ["FMI_MASTER"], os.environ["TIREFE_PYTHON"], "--speed", "1", "--ramp", "0.1",
@@ -355,7 +355,7 @@ def test_step_budget_parameters(folder):
 
 
 def test_the_python_check_of_the_docs(folder):
-    """examples/check_fmu.py (docs/coupling.md): pressed 10 mm and held, the FMU carries the
+    """examples/check_fmu.py (docs/fmu.md): pressed 10 mm and held, the FMU carries the
     static curve's force there (tirefe.static_forces, frictionless) to 0.1 % (found 1e-5)."""
     env = dict(os.environ, PYTHONPATH=os.environ["TIREFE_PYTHON"])
     run = subprocess.run([sys.executable, os.path.join(SOURCE, "examples/check_fmu.py"), TIREFE], env=env,

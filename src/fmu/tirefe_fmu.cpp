@@ -6,7 +6,7 @@
 // inputs extrapolated with their rates (tirefe_advance: the tire's own steps, no kink where
 // communication steps meet); a step the tire cannot finish is discarded where it stopped.
 // The tire, its road, its integrator and steps are parameters; FMU states are
-// tirefe_save_state copies (docs/coupling.md).
+// tirefe_save_state copies (docs/fmu.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

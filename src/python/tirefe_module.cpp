@@ -2,7 +2,7 @@
 // behind its spindle as a class over the C API (include/tirefe.h), forces and Jacobians as
 // numpy arrays; a deck run with parameters; the static vertical curve; and the FMI 2.0
 // calls of a co-simulation FMU loaded with dlopen, which tirefe/fmu.py drives
-// (docs/coupling.md).
+// (docs/python.md).
 #include <dlfcn.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

@@ -1,4 +1,4 @@
-"""tirefe: a 2D finite-element tire behind its spindle (docs/coupling.md).
+"""tirefe: a 2D finite-element tire behind its spindle (docs/python.md).
 
     Tire           a tire on a road, driven through its spindle (solve, commit, advance, ...)
     static_forces  the tire's static vertical force-deflection curve

@@ -1,4 +1,4 @@
-"""Type stubs of tirefe._core, the compiled part of tirefe (docs/coupling.md)."""
+"""Type stubs of tirefe._core, the compiled part of tirefe (docs/python.md)."""
 from types import TracebackType
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Type
 
