@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "contact/rigid_surface.hpp"
-#include "contact/road_file.hpp"
+#include "formats/road_file.hpp"
 #include "core/mesh.hpp"
 #include "fitting/curve_data.hpp"
 #include "include/tirefe.h"
 #include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
@@ -292,7 +292,7 @@ void property_file(const uint8_t* data, size_t size) {
               "a tire parameter that is not a finite number was accepted");
       lua_pop(state.get(), 1);
     }
-  } catch (const io::TeimOrbitError& error) {
+  } catch (const formats::TeimOrbitError& error) {
     require_names_file(error, tire);
   }
   const fs::path road = write_file("road.rdf", text);
@@ -304,7 +304,7 @@ void property_file(const uint8_t* data, size_t size) {
         require(i == 0 || shape.points[i].x() >= shape.points[i - 1].x(), "a decreasing x was accepted");
       }
       require(std::isfinite(shape.level) && std::isfinite(shape.diameter), "a non-finite road was accepted");
-    } catch (const io::TeimOrbitError& error) {
+    } catch (const formats::TeimOrbitError& error) {
       require_names_file(error, road);
     }
   }

@@ -36,7 +36,7 @@ void curve_data(const uint8_t* data, size_t size);
 /// file) and as a road data file (.rdf).
 void property_file(const uint8_t* data, size_t size);
 /// A road profile file read by name as CSV (.csv, each track), OpenCRG (.crg, three lateral
-/// positions) and 'x y' text (src/contact/road_file.hpp).
+/// positions) and 'x y' text (src/formats/road_file.hpp).
 void road_file(const uint8_t* data, size_t size);
 /// A checkpoint of a small beam run with its numbers changed (fuzz_entries.cpp), read back
 /// and restarted from: refused with an error naming the file or the deck, or restarted to

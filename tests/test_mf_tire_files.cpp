@@ -1,4 +1,4 @@
-// Standard tire property files (src/tire/mf_tire_file.hpp, docs/mf_tire_files.md): the
+// Standard tire property files (src/formats/mf_tire_file.hpp, docs/mf_tire_files.md): the
 // public MF-Tyre files of inputs/tires/ read as published, what they state, the ring built
 // from them, the errors, and the fit of inputs/identify_tir.lua.
 #include <catch2/catch.hpp>
@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "deck_support.hpp"
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 #include "test_support.hpp"
-#include "tire/mf_tire_file.hpp"
+#include "formats/mf_tire_file.hpp"
 #include "tire/tire_builder.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -30,14 +30,14 @@ constexpr double kPi = 3.14159265358979323846;
 std::string shipped(const std::string& name) { return std::string(TIREFE_SOURCE_DIR) + "/inputs/tires/" + name; }
 
 MfTireFile read_standard(const std::string& path) {
-  const io::TeimOrbitFile file = io::TeimOrbitFile::read(path);
-  io::TeimOrbitReader reader(file, "tir");
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::read(path);
+  formats::TeimOrbitReader reader(file, "tir");
   return MfTireFile::read(file, reader);
 }
 
 MfTireFile parse_standard(const std::string& text) {
-  const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "t.tir");
-  io::TeimOrbitReader reader(file, "tir");
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(text, "t.tir");
+  formats::TeimOrbitReader reader(file, "tir");
   return MfTireFile::read(file, reader);
 }
 
@@ -119,7 +119,7 @@ TEST_CASE("the ring of a standard file takes what the file does not state from t
           "[tire][tire_file][mf]") {
   // A section width whose three quarters are the set's 0.110 m: the estimates are the set's values.
   const std::string text =
-      replaced(replaced(replaced(kMinimal, "WIDTH = 0.2", "WIDTH = " + io::round_trip_number(0.110 / 0.75)),
+      replaced(replaced(replaced(kMinimal, "WIDTH = 0.2", "WIDTH = " + formats::round_trip_number(0.110 / 0.75)),
                         "UNLOADED_RADIUS = 0.3", "UNLOADED_RADIUS = 0.2715"),
                "RIM_RADIUS = 0.2", "RIM_RADIUS = 0.1524");
   const auto ring = ring_of(parse_standard(text));

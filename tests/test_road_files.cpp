@@ -1,13 +1,13 @@
-// Road files (src/contact/road_file.hpp): CSV profiles with units, the 2D road types of
+// Road files (src/formats/road_file.hpp): CSV profiles with units, the 2D road types of
 // road data files (.rdf) against hand-computed geometry, left and right tracks, the
 // placement by the surface macro, and the errors.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-#include "contact/road_file.hpp"
+#include "formats/road_file.hpp"
 #include "deck_support.hpp"
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 

@@ -1,11 +1,11 @@
-// TeimOrbit property files (src/io/teim_orbit.hpp), the format of tire (.tir) and road
+// TeimOrbit property files (src/formats/teim_orbit.hpp), the format of tire (.tir) and road
 // (.rdf) data: the parser, its syntax errors, the [UNITS] conversions, the schema reader's
 // errors and the numbers the writer writes.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 #include "test_support.hpp"
 
 using namespace tirefe;
@@ -40,9 +40,9 @@ TEST_CASE("TeimOrbit files: sections, keys, strings, comments and tables, names 
       "{ x  z_l  z_r }\n"
       "0 1 2\n"
       "3, 4.5, -6e-1   $ commas too\n";
-  const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "road.rdf");
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(text, "road.rdf");
   REQUIRE(file.sections().size() == 2);
-  const io::TeimOrbitSection* parameters = file.section("PARAMETERS");
+  const formats::TeimOrbitSection* parameters = file.section("PARAMETERS");
   REQUIRE(parameters != nullptr);
   CHECK(parameters->name == "Parameters");
   CHECK(parameters->line == 8);
@@ -54,12 +54,12 @@ TEST_CASE("TeimOrbit files: sections, keys, strings, comments and tables, names 
   CHECK(parameters->values[1].quoted);
   CHECK(parameters->values[2].text == "ASCII");
   REQUIRE(parameters->tables.size() == 1);
-  const io::TeimOrbitTable& table = parameters->tables[0];
+  const formats::TeimOrbitTable& table = parameters->tables[0];
   CHECK(table.columns == std::vector<std::string>{"x", "z_l", "z_r"});
   REQUIRE(table.rows.size() == 2);
   CHECK(table.rows[1] == std::vector<std::string>{"3", "4.5", "-6e-1"});
   CHECK(table.row_lines == std::vector<int>{14, 15});
-  const io::TeimOrbitTable& comments = file.section("mdi_header")->tables.at(0);
+  const formats::TeimOrbitTable& comments = file.section("mdi_header")->tables.at(0);
   CHECK(comments.rows.at(0) == std::vector<std::string>{"a $ in a string is no comment"});
 }
 
@@ -81,17 +81,17 @@ TEST_CASE("TeimOrbit syntax errors name the file and line", "[io][teim_orbit]") 
   };
   for (const auto& [text, message] : cases) {
     INFO(text);
-    CHECK_THROWS_WITH(io::TeimOrbitFile::parse(text, "f.tir"), Contains(message));
+    CHECK_THROWS_WITH(formats::TeimOrbitFile::parse(text, "f.tir"), Contains(message));
   }
-  CHECK_THROWS_WITH(io::TeimOrbitFile::read("/nonexistent/x.tir"), Contains("x.tir: cannot open the file"));
+  CHECK_THROWS_WITH(formats::TeimOrbitFile::read("/nonexistent/x.tir"), Contains("x.tir: cannot open the file"));
 }
 
 TEST_CASE("[UNITS] converts every dimension to SI: mm, inch, lbf, lbm, degrees, milliseconds, kPa",
           "[io][teim_orbit]") {
   SECTION("mm and newton: one rounding, so a value in mm reads as the same double as in m") {
-    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
+    const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(
         replaced(kSiHeader, "'meter'", "'MM'") + "[P]\nR = 271.5\nS = 1\nP = 0.25\n", "mm.tir");
-    io::TeimOrbitReader reader(file, "tir");
+    formats::TeimOrbitReader reader(file, "tir");
     CHECK(same_bits(*reader.number("P", "R", {1}), 0.2715));
     CHECK(*reader.number("p", "s", {-2, 1}) == 1e6);                // N/mm^2 = 1e6 N/m^2
     CHECK(*reader.number("P", "P", {0, 0, 0, 0, 0, 1}) == 0.25e6);  // pressure without PRESSURE: FORCE/LENGTH^2
@@ -105,10 +105,10 @@ TEST_CASE("[UNITS] converts every dimension to SI: mm, inch, lbf, lbm, degrees, 
                                    {"'kg'", "'pound_mass'"},
                                    {"'second'", "'millisecond'"}})
       header = replaced(header, from, to);
-    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(
+    const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(
         header + "PRESSURE = 'kPa'\n[P]\nA = 10\nB = 2\nC = 90\nD = 1\nE = 5\nF = 1\nG = 208\nH = 3\nK = 1\n",
         "us.tir");
-    io::TeimOrbitReader reader(file, "tir");
+    formats::TeimOrbitReader reader(file, "tir");
     CHECK(*reader.number("P", "A", {1}) == Approx(0.254).epsilon(1e-15));
     CHECK(*reader.number("P", "B", {0, 1}) == Approx(8.896443230521).epsilon(1e-15));
     CHECK(*reader.number("P", "C", {0, 0, 0, 0, 1}) == Approx(kPi / 2).epsilon(1e-15));
@@ -123,13 +123,13 @@ TEST_CASE("[UNITS] converts every dimension to SI: mm, inch, lbf, lbm, degrees, 
     reader.finish();
   }
   SECTION("the SI unit and the words of a dimension") {
-    CHECK(io::si_unit({-2, 1, 0, 1}) == "N s/m^2");
-    CHECK(io::si_unit({-1, 1, 0, 0, -1}) == "N/(m rad)");
-    CHECK(io::si_unit({2, 0, 1}) == "kg m^2");
-    CHECK(io::si_unit({-1, 0, 1}) == "kg/m");
-    CHECK(io::si_unit({}).empty());
-    CHECK(io::dimension_name({-2, 1, 0, 1}) == "force time/length^2");
-    CHECK(io::dimension_name({}) == "-");
+    CHECK(formats::si_unit({-2, 1, 0, 1}) == "N s/m^2");
+    CHECK(formats::si_unit({-1, 1, 0, 0, -1}) == "N/(m rad)");
+    CHECK(formats::si_unit({2, 0, 1}) == "kg m^2");
+    CHECK(formats::si_unit({-1, 0, 1}) == "kg/m");
+    CHECK(formats::si_unit({}).empty());
+    CHECK(formats::dimension_name({-2, 1, 0, 1}) == "force time/length^2");
+    CHECK(formats::dimension_name({}) == "-");
   }
 }
 
@@ -152,35 +152,35 @@ TEST_CASE("missing, unknown or misspelt units and headers are errors naming the 
   };
   for (const auto& [text, message] : cases) {
     INFO(text);
-    const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "u.tir");
-    CHECK_THROWS_WITH(io::TeimOrbitReader(file, "tir"), Contains(message));
+    const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(text, "u.tir");
+    CHECK_THROWS_WITH(formats::TeimOrbitReader(file, "tir"), Contains(message));
   }
   SECTION("a value that is not a number, and keys and sections nobody asked for") {
-    const io::TeimOrbitFile file =
-        io::TeimOrbitFile::parse(kSiHeader + "[TREAD]\nWIDTH = wide\nDEPTH = '1'\nWIDHT = 2\n[TRED]\nX = 1\n", "v.tir");
-    io::TeimOrbitReader reader(file, "tir");
+    const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(
+        kSiHeader + "[TREAD]\nWIDTH = wide\nDEPTH = '1'\nWIDHT = 2\n[TRED]\nX = 1\n", "v.tir");
+    formats::TeimOrbitReader reader(file, "tir");
     CHECK_THROWS_WITH(reader.number("TREAD", "WIDTH", {1}), Contains("v.tir:12: [TREAD] WIDTH = wide is not a finite"));
     CHECK_THROWS_WITH(reader.number("TREAD", "DEPTH", {1}), Contains("v.tir:13: [TREAD] DEPTH = '1' is a string"));
     reader.number("TREAD", "LENGTH", {1});
     CHECK_THROWS_WITH(reader.finish(), Contains("v.tir:14: [TREAD] unknown key 'WIDHT' (did you mean 'WIDTH'?; "
                                                 "known keys: DEPTH, LENGTH, WIDTH)"));
-    const io::TeimOrbitFile other =
-        io::TeimOrbitFile::parse(kSiHeader + "[TREAD]\nWIDTH = 1\n[TRED]\nX = 1\n", "w.tir");
-    io::TeimOrbitReader second(other, "tir");
+    const formats::TeimOrbitFile other =
+        formats::TeimOrbitFile::parse(kSiHeader + "[TREAD]\nWIDTH = 1\n[TRED]\nX = 1\n", "w.tir");
+    formats::TeimOrbitReader second(other, "tir");
     second.number("TREAD", "WIDTH", {1});
     CHECK_THROWS_WITH(second.finish(), Contains("w.tir:13: unknown section [TRED] (did you mean '[TREAD]'?"));
   }
 }
 
 TEST_CASE("numbers are written in the shortest text that reads back bit for bit", "[io][teim_orbit]") {
-  CHECK(io::round_trip_number(0.543) == "0.543");
-  CHECK(io::round_trip_number(100) == "100");
-  CHECK(io::round_trip_number(0.1 + 0.2) == "0.30000000000000004");
-  CHECK(io::round_trip_number(-0.0) == "-0");
-  CHECK(io::round_trip_number(2.4e3) == "2400");
+  CHECK(formats::round_trip_number(0.543) == "0.543");
+  CHECK(formats::round_trip_number(100) == "100");
+  CHECK(formats::round_trip_number(0.1 + 0.2) == "0.30000000000000004");
+  CHECK(formats::round_trip_number(-0.0) == "-0");
+  CHECK(formats::round_trip_number(2.4e3) == "2400");
   for (double value : {1.0 / 3.0, 5e-324, 1.7976931348623157e308, -2.2250738585072014e-308, 0.2715 * 2}) {
     INFO(value);
-    CHECK(same_bits(std::strtod(io::round_trip_number(value).c_str(), nullptr), value));
+    CHECK(same_bits(std::strtod(formats::round_trip_number(value).c_str(), nullptr), value));
   }
 }
 
@@ -195,18 +195,18 @@ TEST_CASE("TeimOrbit files as MF-Tyre writes them: no header, blank values, a se
                            "[SHAPE]\n{radial width}\n 1.0 0.0\n 1.0 0.4\n 0.9 1.0\n"
                            "[DEFLECTION_LOAD_CURVE]\n 0.000 0.0\n 0.005 2004.057\n"
                            "[VERTICAL]\nFNOMIN = 4000\nVERTICAL_STIFFNESS =\n";
-  const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "mf.tir");
-  const io::TeimOrbitTable* shape = file.section("shape")->own_table();
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(text, "mf.tir");
+  const formats::TeimOrbitTable* shape = file.section("shape")->own_table();
   REQUIRE(shape != nullptr);
   CHECK(shape->columns == std::vector<std::string>{"radial", "width"});
   CHECK(shape->rows.size() == 3);
   CHECK(shape->row_lines.front() == 13);
-  const io::TeimOrbitTable* curve = file.section("DEFLECTION_LOAD_CURVE")->own_table();
+  const formats::TeimOrbitTable* curve = file.section("DEFLECTION_LOAD_CURVE")->own_table();
   REQUIRE(curve != nullptr);
   CHECK(curve->columns.empty());
   CHECK(curve->rows.at(1) == std::vector<std::string>{"0.005", "2004.057"});
 
-  io::TeimOrbitReader reader(file, "tir");
+  formats::TeimOrbitReader reader(file, "tir");
   CHECK_FALSE(reader.number("MODEL", "ROAD_INCREMENT"));
   CHECK(*reader.number("VERTICAL", "FNOMIN", {0, 1}) == 4000.0);
   CHECK_FALSE(reader.number("VERTICAL", "VERTICAL_STIFFNESS", {-1, 1}));
@@ -220,8 +220,8 @@ TEST_CASE("a foreign file is read leniently: what tirefe does not read is passed
   const std::string text = kSiHeader +
                            "[VERTICAL]\nFNOMIN = 4000\nQ_FZ1 = 1\nDYNAMIC_STIFFNESS = 0\n"
                            "[GOODYEAR]\nCONSTRUCTION = '0L5001'\nTEST_NUMBER = ''\nK = 1\nK = 2\n";
-  const io::TeimOrbitFile file = io::TeimOrbitFile::parse(text, "f.tir");
-  io::TeimOrbitReader reader(file, "tir");
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::parse(text, "f.tir");
+  formats::TeimOrbitReader reader(file, "tir");
   reader.number("VERTICAL", "FNOMIN", {0, 1});
   reader.number("VERTICAL", "Q_FZ2");
   // Q_FZ1 is a standard key tirefe lists as unused; DYNAMIC_STIFFNESS is like no key it reads;

@@ -22,7 +22,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "contact/road_file.hpp"
+#include "formats/road_file.hpp"
 #include "io/checkpoint.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/interrupt.hpp"

@@ -16,7 +16,7 @@
 #include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
-#include "contact/road_file.hpp"
+#include "formats/road_file.hpp"
 #include "tire/contact_penalty.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
@@ -75,7 +75,7 @@ std::optional<RoadTrack> track_of(const MacroArguments& arguments) {
   return arguments.string("track") == "left" ? RoadTrack::Left : RoadTrack::Right;
 }
 
-/// A profile's points from its file (src/contact/road_file.hpp), placed on the road by
+/// A profile's points from its file (src/formats/road_file.hpp), placed on the road by
 /// 'start' (along x) and 'offset' (up).
 std::vector<Eigen::Vector2d> file_profile(const std::string& file, const std::optional<RoadShape>& road,
                                           const MacroArguments& arguments) {

@@ -1,14 +1,14 @@
-// Tire property files (.tir, TeimOrbit format: src/io/teim_orbit.hpp): tirefe.read_tire{...}
+// Tire property files (.tir, TeimOrbit format: src/formats/teim_orbit.hpp): tirefe.read_tire{...}
 // returns the model:tire parameter table a file holds, tirefe.write_tire{...} writes one
 // (docs/tire.md). A file of tirefe's own ring ([MODEL] PROPERTY_FILE_FORMAT = 'TIREFE') is
 // read through the table below, the whole mapping: each file key, the dimension its value
 // is converted by, and the model:tire key it becomes; ranges, defaults and meanings are
 // those of model:tire's own spec. Any other file is a standard (Magic Formula) one, read by
-// src/tire/mf_tire_file.hpp into a ring of its size, with what it states beside it.
+// src/formats/mf_tire_file.hpp into a ring of its size, with what it states beside it.
 #include <cmath>
 
-#include "io/teim_orbit.hpp"
-#include "tire/mf_tire_file.hpp"
+#include "formats/teim_orbit.hpp"
+#include "formats/mf_tire_file.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/macro_table.hpp"
 
@@ -17,7 +17,7 @@ namespace tirefe::macros {
 namespace {
 
 using VT = ValueType;
-using io::Dimension;
+using formats::Dimension;
 
 constexpr const char* kFormat = "TIREFE";  // [MODEL] PROPERTY_FILE_FORMAT of tirefe's ring tire
 
@@ -77,7 +77,8 @@ const ParameterSpec& tire_parameter(const std::string& key) {
 std::string file_key(const TireFileKey& key) { return std::string("[") + key.section + "] " + key.key; }
 
 /// A standard file's parameter table, checked by model:tire's ranges as the own format's is.
-void push_ring_parameters(lua_State* L, const io::TeimOrbitReader& reader, const std::vector<RingParameter>& ring) {
+void push_ring_parameters(lua_State* L, const formats::TeimOrbitReader& reader,
+                          const std::vector<RingParameter>& ring) {
   lua_createtable(L, 0, static_cast<int>(ring.size()));
   for (const RingParameter& parameter : ring) {
     const ParameterSpec& spec = tire_parameter(parameter.key);
@@ -142,7 +143,7 @@ void push_stated(lua_State* L, const MfTireFile& tire, const std::vector<RingPar
 }
 
 /// Pushes the model:tire table of a file of tirefe's own ring.
-void push_own_tire_file(lua_State* L, const io::TeimOrbitFile& file, io::TeimOrbitReader& reader);
+void push_own_tire_file(lua_State* L, const formats::TeimOrbitFile& file, formats::TeimOrbitReader& reader);
 /// Pushes the model:tire table of any tire property file, and with 'stated' what a standard
 /// file states (nil for one of tirefe's own). Returns the number of values pushed.
 int push_tire_file(lua_State* L, const std::string& path, std::optional<double> pressure,
@@ -175,7 +176,7 @@ int write_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& a
                                   "' places a tire in a model; it is not a tire property (leave it out)");
   std::vector<std::string> comments;
   if (arguments.has("comments")) comments = arguments.string_list("comments");
-  io::TeimOrbitWriter writer("tir", comments);
+  formats::TeimOrbitWriter writer("tir", comments);
   std::string section;
   for (const TireFileKey& key : kTireFileKeys) {
     if (key.section != section) {
@@ -186,7 +187,7 @@ int write_tire_macro(lua_State* L, DeckSession& session, const MacroArguments& a
     const ParameterSpec& parameter = tire_parameter(key.parameter);
     const double value = parameter.type == VT::Integer ? static_cast<double>(parameters.integer(key.parameter))
                                                        : parameters.number(key.parameter);
-    const std::string unit = io::si_unit(key.dimension);
+    const std::string unit = formats::si_unit(key.dimension);
     const std::string meaning = key.file_scale != 1.0
                                     ? "half of " + std::string(key.parameter) + " (" + parameter.doc + ")"
                                     : std::string(key.parameter) + ": " + parameter.doc;
@@ -206,10 +207,10 @@ namespace {
 
 int push_tire_file(lua_State* L, const std::string& path, std::optional<double> pressure,
                    std::optional<double> tread_width, bool stated) {
-  const io::TeimOrbitFile file = io::TeimOrbitFile::read(path);
-  io::TeimOrbitReader reader(file, "tir");
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::read(path);
+  formats::TeimOrbitReader reader(file, "tir");
   const auto format = reader.string("MODEL", "PROPERTY_FILE_FORMAT");
-  if (!format || !io::same_name(*format, kFormat)) {
+  if (!format || !formats::same_name(*format, kFormat)) {
     // tirefe's own sections in a file that does not name the format: a mix-up, not a standard file.
     for (const char* own : {"TREAD", "SIDEWALL", "TREAD_LAYER", "RIM"})
       if (file.section(own))
@@ -235,7 +236,7 @@ int push_tire_file(lua_State* L, const std::string& path, std::optional<double> 
   return 1;
 }
 
-void push_own_tire_file(lua_State* L, const io::TeimOrbitFile& file, io::TeimOrbitReader& reader) {
+void push_own_tire_file(lua_State* L, const formats::TeimOrbitFile& file, formats::TeimOrbitReader& reader) {
   std::vector<std::optional<double>> values;
   for (const TireFileKey& key : kTireFileKeys) values.push_back(reader.number(key.section, key.key, key.dimension));
   // The standard file's other dimensions may stand beside the ring's: they describe the
@@ -249,8 +250,9 @@ void push_own_tire_file(lua_State* L, const io::TeimOrbitFile& file, io::TeimOrb
     const ParameterSpec& parameter = tire_parameter(key.parameter);
     if (!values[i]) {
       if (!parameter.required) continue;  // model:tire's default
-      const io::TeimOrbitSection* section = file.section(key.section);
-      const std::string dimension = key.dimension.dimensionless() ? "" : ", a " + io::dimension_name(key.dimension);
+      const formats::TeimOrbitSection* section = file.section(key.section);
+      const std::string dimension =
+          key.dimension.dimensionless() ? "" : ", a " + formats::dimension_name(key.dimension);
       reader.fail(section ? section->line : 0, "missing " + file_key(key) + " (" +
                                                    (key.file_scale != 1.0 ? "half of " : "") + key.parameter + ": " +
                                                    parameter.doc + dimension + ")");
@@ -261,8 +263,8 @@ void push_own_tire_file(lua_State* L, const io::TeimOrbitFile& file, io::TeimOrb
       reader.fail(line, file_key(key) + ": " + key.parameter + " " + *problem);
     if (parameter.type == VT::Integer) {
       if (value != std::floor(value) || value > 1e9)
-        reader.fail(line,
-                    file_key(key) + " must be a whole number below 1e9 (got " + io::round_trip_number(value) + ")");
+        reader.fail(
+            line, file_key(key) + " must be a whole number below 1e9 (got " + formats::round_trip_number(value) + ")");
       lua_pushinteger(L, static_cast<lua_Integer>(value));
     } else {
       lua_pushnumber(L, value);
@@ -282,8 +284,8 @@ std::string tire_property_file_reference() {
   for (const TireFileKey& key : kTireFileKeys) {
     const ParameterSpec& parameter = tire_parameter(key.parameter);
     const std::string need = parameter.required ? "required" : "default " + parameter.default_value.value_or("none");
-    out += std::string("| `[") + key.section + "]` | `" + key.key + "` | " + io::dimension_name(key.dimension) + " | " +
-           io::si_unit(key.dimension) + " | `" + key.parameter + "`" +
+    out += std::string("| `[") + key.section + "]` | `" + key.key + "` | " + formats::dimension_name(key.dimension) +
+           " | " + formats::si_unit(key.dimension) + " | `" + key.parameter + "`" +
            (key.file_scale != 1.0 ? " / 2 (the file holds the radius)" : "") + " | " + parameter.doc + " (" + need +
            ") |\n";
   }

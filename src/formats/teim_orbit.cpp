@@ -1,4 +1,4 @@
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -13,7 +13,7 @@
 
 #include "core/spelling.hpp"
 
-namespace tirefe::io {
+namespace tirefe::formats {
 
 namespace {
 
@@ -617,4 +617,4 @@ void TeimOrbitWriter::save(const std::string& path) const {
   if (!out) throw TeimOrbitError(path + ": cannot write the file");
 }
 
-}  // namespace tirefe::io
+}  // namespace tirefe::formats

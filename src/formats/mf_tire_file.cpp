@@ -1,4 +1,4 @@
-#include "tire/mf_tire_file.hpp"
+#include "formats/mf_tire_file.hpp"
 
 #include <cmath>
 
@@ -6,7 +6,7 @@ namespace tirefe {
 
 namespace {
 
-using io::Dimension;
+using formats::Dimension;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr Dimension kLength{1};
@@ -87,15 +87,15 @@ const std::map<std::string, std::vector<std::string>>& MfTireFile::unused_keys()
   return keys;
 }
 
-MfTireFile MfTireFile::read(const io::TeimOrbitFile& file, io::TeimOrbitReader& reader) {
+MfTireFile MfTireFile::read(const formats::TeimOrbitFile& file, formats::TeimOrbitReader& reader) {
   MfTireFile tire;
   tire.path = file.path();
   if (const auto format = reader.string("MODEL", "PROPERTY_FILE_FORMAT"))
     tire.format = *format;
   else if (const auto fit_type = reader.number("MODEL", "FITTYP"))
-    tire.format = "FITTYP " + io::round_trip_number(*fit_type);
+    tire.format = "FITTYP " + formats::round_trip_number(*fit_type);
 
-  if (const io::TeimOrbitSection* dimension = file.section("DIMENSION")) tire.dimension_line = dimension->line;
+  if (const formats::TeimOrbitSection* dimension = file.section("DIMENSION")) tire.dimension_line = dimension->line;
   tire.unloaded_radius = reader.required_number("DIMENSION", "UNLOADED_RADIUS", kLength, "the free tire's radius");
   tire.width = reader.number("DIMENSION", "WIDTH", kLength);
   tire.aspect_ratio = reader.number("DIMENSION", "ASPECT_RATIO");
@@ -133,7 +133,7 @@ MfTireFile MfTireFile::read(const io::TeimOrbitFile& file, io::TeimOrbitReader& 
     tire.vertical_stiffness = *linear * *tire.nominal_load / tire.unloaded_radius;
   if (tire.nominal_load) *tire.nominal_load *= load_scale;
   if (tire.vertical_stiffness) *tire.vertical_stiffness *= stiffness_scale;
-  if (const io::TeimOrbitTable* curve = reader.table("DEFLECTION_LOAD_CURVE", "")) {
+  if (const formats::TeimOrbitTable* curve = reader.table("DEFLECTION_LOAD_CURVE", "")) {
     for (size_t row = 0; row < curve->rows.size(); ++row) {
       const std::vector<double> deflection = reader.row_numbers(*curve, row, kLength);
       const std::vector<double> load = reader.row_numbers(*curve, row, kForce);
@@ -161,7 +161,7 @@ MfTireFile MfTireFile::read(const io::TeimOrbitFile& file, io::TeimOrbitReader& 
   const auto positive = [&](const char* section, const char* key, const std::optional<double>& value) {
     if (value && !(*value > 0.0))
       reader.fail(reader.line(section, key),
-                  key_of(section, key) + " must be positive (got " + io::round_trip_number(*value) + ")");
+                  key_of(section, key) + " must be positive (got " + formats::round_trip_number(*value) + ")");
   };
   positive("DIMENSION", "UNLOADED_RADIUS", tire.unloaded_radius);
   positive("DIMENSION", "WIDTH", tire.width);
@@ -222,15 +222,16 @@ std::vector<RingParameter> ring_parameters(const MfTireFile& tire, std::optional
                                            std::optional<double> tread_width) {
   const auto p = build_pressure(tire, pressure);
   if (!p)
-    throw io::TeimOrbitError(tire.path +
-                             ": the file states no inflation pressure ([OPERATING_CONDITIONS] INFLPRES "
-                             "or NOMPRES, [TIRE_CONDITIONS] IP): give read_tire a 'pressure'");
+    throw formats::TeimOrbitError(tire.path +
+                                  ": the file states no inflation pressure ([OPERATING_CONDITIONS] INFLPRES "
+                                  "or NOMPRES, [TIRE_CONDITIONS] IP): give read_tire a 'pressure'");
   const std::string dimension = tire.path + ":" + std::to_string(tire.dimension_line) + ": ";
   // Without the section width, a given tread width stands for three quarters of it.
   if (!tire.width && !tread_width)
-    throw io::TeimOrbitError(dimension +
-                             "no value of [DIMENSION] WIDTH (the section width, a length): give it, or read_tire a "
-                             "'tread_width' (the width the pressure acts on, about 3/4 of it)");
+    throw formats::TeimOrbitError(
+        dimension +
+        "no value of [DIMENSION] WIDTH (the section width, a length): give it, or read_tire a "
+        "'tread_width' (the width the pressure acts on, about 3/4 of it)");
   const double r0 = tire.unloaded_radius;
   const double section_width = tire.width ? *tire.width : *tread_width / kTreadWidthPerSectionWidth;
   double rim_radius = 0.0;
@@ -242,9 +243,9 @@ std::vector<RingParameter> ring_parameters(const MfTireFile& tire, std::optional
     rim_origin = "UNLOADED_RADIUS - ASPECT_RATIO WIDTH";
   }
   if (!(rim_radius > 0.0 && rim_radius < r0))
-    throw io::TeimOrbitError(dimension +
-                             "no value of [DIMENSION] RIM_RADIUS (a length below UNLOADED_RADIUS; or "
-                             "ASPECT_RATIO, from which it follows)");
+    throw formats::TeimOrbitError(dimension +
+                                  "no value of [DIMENSION] RIM_RADIUS (a length below UNLOADED_RADIUS; or "
+                                  "ASPECT_RATIO, from which it follows)");
 
   // The set's per-width values scale with three quarters of the section width; the width
   // the pressure acts on is that too, unless the caller (a fit) gives another.

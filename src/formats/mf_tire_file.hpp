@@ -19,7 +19,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 
 namespace tirefe {
 
@@ -46,9 +46,9 @@ struct MfTireFile {
   std::optional<double> longitudinal_damping;    // DAMP_LONG [-]: damping ratio of that mode
   std::optional<double> windup_damping;          // DAMP_WINDUP [-]
 
-  /// Reads a standard file ([MDI_HEADER] optional); io::TeimOrbitError naming the file and
+  /// Reads a standard file ([MDI_HEADER] optional); formats::TeimOrbitError naming the file and
   /// line for a malformed one, a misspelt key tirefe reads, or a missing UNLOADED_RADIUS.
-  static MfTireFile read(const io::TeimOrbitFile& file, io::TeimOrbitReader& reader);
+  static MfTireFile read(const formats::TeimOrbitFile& file, formats::TeimOrbitReader& reader);
 
   /// The vertical load [N] at a deflection [m] from the free radius, at inflation pressure
   /// p [Pa]: the [DEFLECTION_LOAD_CURVE] when the file has one (measured at its own
@@ -71,7 +71,7 @@ struct RingParameter {
 };
 
 /// The ring tire of a standard file at inflation pressure 'pressure' (the file's when not
-/// given; io::TeimOrbitError when the file states none), with the pressure acting on
+/// given; formats::TeimOrbitError when the file states none), with the pressure acting on
 /// 'tread_width' (3/4 of the section width when not given; the sidewall's length follows
 /// it, every other estimate scales with the section width). In model:tire's key order.
 std::vector<RingParameter> ring_parameters(const MfTireFile& tire, std::optional<double> pressure,

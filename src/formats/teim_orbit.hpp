@@ -39,7 +39,7 @@
 #include <utility>
 #include <vector>
 
-namespace tirefe::io {
+namespace tirefe::formats {
 
 class TeimOrbitError : public std::runtime_error {
  public:
@@ -191,4 +191,4 @@ std::string trimmed(const std::string& text);
 /// The shortest decimal text that reads back as exactly 'value'.
 std::string round_trip_number(double value);
 
-}  // namespace tirefe::io
+}  // namespace tirefe::formats

@@ -1,4 +1,4 @@
-#include "contact/road_file.hpp"
+#include "formats/road_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -10,18 +10,18 @@
 #include "core/mesh.hpp"
 #include "core/spelling.hpp"
 #include "fitting/curve_data.hpp"
-#include "io/teim_orbit.hpp"
+#include "formats/teim_orbit.hpp"
 
 namespace tirefe {
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr io::Dimension kLength{1};
-constexpr io::Dimension kAngle{0, 0, 0, 0, 1};
+constexpr formats::Dimension kLength{1};
+constexpr formats::Dimension kAngle{0, 0, 0, 0, 1};
 constexpr const char* kParameters = "PARAMETERS";
 
-std::string number_text(double value) { return io::round_trip_number(value); }
+std::string number_text(double value) { return formats::round_trip_number(value); }
 
 /// Appends a point of a track, skipping a repeat of the last one; the problem otherwise.
 std::optional<std::string> append_point(std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& point) {
@@ -42,8 +42,8 @@ std::string lower(std::string text) {
 /// calls all_read(), so that a misspelt key is reported as unknown rather than as missing.
 class RoadParameters {
  public:
-  explicit RoadParameters(io::TeimOrbitReader& reader) : reader_(reader) {}
-  std::optional<double> number(const char* key, const io::Dimension& dimension = kLength) {
+  explicit RoadParameters(formats::TeimOrbitReader& reader) : reader_(reader) {}
+  std::optional<double> number(const char* key, const formats::Dimension& dimension = kLength) {
     return reader_.number(kParameters, key, dimension);
   }
   void all_read() const { reader_.finish(); }
@@ -53,16 +53,16 @@ class RoadParameters {
   }
   [[noreturn]] void fail(const char* key, const std::string& message) const {
     const int line = reader_.line(kParameters, key);
-    const io::TeimOrbitSection* section = reader_.file().section(kParameters);
+    const formats::TeimOrbitSection* section = reader_.file().section(kParameters);
     reader_.fail(line ? line : section ? section->line : 0, message);
   }
   void require(bool condition, const char* key, const std::string& message) const {
     if (!condition) fail(key, std::string("[PARAMETERS] ") + key + " " + message);
   }
-  io::TeimOrbitReader& reader() { return reader_; }
+  formats::TeimOrbitReader& reader() { return reader_; }
 
  private:
-  io::TeimOrbitReader& reader_;
+  formats::TeimOrbitReader& reader_;
 };
 
 /// The corners of an obstacle (in order along x) raised by the road's offset.
@@ -123,8 +123,8 @@ std::vector<Eigen::Vector2d> pot_hole(RoadParameters& parameters, double offset)
 }
 
 std::vector<Eigen::Vector2d> poly_line(RoadParameters& parameters, double offset, std::optional<RoadTrack> track) {
-  io::TeimOrbitReader& reader = parameters.reader();
-  const io::TeimOrbitTable* data = reader.table(kParameters, "XZ_DATA");
+  formats::TeimOrbitReader& reader = parameters.reader();
+  const formats::TeimOrbitTable* data = reader.table(kParameters, "XZ_DATA");
   parameters.all_read();
   if (!data) parameters.fail("", "a poly_line road needs its profile as an (XZ_DATA) table in [PARAMETERS]");
   const size_t width = !data->columns.empty() ? data->columns.size() : data->rows.empty() ? 0 : data->rows[0].size();
@@ -192,12 +192,12 @@ RoadShape drum(RoadParameters& parameters, double offset) {
 }  // namespace
 
 RoadShape read_road_data_file(const std::string& path, std::optional<RoadTrack> track) {
-  const io::TeimOrbitFile file = io::TeimOrbitFile::read(path);
-  io::TeimOrbitReader reader(file, "rdf");
-  const io::TeimOrbitSection* model = file.section("MODEL");
+  const formats::TeimOrbitFile file = formats::TeimOrbitFile::read(path);
+  formats::TeimOrbitReader reader(file, "rdf");
+  const formats::TeimOrbitSection* model = file.section("MODEL");
   const int model_line = model ? model->line : 0;
   const auto method = reader.string("MODEL", "METHOD");
-  if (!method || !io::same_name(*method, "2D"))
+  if (!method || !formats::same_name(*method, "2D"))
     reader.fail(method ? reader.line("MODEL", "METHOD") : model_line,
                 "[MODEL] needs METHOD = '2D': tirefe reads the 2D roads of road data files");
   const auto type = reader.string("MODEL", "ROAD_TYPE");
@@ -282,8 +282,8 @@ struct CrgChannel {
   int line = 0;
 };
 
-using io::trimmed;
-using io::upper;
+using formats::trimmed;
+using formats::upper;
 
 std::optional<double> crg_number(const std::string& text) {
   if (text.empty() || text.find_first_not_of("0123456789+-.eEdD") != std::string::npos) return std::nullopt;

@@ -47,7 +47,7 @@ struct RoadShape {
   Cleat cleat;                          // drum; height 0: none
 };
 
-/// The 2D road of an ADAMS road data file; io::TeimOrbitError naming the file and line for a
+/// The 2D road of an ADAMS road data file; formats::TeimOrbitError naming the file and line for a
 /// bad file, an unknown key or a road type tirefe does not model.
 RoadShape read_road_data_file(const std::string& path, std::optional<RoadTrack> track);
 
