@@ -71,7 +71,7 @@ void Analysis::prepare() {
   } else if (!solvers_.driving()) {
     if (!integrator_.is_dynamic())
       throw ModelError(
-          "driven DOFs need a dynamic integrator (Newmark or HHT): the quasi-static tangent of a "
+          "driven DOFs need a dynamic integrator (newmark, hht, wbz or generalized_alpha): the quasi-static tangent of a "
           "structure held only at its driven DOFs is singular");
     std::vector<int> equations;
     for (int dof : driven_.dofs()) {

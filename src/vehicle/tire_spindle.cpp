@@ -11,7 +11,7 @@ TireSpindle::TireSpindle(Analysis& analysis, int spindle, SpinMode spin)
       spin_(spin),
       driven_count_(spin == SpinMode::Free ? 2 : 3) {
   if (!analysis.integrator().is_dynamic())
-    throw ModelError("the spindle force needs a dynamic tire analysis (Newmark or HHT)");
+    throw ModelError("the spindle force needs a dynamic tire analysis (newmark, hht, wbz or generalized_alpha)");
   Model& model = analysis.model();
   std::vector<int> dofs;
   for (int c = 0; c < kDofsPerNode; ++c) model.release(spindle_, c);

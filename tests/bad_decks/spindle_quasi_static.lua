@@ -1,4 +1,4 @@
--- expect line 7: the spindle force needs a dynamic tire analysis (Newmark or HHT)
+-- expect line 7: the spindle force needs a dynamic tire analysis (newmark, hht, wbz or generalized_alpha)
 local model = tirefe.model{}
 local tp = require("tires.145SR12")
 tp.elements = 12
