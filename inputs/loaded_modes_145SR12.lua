@@ -38,13 +38,12 @@ local speed = p.speed_kmh / 3.6
 local spin = speed / p.rolling_radius  -- the tire's spin at that speed [rad/s]
 local drum_start = 3.0                 -- the drum starts turning after the static analyses
 
--- The drum's angle (clockwise): its surface speed rises as (1 - cos) from drum_start over
--- spin_up_time, so the tire spins up without a jerk that would leave it ringing.
-local function drum_angle(t)
-  local omega, ramp, running = speed / drum_radius, p.spin_up_time, math.max(t - drum_start, 0)
-  if running <= ramp then return -0.5 * omega * (running - ramp / math.pi * math.sin(math.pi * running / ramp)) end
-  return -omega * (running - 0.5 * ramp)
-end
+-- The drum's turn (lua/drum.lua): its surface speed rises as (1 - cos) from drum_start over
+-- spin_up_time, so the tire spins up without a jerk that would leave it ringing; the model's
+-- drum surface turns counter-clockwise by positive angles, the rig clockwise.
+local rig = require("drum").rig{ diameter = 2 * drum_radius, speed = speed, start = drum_start,
+                                 spin_up_time = p.spin_up_time, ramp = "cosine" }
+local function drum_angle(t) return -rig:angle(t) end
 
 -- Among modes with a frequency: the lowest whose axle force is mostly F_x (fore-aft) and
 -- the one with the largest F_y (vertical).

@@ -1,7 +1,10 @@
 -- The drum of a drum-cleat rig: its turn as the drum surface of the model drives it (at rest
--- until 'start', a linear spin-up of the surface speed over 'spin_up_time', then the full
--- speed), the times the cleat passes under the tire on top of the drum, and the time step
--- schedule around those passages.
+-- until 'start', a spin-up of the surface speed over 'spin_up_time', then the full speed),
+-- the times the cleat passes under the tire on top of the drum, and the time step schedule
+-- around those passages. The spin-up is linear (ramp = "linear", the default: the drum
+-- surface's own `speed` and `ramp_time`), or rises as (1 - cos) (ramp = "cosine": without
+-- the jerk that leaves a tire ringing; the surface then turns by a load function, rig:angle).
+-- The one drum kinematics of the decks: they plan and drive their drums through it.
 --
 --   local drum = require("drum")
 --   local rig = drum.rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 4.0 }
@@ -16,10 +19,15 @@ local drum = {}
 local Rig = {}
 Rig.__index = Rig
 
--- The rig from its drum diameter [m], final surface speed [m/s], spin-up start and time [s].
+-- The rig from its drum diameter [m], final surface speed [m/s], spin-up start and time [s]
+-- and the spin-up's shape (ramp: "linear" or "cosine").
 function drum.rig(args)
+  local ramp = args.ramp or "linear"
+  if ramp ~= "linear" and ramp ~= "cosine" then
+    error(string.format("drum.rig: ramp = '%s' is no spin-up: give \"linear\" or \"cosine\"", tostring(ramp)), 2)
+  end
   local rig = setmetatable({ radius = args.diameter / 2, speed = args.speed, start = args.start,
-                             spin_up_time = args.spin_up_time }, Rig)
+                             spin_up_time = args.spin_up_time, ramp = ramp }, Rig)
   rig.omega = rig.speed / rig.radius  -- drum spin at full speed [rad/s]
   return rig
 end
@@ -28,6 +36,11 @@ end
 function Rig:angle(t)
   local running = t - self.start
   if running <= 0 then return 0 end
+  if self.ramp == "cosine" then
+    local omega, ramp = self.omega, self.spin_up_time
+    if running <= ramp then return 0.5 * omega * (running - ramp / math.pi * math.sin(math.pi * running / ramp)) end
+    return omega * (running - 0.5 * ramp)
+  end
   local ramp = math.min(running, self.spin_up_time)
   return 0.5 * self.omega * ramp * ramp / self.spin_up_time + self.omega * math.max(running - self.spin_up_time, 0)
 end
@@ -35,13 +48,23 @@ end
 -- The time at which the drum has turned through 'angle' clockwise (the inverse of Rig:angle).
 function Rig:time_at_angle(angle)
   local ramp_angle = 0.5 * self.omega * self.spin_up_time
+  if self.ramp == "cosine" and angle < ramp_angle then  -- the angle rises monotonically: bisection
+    local low, high = self.start, self.start + self.spin_up_time
+    for _ = 1, 60 do
+      local middle = 0.5 * (low + high)
+      if self:angle(middle) < angle then low = middle else high = middle end
+    end
+    return 0.5 * (low + high)
+  end
   if angle <= ramp_angle then return self.start + math.sqrt(2 * angle * self.spin_up_time / self.omega) end
   return self.start + self.spin_up_time + (angle - ramp_angle) / self.omega
 end
 
 -- The drum's surface speed at time t [m/s].
 function Rig:surface_speed(t)
-  return self.speed * math.min(math.max(t - self.start, 0) / self.spin_up_time, 1)
+  local share = math.min(math.max(t - self.start, 0) / self.spin_up_time, 1)
+  if self.ramp == "cosine" then return self.speed * 0.5 * (1 - math.cos(math.pi * share)) end
+  return self.speed * share
 end
 
 -- The passages of a cleat (middle at 'cleat_angle' from +x at rest, 'cleat_length' along the

@@ -84,6 +84,38 @@ tirefe.check{ name = "full-speed passages read", value = count, expected = 2, to
   tirefe::testing::check_deck_passes(deck, folder.path("out"), 30);
 }
 
+TEST_CASE("lua/drum.lua: the (1 - cos) spin-up, its angle, speed and inverse", "[lua][modules][drum]") {
+  // omega = 16.7647 rad/s over a 0.15 s ramp from 3 s: the angle at the ramp's end is
+  // omega ramp / 2 = 1.2573529 rad, as the linear ramp's; the speed halfway up is v / 2.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("cosine_drum_deck.lua", R"(
+local drum = require("drum")
+local rig = drum.rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 3.0, spin_up_time = 0.15, ramp = "cosine" }
+tirefe.check{ name = "at rest before the start", value = rig:angle(2.9), expected = 0, tolerance = 0 }
+tirefe.check{ name = "angle at the ramp's end [rad]", value = rig:angle(3.15), expected = 0.5 * rig.omega * 0.15,
+              relative = 1e-14 }
+tirefe.check{ name = "angle at full speed [rad]", value = rig:angle(4.0), expected = rig.omega * (1.0 - 0.075),
+              relative = 1e-14 }
+tirefe.check{ name = "surface speed halfway up [m/s]", value = rig:surface_speed(3.075), expected = 51.3 / 3.6 / 2,
+              relative = 1e-14 }
+local h = 1e-6
+for _, t in ipairs{ 3.01, 3.075, 3.14, 3.5 } do
+  tirefe.check{ name = "d angle / dt = surface speed / radius at " .. t .. " s [rad/s]",
+                value = (rig:angle(t + h) - rig:angle(t - h)) / (2 * h), expected = rig:surface_speed(t) / 0.85,
+                relative = 1e-7 }
+end
+tirefe.check{ name = "time_at_angle inverts angle, spin-up [s]", value = rig:time_at_angle(rig:angle(3.05)),
+              expected = 3.05, tolerance = 1e-12 }
+tirefe.check{ name = "time_at_angle inverts angle, full speed [s]", value = rig:time_at_angle(rig:angle(3.9)),
+              expected = 3.9, tolerance = 1e-12 }
+local ok, message = pcall(drum.rig, { diameter = 1.7, speed = 1, start = 0, spin_up_time = 1, ramp = "smooth" })
+tirefe.check{ name = "an unknown ramp is refused", value = ok and 1 or 0, expected = 0, tolerance = 0 }
+tirefe.check{ name = "naming the choices", value = message:find('give "linear" or "cosine"', 1, true) and 1 or 0,
+              expected = 1, tolerance = 0 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 12);
+}
+
 TEST_CASE("lua/series.lua and lua/rolling.lua: windows, peaks, rises, means, rolling radius", "[lua][modules]") {
   tirefe::testing::TempDir folder;
   const std::string deck = folder.write("series_deck.lua", R"(
