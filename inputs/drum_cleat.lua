@@ -39,6 +39,7 @@ local p = tirefe.parameters{
   integrator = { "hht", "hht or newmark" },
   newmark_gamma = { 0.5, "Newmark gamma, beta = (gamma + 1/2)^2 / 4 (0.5: average acceleration)" },
   newton_tolerance = { 1e-5, "Newton tolerance on the residual relative to the step's force level" },
+  newton_budget = { 1, "a step budget: Newton iterations after which a step within 1e-4 is taken (0: none)" },
   alpha = { -0.1, "HHT alpha" },
   dt = { 5e-4, "time step at full speed away from the cleat", unit = "s" },
   dt_max = { 2e-3, "largest time step, during the spin-up (dt grows as 1 / speed)", unit = "s" },
@@ -112,7 +113,7 @@ print(string.format("pressed: deflection %.2f mm for %.1f N, contact patch %.1f 
 
 -- 2-8 s: the drum spins up; the spindle turns freely on the dead axle.
 model:release{ node = tire.spindle, dofs = { "rz" } }
-model:newton{ tolerance = p.newton_tolerance }
+model:newton{ tolerance = p.newton_tolerance, budget_iterations = p.newton_budget }
 -- A step cut to a thousandth of dt means the solution is falling apart: stop with a message.
 model:step_control{ min_dt = p.dt_cleat / 1024, max_cuts = 10 }
 local stepping = require("stepping")

@@ -10,7 +10,9 @@
 #include <cmath>
 #include <string>
 
+#include "deck_support.hpp"
 #include "include/tirefe.h"
+#include "test_support.hpp"
 
 namespace {
 
@@ -186,4 +188,41 @@ TEST_CASE("a step budget starts the steps from the zero-acceleration predictor, 
   tirefe_free_state(saved);
   tirefe_close(plain);
   tirefe_close(budgeted);
+}
+
+TEST_CASE("a deck's step budget (model:newton budget_iterations) ends steps early within its residual bound",
+          "[newton][budget][lua]") {
+  // A cantilever (EI = 1, L = 1) under a tip load of 1 N in 100 load steps, Newton to 1e-12:
+  // about 5 iterations a step; with a budget of one iteration within 1e-3, two evaluations a
+  // step (the step and its residual check) and a tip deflection within 1e-4 of the converged.
+  tirefe::testing::TempDir folder;
+  const std::string deck = folder.write("budget_deck.lua", R"(
+local function run(newton)
+  local model = tirefe.model{ title = "cantilever under a step budget" }
+  local first, last
+  for i = 0, 10 do
+    local node = model:node{ x = i / 10, y = 0.0 }
+    first = first or node
+    last = node
+  end
+  model:section{ name = "beam", EA = 1e7, GA = 1e7, EI = 1.0 }
+  local chain = {}
+  for node = first, last do chain[#chain + 1] = node end
+  model:beam{ section = "beam", nodes = chain }
+  model:fix{ node = first }
+  model:load{ node = last, fy = -1.0 }
+  model:output{ file = newton.budget_iterations and "budget.h5" or "plain.h5" }
+  model:newton(newton)
+  local run = model:solve{ to = 1.0, dt = 0.01 }
+  return run, model:value{ node = last, dof = "uy" }
+end
+local plain, plain_tip = run{ tolerance = 1e-12 }
+local budget, budget_tip = run{ tolerance = 1e-12, budget_iterations = 1, budget_residual = 1e-3 }
+tirefe.check{ name = "Newton to 1e-12: iterations per step", value = plain.newton_iterations / plain.steps,
+              expected = 4.95, tolerance = 0.5 }
+tirefe.check{ name = "a budget of one: evaluations per step", value = budget.newton_iterations / budget.steps,
+              expected = 2, tolerance = 0 }
+tirefe.check{ name = "tip deflection under the budget [m]", value = budget_tip, expected = plain_tip, relative = 1e-4 }
+)");
+  tirefe::testing::check_deck_passes(deck, folder.path("out"), 3);
 }

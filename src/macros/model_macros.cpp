@@ -167,6 +167,8 @@ int newton_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   NewtonSettings& settings = deck.analysis().newton_settings();
   settings.residual_tolerance = arguments.number_or("tolerance", settings.residual_tolerance);
   settings.max_iterations = static_cast<int>(arguments.integer_or("max_iterations", settings.max_iterations));
+  settings.budget_iterations = static_cast<int>(arguments.integer_or("budget_iterations", settings.budget_iterations));
+  settings.budget_residual = arguments.number_or("budget_residual", settings.budget_residual);
   if (arguments.has("log"))
     deck.analysis().set_log(arguments.boolean("log") ? &deck.session().progress.output() : nullptr);
   return 0;
@@ -575,6 +577,12 @@ void add_model_macros(MacroTable& table) {
        {{"tolerance", VT::Number, false, "", "on |R| / R_ref", std::string("1e-9"), Range::Positive},
         {"max_iterations", VT::Integer, false, "", "per step before the step is cut", std::string("25"),
          Range::Positive},
+        {"budget_iterations", VT::Integer, false, "",
+         "a step budget: after this many iterations a step whose |R| / R_ref is within budget_residual is taken "
+         "unconverged, its residual in the history channel 'residual' (0: none)",
+         std::string("0"), Range::NonNegative},
+        {"budget_residual", VT::Number, false, "", "the largest |R| / R_ref a step budget ends a step with",
+         std::string("1e-4"), Range::Positive},
         {"log", VT::Boolean, false, "", "print every iteration's residual norm", std::string("false")}},
        "model:newton{ tolerance = 1e-10, log = true }"},
       newton_macro);
