@@ -42,6 +42,7 @@ local p = tirefe.parameters{
   mu = { 0.9, "tire-road friction coefficient" },
   threads = { 1, "1: the tires solved on threads, 0: one after another" },
   newton_tolerance = { 1e-6, "tire Newton, on |R| / R_ref: spindle forces to ~5 mN" },
+  newton_budget = { 0, "tire step budget: Newton iterations after which a solve within 1e-4 is taken (0: none)" },
   vehicle_tolerance = { 1e-6, "vehicle corrector, on |r|_inf / total weight (~14 mN)" },
   predictor = { "zero_acceleration", "the tires' HHT predictor" },
 }
@@ -95,7 +96,7 @@ for _, c in ipairs({ { name = "LF", x = a, y = track / 2, pothole = true },
   -- The contact patch's nodes land on the road with accelerations that jump from step to
   -- step at speed: starting Newton from a_{n+1} = 0 rather than a_n saves a third of the
   -- iterations and nearly all the step cuts (docs/vehicle.md).
-  model:newton{ tolerance = p.newton_tolerance }
+  model:newton{ tolerance = p.newton_tolerance, budget_iterations = p.newton_budget }
   model:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
   model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }
   corners[#corners + 1] = {
