@@ -14,13 +14,13 @@
 #include <vector>
 
 #include "contact/rigid_surface.hpp"
-#include "formats/road_file.hpp"
 #include "core/mesh.hpp"
 #include "fitting/curve_data.hpp"
+#include "formats/road_file.hpp"
+#include "formats/teim_orbit.hpp"
 #include "include/tirefe.h"
 #include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
-#include "formats/teim_orbit.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"

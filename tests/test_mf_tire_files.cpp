@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "deck_support.hpp"
+#include "formats/mf_tire_file.hpp"
 #include "formats/teim_orbit.hpp"
 #include "test_support.hpp"
-#include "formats/mf_tire_file.hpp"
 #include "tire/tire_builder.hpp"
 #include "tirefe/test_paths.hpp"
 

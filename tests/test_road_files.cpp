@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "formats/road_file.hpp"
 #include "deck_support.hpp"
+#include "formats/road_file.hpp"
 #include "formats/teim_orbit.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"

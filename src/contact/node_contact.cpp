@@ -209,18 +209,8 @@ ContactSummary summarize_contact(const ContactBlock& block) {
 
 void fill_contact_results(const ContactBlock& block, ContactNodeResults& results) {
   const size_t count = static_cast<size_t>(block.size());
-  for (auto* column : {&results.gap, &results.normal_force, &results.tangential_force, &results.state,
-                       &results.coordinate, &results.sliding_velocity})
-    column->resize(count);
-  for (size_t e = 0; e < count; ++e) {
-    const ContactHistory& history = block.committed_history(static_cast<int>(e));
-    results.gap[e] = history.gap;
-    results.normal_force[e] = history.normal_force;
-    results.tangential_force[e] = history.tangential_force;
-    results.state[e] = static_cast<double>(history.state);
-    results.coordinate[e] = history.coordinate;
-    results.sliding_velocity[e] = history.sliding_velocity;
-  }
+  results.resize(count);
+  for (size_t e = 0; e < count; ++e) results.set(e, block.committed_history(static_cast<int>(e)));
 }
 
 }  // namespace tirefe

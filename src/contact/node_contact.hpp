@@ -161,6 +161,22 @@ ContactSummary summarize_contact(const ContactBlock& block);
 /// Per-node results of the last accepted step, one entry per element of the block.
 struct ContactNodeResults {
   std::vector<double> gap, normal_force, tangential_force, state, coordinate, sliding_velocity;
+
+  void resize(size_t count) {
+    for (auto* column : {&gap, &normal_force, &tangential_force, &state, &coordinate, &sliding_velocity})
+      column->resize(count);
+  }
+  /// Point k's values from a contact point's committed history: a node's ContactHistory or
+  /// a tread's TreadSample, which carry the same names.
+  template <class Point>
+  void set(size_t k, const Point& point) {
+    gap[k] = point.gap;
+    normal_force[k] = point.normal_force;
+    tangential_force[k] = point.tangential_force;
+    state[k] = static_cast<double>(point.state);
+    coordinate[k] = point.coordinate;
+    sliding_velocity[k] = point.sliding_velocity;
+  }
 };
 void fill_contact_results(const ContactBlock& block, ContactNodeResults& results);
 

@@ -238,21 +238,10 @@ ContactSummary summarize_contact(const TreadContactBlock& block) {
 }
 
 void fill_contact_results(const TreadContactBlock& block, ContactNodeResults& results) {
-  const size_t count = static_cast<size_t>(block.size()) * TreadContact::kSamples;
-  for (auto* column : {&results.gap, &results.normal_force, &results.tangential_force, &results.state,
-                       &results.coordinate, &results.sliding_velocity})
-    column->resize(count);
+  results.resize(static_cast<size_t>(block.size()) * TreadContact::kSamples);
   size_t k = 0;
   for (int e = 0; e < block.size(); ++e)
-    for (const TreadSample& sample : block.committed_history(e)) {
-      results.gap[k] = sample.gap;
-      results.normal_force[k] = sample.normal_force;
-      results.tangential_force[k] = sample.tangential_force;
-      results.state[k] = static_cast<double>(sample.state);
-      results.coordinate[k] = sample.coordinate;
-      results.sliding_velocity[k] = sample.sliding_velocity;
-      ++k;
-    }
+    for (const TreadSample& sample : block.committed_history(e)) results.set(k++, sample);
 }
 
 }  // namespace tirefe

@@ -76,7 +76,7 @@ struct RunMetadata {
   std::string deck_path;
   std::string deck_text;
   std::vector<std::pair<std::string, std::string>> parameters;  // the deck's parameters, as text
-  std::string axes;  // the axes and signs of the spindle forces; none when empty
+  std::string axes{};  // the axes and signs of the spindle forces; none when empty
 };
 
 /// A name that becomes part of a path in the result file (a history channel, a surface, a

@@ -17,9 +17,9 @@
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
 #include "formats/road_file.hpp"
-#include "tire/contact_penalty.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
+#include "tire/contact_penalty.hpp"
 
 namespace tirefe::macros {
 

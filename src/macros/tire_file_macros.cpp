@@ -7,8 +7,8 @@
 // src/formats/mf_tire_file.hpp into a ring of its size, with what it states beside it.
 #include <cmath>
 
-#include "formats/teim_orbit.hpp"
 #include "formats/mf_tire_file.hpp"
+#include "formats/teim_orbit.hpp"
 #include "macros/deck_session.hpp"
 #include "macros/macro_table.hpp"
 
