@@ -240,12 +240,12 @@ TEST_CASE("driven-DOF solves and H_ss through the RingSolver's border equal thos
   rolling.solve(0.0, -kDeflection);
   Analysis& analysis = rolling.tire.analysis();
   EvaluationContext context;
-  context.time = analysis.trial_state().time;
+  context.time = analysis.driven_stepper().trial().time;
   context.time_step = kStep;
   context.factors = analysis.integrator().factors(kStep);
   context.want_tangent = true;
   Eigen::VectorXd residual;
-  analysis.assembler().query(context, analysis.trial_state(), residual);
+  analysis.assembler().query(context, analysis.driven_stepper().trial(), residual);
   const SparseMatrix& tangent = analysis.assembler().tangent();
   const DofMap& dofs = analysis.model().dof_map();
   const int spindle = rolling.tire.tire().spindle;

@@ -17,7 +17,7 @@ namespace tirefe {
 enum class SpinMode { Driven, Free };
 
 /// Where the tire's Newton starts: at its own predictor, or at its last trial of this
-/// step moved by its linear response to the spindle's move (Analysis::resolve_trial_step):
+/// step moved by its linear response to the spindle's move (DrivenStepper::solve near the last trial):
 /// a host corrector's next trial, a little away from the last. The same answer to the
 /// tire's Newton tolerance; the predictor where the tire has no such trial.
 enum class SpindleStart { Predictor, LastTrial };

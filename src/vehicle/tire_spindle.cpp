@@ -34,22 +34,22 @@ const SpindleReply& TireSpindle::solve_step(const SpindleInput& input) {
   reply_has_jacobian_ = false;  // until this trial's (a failed solve leaves no trial)
   const Eigen::Vector2d& reference = analysis_.model().mesh().position(spindle_);
   const Eigen::Vector3d target(input.x - reference.x(), input.y - reference.y(), input.spin);
-  analysis_.set_driven_displacements(target.head(driven_count_));
-  const StepRecord& record = input.start == SpindleStart::LastTrial ? analysis_.resolve_trial_step(input.time_step)
-                                                                    : analysis_.solve_trial_step(input.time_step);
+  DrivenStepper& stepper = analysis_.driven_stepper();
+  const StepRecord& record =
+      stepper.solve(target.head(driven_count_), input.time_step, input.start == SpindleStart::LastTrial);
   reply_ = SpindleReply{};
-  reply_.time = analysis_.trial_state().time;
+  reply_.time = stepper.trial().time;
   reply_.newton_iterations = record.newton_iterations;
   reply_.augmentations = record.augmentations;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();
-  analysis_.driven_forces(force.head(driven_count_));
+  stepper.forces(force.head(driven_count_));
   force_of(reply_) = force;
   return input.jacobian ? jacobian() : reply_;
 }
 
 const SpindleReply& TireSpindle::jacobian() {
   if (!reply_has_jacobian_) {
-    jacobian_of(reply_).topLeftCorner(driven_count_, driven_count_) = analysis_.driven_tangent();
+    jacobian_of(reply_).topLeftCorner(driven_count_, driven_count_) = analysis_.driven_stepper().jacobian();
     reply_has_jacobian_ = true;
   }
   return reply_;
@@ -62,13 +62,13 @@ void TireSpindle::commit() {
     commit_failure_.clear();
     throw StepFailure(failure);
   }
-  analysis_.accept_trial_step();
+  analysis_.driven_stepper().commit();
 }
 
 void TireSpindle::prepare_commit() {
   reply_has_jacobian_ = false;
   try {
-    analysis_.record_trial_step();
+    analysis_.driven_stepper().prepare_commit();
   } catch (const std::exception& failure) {
     commit_failure_ = failure.what();
   }
@@ -76,7 +76,7 @@ void TireSpindle::prepare_commit() {
 
 void TireSpindle::revert() {
   reply_has_jacobian_ = false;
-  analysis_.discard_trial_step();
+  analysis_.driven_stepper().revert();
 }
 
 SpindleReply TireSpindle::serve(const SpindleRequest& request) {

@@ -32,7 +32,7 @@ class TireSpindle {
   const SpindleReply& jacobian();
   /// Accepts the last trial step: the tire's state and history advance.
   void commit();
-  /// The computing part of commit() (Analysis::record_trial_step), which may run in a
+  /// The computing part of commit() (DrivenStepper::prepare_commit), which may run in a
   /// thread of its own; commit() then only writes the output. Never throws: a failure
   /// is kept and reported by the commit() that follows.
   void prepare_commit();
