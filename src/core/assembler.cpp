@@ -76,24 +76,24 @@ void Assembler::bind_solver_layout(const std::vector<int>& destination) {
   if (destination.size() != static_cast<size_t>(tangent_.nonZeros()))
     throw std::logic_error("assembler: a solver layout of " + std::to_string(destination.size()) +
                            " entries for a pattern of " + std::to_string(tangent_.nonZeros()));
-  // Ids unique across assemblers (the tires of a vehicle bind theirs in threads of their own).
+  // Stamps unique across assemblers (the tires of a vehicle bind theirs in threads of their own).
   static std::atomic<long> last_id{0};
-  solver_layout_ = ++last_id;
-  for (const auto& block : model_.blocks()) block->bind_solver_slots(destination, solver_layout_);
+  solver_stamp_ = ++last_id;
+  for (const auto& block : model_.blocks()) block->bind_slot_layout(kSolverLayout, destination, solver_stamp_);
 }
 
 bool Assembler::solver_layout_bound() const {
-  if (solver_layout_ == 0) return false;
+  if (solver_stamp_ == 0) return false;
   for (const auto& block : model_.blocks())
-    if (block->solver_layout() != solver_layout_) return false;
+    if (block->slot_layout_stamp(kSolverLayout) != solver_stamp_) return false;
   return true;
 }
 
 void Assembler::assemble_into_solver(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual,
                                      double* storage) {
-  if (solver_layout_ == 0) throw std::logic_error("assembler: a tangent assembled in a solver's layout not bound");
+  if (solver_stamp_ == 0) throw std::logic_error("assembler: a tangent assembled in a solver's layout not bound");
   residual.setZero(model_.mesh().dof_count());
-  AssemblyTarget target{&residual, storage, solver_layout_};
+  AssemblyTarget target{&residual, storage, kSolverLayout, solver_stamp_};
   for (const auto& block : model_.blocks()) block->assemble(context, state, target);
 }
 

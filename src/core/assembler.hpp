@@ -31,11 +31,11 @@ class Assembler {
   /// next step.
   void query(const EvaluationContext& context, const State& state, Eigen::VectorXd& residual);
 
-  /// Binds the blocks' tangent entries to a linear solver's own storage too: the stored
-  /// entry s of the pattern (in tangent()'s value order) lands at destination[s] there
-  /// (RingSolver::entry_destinations()). Valid until the pattern changes.
+  /// Binds the blocks' tangent entries to a linear solver's own storage too, as their slot
+  /// layout 1: the stored entry s of the pattern (in tangent()'s value order) lands at
+  /// destination[s] there (RingSolver::entry_destinations()). Valid until the pattern changes.
   void bind_solver_layout(const std::vector<int>& destination);
-  /// True while every block holds the layout bound last (another assembler of the same
+  /// True while every block holds the binding made last (another assembler of the same
   /// model binding its own slots, or a new pattern, takes it away).
   bool solver_layout_bound() const;
   /// assemble() with the tangent added into 'storage', in the bound solver layout and
@@ -58,7 +58,8 @@ class Assembler {
   Model& model_;
   SparseMatrix tangent_;
   long signature_ = -1;
-  long solver_layout_ = 0;  // the id of the solver layout bound last, 0 for none
+  static constexpr int kSolverLayout = 1;  // the blocks' slot layout of a solver's storage
+  long solver_stamp_ = 0;                  // the stamp of its binding made last, 0 for none
   int pattern_version_ = 0;
 };
 

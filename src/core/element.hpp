@@ -102,7 +102,8 @@ class TangentSlots;
 struct AssemblyTarget {
   Eigen::VectorXd* residual = nullptr;  // one entry per DOF (prescribed DOFs give reactions)
   double* tangent_values = nullptr;     // sparse values of the free-equation tangent, or null
-  long solver_layout = 0;               // not 0: tangent_values is the storage of the solver layout bound with this id
+  int layout = 0;                       // the numbered slot layout tangent_values is laid out in
+  long stamp = 0;                       // for a layout other than 0: the binding it expects
 };
 
 /// The nodal values of a whole block, gathered as structure of arrays for a kernel's batch
@@ -154,15 +155,15 @@ class ElementBlock {
   virtual int size() const = 0;
   virtual std::vector<int> element_nodes(int element) const = 0;
 
-  /// Positions of element-matrix entries in the sparse value array, row-major per
-  /// element, -1 where a row or column is a prescribed DOF.
+  /// Slot layout 0: the positions of element-matrix entries in the sparse value array,
+  /// row-major per element, -1 where a row or column is a prescribed DOF. Binding it anew
+  /// forgets the other layouts.
   virtual void bind_tangent_slots(std::vector<int> slots) = 0;
-  /// The same entries in a linear solver's own storage as well: the sparse value at slot s
-  /// lands at destination[s] there (an assembly with AssemblyTarget::solver_layout = id).
-  /// Binding the sparse slots anew forgets it.
-  virtual void bind_solver_slots(const std::vector<int>& destination, long id) = 0;
-  /// The id of the solver layout bound, 0 for none.
-  virtual long solver_layout() const = 0;
+  /// Slot layout 'layout' (1, 2, ...): the entry at slot s of layout 0 lands at place[s];
+  /// 'stamp' (not 0) names this binding for AssemblyTarget::stamp.
+  virtual void bind_slot_layout(int layout, const std::vector<int>& place, long stamp) = 0;
+  /// The stamp of that layout's binding, 0 for none.
+  virtual long slot_layout_stamp(int layout) const = 0;
 
   virtual void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) = 0;
   virtual ElementEnergy energy(const State& state) const = 0;
@@ -364,19 +365,22 @@ class ElementBlockOf final : public ElementBlock {
         if (slot[k] >= 0 && !idle[k / kDofs] && !idle[k % kDofs] && !zero[k]) tangent_entries_.push_back({k, slot[k]});
       element_entries_.push_back(static_cast<int>(tangent_entries_.size()));
     }
-    solver_destination_.clear();  // a new pattern: a solver's layout is bound anew
-    solver_layout_ = 0;
-    solver_entries_.clear();
+    layouts_.clear();  // a new pattern: the other layouts are bound anew
     if constexpr (kBatched) prepare_batch();
   }
 
-  void bind_solver_slots(const std::vector<int>& destination, long id) override {
-    solver_layout_ = id;
-    solver_destination_ = destination;
-    solver_entries_ = in_solver_layout(tangent_entries_);
-    if constexpr (kBatched) solver_batch_entries_ = in_solver_layout(batch_entries_);
+  void bind_slot_layout(int layout, const std::vector<int>& place, long stamp) override {
+    if (layout < 1) throw std::logic_error("block '" + name_ + "': slot layout 0 is bound by bind_tangent_slots");
+    if (layouts_.size() < static_cast<size_t>(layout)) layouts_.resize(layout);
+    SlotLayout& bound = layouts_[layout - 1];
+    bound.stamp = stamp;
+    bound.place = place;
+    bound.entries = placed(tangent_entries_, place);
+    if constexpr (kBatched) bound.batch_entries = placed(batch_entries_, place);
   }
-  long solver_layout() const override { return solver_layout_; }
+  long slot_layout_stamp(int layout) const override {
+    return layout >= 1 && static_cast<size_t>(layout) <= layouts_.size() ? layouts_[layout - 1].stamp : 0;
+  }
 
   void assemble(const EvaluationContext& context, const State& state, AssemblyTarget& target) override {
     if constexpr (kBatched) {
@@ -483,6 +487,12 @@ class ElementBlockOf final : public ElementBlock {
     int entry;  // row-major index into the element matrix
     int slot;   // position in the sparse values
   };
+  /// A numbered slot layout: where each sparse slot lands, and the entries moved there.
+  struct SlotLayout {
+    long stamp = 0;
+    std::vector<int> place;
+    std::vector<TangentEntry> entries, batch_entries;
+  };
 
   /// (Re)builds the batch and its gather buffers: once per structure, outside the Newton loop.
   void prepare_batch() {
@@ -501,7 +511,7 @@ class ElementBlockOf final : public ElementBlock {
     for (int e = 0; e < size(); ++e)
       for (int t = element_entries_[e]; t < element_entries_[e + 1]; ++t)
         batch_entries_.push_back({tangent_entries_[t].entry * size() + e, tangent_entries_[t].slot});
-    solver_batch_entries_ = in_solver_layout(batch_entries_);
+    for (SlotLayout& bound : layouts_) bound.batch_entries = placed(batch_entries_, bound.place);
   }
 
   /// The batch path: gather every element's nodal values as structure of arrays, evaluate
@@ -522,8 +532,7 @@ class ElementBlockOf final : public ElementBlock {
         if (!kIdle[k]) global[dofs[k * count + e]] += residual[k * count + e];
     if (!with_tangent) return;
     const double* tangent = batch_->tangent();
-    if (target.solver_layout != 0 && target.solver_layout != solver_layout_) throw_unbound_layout();
-    const std::vector<TangentEntry>& entries = target.solver_layout != 0 ? solver_batch_entries_ : batch_entries_;
+    const std::vector<TangentEntry>& entries = target.layout == 0 ? batch_entries_ : bound_layout(target).batch_entries;
     for (const TangentEntry& t : entries) target.tangent_values[t.slot] += tangent[t.entry];
   }
 
@@ -579,18 +588,19 @@ class ElementBlockOf final : public ElementBlock {
   }
   /// The element entries of the layout the target asks for, slot by slot.
   const TangentEntry* tangent_entries(const AssemblyTarget& target) const {
-    if (target.solver_layout == 0) return tangent_entries_.data();
-    if (target.solver_layout != solver_layout_) throw_unbound_layout();
-    return solver_entries_.data();
+    return target.layout == 0 ? tangent_entries_.data() : bound_layout(target).entries.data();
   }
-  /// Entries with their slots moved to the solver's layout (none before it is bound).
-  std::vector<TangentEntry> in_solver_layout(std::vector<TangentEntry> entries) const {
-    if (solver_destination_.empty()) return {};
-    for (TangentEntry& t : entries) t.slot = solver_destination_[t.slot];
+  /// The numbered layout the target asks for, bound with the target's stamp.
+  const SlotLayout& bound_layout(const AssemblyTarget& target) const {
+    if (slot_layout_stamp(target.layout) == 0 || slot_layout_stamp(target.layout) != target.stamp)
+      throw std::logic_error("block '" + name_ + "': a tangent assembled in slot layout " +
+                             std::to_string(target.layout) + ", which is not bound to it");
+    return layouts_[target.layout - 1];
+  }
+  /// Entries with their slots moved to 'place'.
+  static std::vector<TangentEntry> placed(std::vector<TangentEntry> entries, const std::vector<int>& place) {
+    for (TangentEntry& t : entries) t.slot = place[t.slot];
     return entries;
-  }
-  [[noreturn]] void throw_unbound_layout() const {
-    throw std::logic_error("block '" + name_ + "': a tangent assembled in a solver's layout that is not bound to it");
   }
   /// The batch's first element with a non-finite residual entry, named.
   [[noreturn]] void throw_non_finite_batch() const {
@@ -624,12 +634,10 @@ class ElementBlockOf final : public ElementBlock {
   std::vector<TangentEntry> tangent_entries_;
   std::vector<int> element_entries_;         // element e's entries: [element_entries_[e], element_entries_[e + 1])
   std::vector<TangentEntry> batch_entries_;  // entry: the place in the batch's tangent
-  std::vector<int> solver_destination_;      // bind_solver_slots(): where each slot lands in the solver
-  long solver_layout_ = 0;                   // and that layout's id
-  std::vector<TangentEntry> solver_entries_, solver_batch_entries_;  // the two above in that layout
-  std::vector<int> batch_dofs_;           // the global DOF of the batch's value [k * size + e]
-  std::unique_ptr<Batch> batch_;          // kernels with a batch path only
-  mutable std::vector<double> gathered_;  // the batch's displacement, velocity and acceleration
+  std::vector<SlotLayout> layouts_;          // the numbered slot layouts 1, 2, ... at [layout - 1]
+  std::vector<int> batch_dofs_;              // the global DOF of the batch's value [k * size + e]
+  std::unique_ptr<Batch> batch_;             // kernels with a batch path only
+  mutable std::vector<double> gathered_;     // the batch's displacement, velocity and acceleration
 };
 
 }  // namespace tirefe
