@@ -21,8 +21,8 @@
 #include "include/tirefe.h"
 #include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
-#include "macros/deck_session.hpp"
-#include "macros/lua_sandbox.hpp"
+#include "deck/deck_session.hpp"
+#include "deck/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/source_paths.hpp"
 

@@ -7,8 +7,8 @@
 #include <functional>
 #include <string>
 
-#include "macros/deck_session.hpp"
-#include "macros/lua_sandbox.hpp"
+#include "deck/deck_session.hpp"
+#include "deck/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe/test_paths.hpp"
 

@@ -16,8 +16,8 @@
 #include <sstream>
 #include <string>
 
-#include "macros/parameter_list.hpp"
-#include "macros/progress_line.hpp"
+#include "app/parameter_list.hpp"
+#include "deck/progress_line.hpp"
 #include "solvers/analysis.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"

@@ -1,5 +1,5 @@
 // The files a deck may read and write (docs/security.md): the path rules of
-// macros/deck_files.hpp, the command-line options that widen them, and decks given as
+// deck/deck_files.hpp, the command-line options that widen them, and decks given as
 // something that is not a deck file.
 #include <catch2/catch.hpp>
 
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "io/hdf5_file.hpp"
-#include "macros/deck_files.hpp"
-#include "macros/deck_session.hpp"
+#include "deck/deck_files.hpp"
+#include "deck/deck_session.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
 #include "test_support.hpp"

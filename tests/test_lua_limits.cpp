@@ -17,7 +17,7 @@
 
 #include "core/model.hpp"
 #include "elements/beam_mesh.hpp"
-#include "macros/lua_sandbox.hpp"
+#include "deck/lua_sandbox.hpp"
 #include "solvers/analysis.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"

@@ -2,7 +2,7 @@
 // macro argument validation against a MacroSpec.
 #include <catch2/catch.hpp>
 
-#include "macros/lua_sandbox.hpp"
+#include "deck/lua_sandbox.hpp"
 #include "macros/macro_spec.hpp"
 #include "test_support.hpp"
 

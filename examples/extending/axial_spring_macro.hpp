@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "examples/extending/axial_spring.hpp"
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 
 namespace tirefe::examples {

@@ -24,9 +24,9 @@
 
 #include "formats/road_file.hpp"
 #include "io/checkpoint.hpp"
-#include "macros/deck_model.hpp"
-#include "macros/interrupt.hpp"
-#include "macros/lua_module_dir.hpp"
+#include "deck/deck_model.hpp"
+#include "deck/interrupt.hpp"
+#include "deck/lua_module_dir.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/wheel_axes.hpp"
 #include "tirefe/version.hpp"

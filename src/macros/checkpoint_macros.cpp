@@ -1,6 +1,6 @@
 // Checkpoint macro (FEAP's SAVE): the run's complete state, for `tirefe deck.lua --restart FILE`
 // (docs/restart.md).
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 
 namespace tirefe::macros {

@@ -17,7 +17,7 @@
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
 #include "formats/road_file.hpp"
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/contact_penalty.hpp"
 

@@ -2,7 +2,7 @@
 #include <complex>
 #include <cstdio>
 
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "solvers/modal.hpp"
 

@@ -19,8 +19,8 @@
 #include "fitting/curve_data.hpp"
 #include "fitting/fit_output.hpp"
 #include "fitting/fit_problem.hpp"
-#include "macros/deck_session.hpp"
-#include "macros/interrupt.hpp"
+#include "deck/deck_session.hpp"
+#include "deck/interrupt.hpp"
 #include "macros/macro_table.hpp"
 
 namespace tirefe::macros {

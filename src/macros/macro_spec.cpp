@@ -3,7 +3,7 @@
 #include "macros/macro_spec.hpp"
 
 #include "core/spelling.hpp"
-#include "macros/lua_sandbox.hpp"
+#include "deck/lua_sandbox.hpp"
 
 #include <algorithm>
 #include <cmath>

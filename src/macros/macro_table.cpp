@@ -7,7 +7,7 @@
 
 #include "core/spelling.hpp"
 #include "io/checkpoint.hpp"
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 
 namespace tirefe::macros {
 

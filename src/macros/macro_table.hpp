@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "macros/deck_files.hpp"
-#include "macros/lua_sandbox.hpp"
+#include "deck/deck_files.hpp"
+#include "deck/lua_sandbox.hpp"
 #include "macros/macro_spec.hpp"
 
 namespace tirefe {

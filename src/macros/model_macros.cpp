@@ -8,7 +8,7 @@
 #include <functional>
 #include <iostream>
 
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 
 namespace tirefe::macros {

@@ -9,7 +9,7 @@
 
 #include "formats/mf_tire_file.hpp"
 #include "formats/teim_orbit.hpp"
-#include "macros/deck_session.hpp"
+#include "deck/deck_session.hpp"
 #include "macros/macro_table.hpp"
 
 namespace tirefe::macros {

@@ -3,11 +3,11 @@
 // tire property files (tire_file_macros.cpp).
 #include <cmath>
 
-#include "macros/deck_files.hpp"
-#include "macros/deck_model.hpp"
+#include "deck/deck_files.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/tire_builder.hpp"
-#include "macros/lua_module_dir.hpp"
+#include "deck/lua_module_dir.hpp"
 
 namespace tirefe::macros {
 

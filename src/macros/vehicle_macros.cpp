@@ -10,7 +10,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "vehicle/tire_group.hpp"
 #include "vehicle/tire_spindle.hpp"

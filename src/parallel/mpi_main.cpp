@@ -16,8 +16,8 @@
 #include <iostream>
 #include <thread>
 
-#include "macros/deck_runner.hpp"
-#include "macros/program_heap.hpp"
+#include "app/deck_runner.hpp"
+#include "app/program_heap.hpp"
 #include "parallel/mpi_tire_group.hpp"
 
 namespace {

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "fmu/fmi2.h"
-#include "macros/deck_runner.hpp"
+#include "app/deck_runner.hpp"
 #include "macros/macro_table.hpp"
 #include "tirefe.h"
 #include "tirefe/version.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "macros/deck_session.hpp"
+#include "deck/deck_session.hpp"
 
 namespace tirefe::macros {
 

@@ -6,8 +6,8 @@
 // 128 + signal when SIGINT or SIGTERM stopped the run (after closing its files).
 #include <iostream>
 
-#include "macros/deck_runner.hpp"
-#include "macros/program_heap.hpp"
+#include "app/deck_runner.hpp"
+#include "app/program_heap.hpp"
 
 int main(int argc, char** argv) {
   tirefe::macros::keep_row_buffers_in_heap();

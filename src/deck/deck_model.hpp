@@ -13,7 +13,7 @@
 #include "core/model.hpp"
 #include "elements/tread_beam.hpp"
 #include "io/result_file.hpp"
-#include "macros/deck_session.hpp"
+#include "deck/deck_session.hpp"
 #include "solvers/analysis.hpp"
 #include "tire/tire_builder.hpp"
 #include "tire/wheel_axes.hpp"

@@ -1,4 +1,4 @@
-#include "macros/progress_line.hpp"
+#include "deck/progress_line.hpp"
 
 #include <unistd.h>
 

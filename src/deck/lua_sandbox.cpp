@@ -1,8 +1,8 @@
 // LuaSandbox: safe library set, text-only loading, require(), tirefe.parameters and the
 // error plumbing that reports every deck problem as "deck.lua:LINE: message".
-#include "macros/lua_sandbox.hpp"
+#include "deck/lua_sandbox.hpp"
 
-#include "macros/deck_files.hpp"
+#include "deck/deck_files.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "macros/deck_files.hpp"
-#include "macros/interrupt.hpp"
+#include "deck/deck_files.hpp"
+#include "deck/interrupt.hpp"
 
 namespace tirefe::macros {
 namespace {

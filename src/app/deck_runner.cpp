@@ -1,4 +1,4 @@
-#include "macros/deck_runner.hpp"
+#include "app/deck_runner.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "io/checkpoint.hpp"
-#include "macros/interrupt.hpp"
-#include "macros/lua_module_dir.hpp"
-#include "macros/lua_sandbox.hpp"
+#include "deck/interrupt.hpp"
+#include "deck/lua_module_dir.hpp"
+#include "deck/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
-#include "macros/parameter_list.hpp"
+#include "app/parameter_list.hpp"
 #include "tirefe/source_paths.hpp"
 #include "tirefe/version.hpp"
 

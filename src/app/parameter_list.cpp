@@ -1,8 +1,8 @@
-#include "macros/parameter_list.hpp"
+#include "app/parameter_list.hpp"
 
 #include <algorithm>
 
-#include "macros/lua_module_dir.hpp"
+#include "deck/lua_module_dir.hpp"
 
 namespace tirefe::macros {
 

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "macros/progress_line.hpp"
+#include "deck/progress_line.hpp"
 
 namespace tirefe {
 class TireExchange;

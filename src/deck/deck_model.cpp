@@ -1,13 +1,13 @@
-#include "macros/deck_model.hpp"
+#include "deck/deck_model.hpp"
 
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
+#include "deck/deck_files.hpp"
+#include "deck/interrupt.hpp"
 #include "io/checkpoint.hpp"
-#include "macros/interrupt.hpp"
-#include "macros/macro_table.hpp"
 #include "vehicle/tire_spindle.hpp"
 
 namespace tirefe::macros {

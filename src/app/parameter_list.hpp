@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "macros/lua_sandbox.hpp"
+#include "deck/lua_sandbox.hpp"
 
 namespace tirefe::macros {
 

@@ -1,4 +1,4 @@
-#include "macros/lua_module_dir.hpp"
+#include "deck/lua_module_dir.hpp"
 
 #include <dlfcn.h>
 

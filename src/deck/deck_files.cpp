@@ -1,4 +1,4 @@
-#include "macros/deck_files.hpp"
+#include "deck/deck_files.hpp"
 
 #include <iterator>
 #include <vector>
@@ -7,8 +7,8 @@
 #include "io/hdf5_file.hpp"
 #include "io/temporary_file.hpp"
 #include "io/xdmf.hpp"
-#include "macros/deck_session.hpp"
-#include "macros/lua_module_dir.hpp"
+#include "deck/deck_session.hpp"
+#include "deck/lua_module_dir.hpp"
 
 namespace tirefe::macros {
 
