@@ -14,14 +14,14 @@
 #include <fstream>
 #include <functional>
 
-#include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
+#include "deck_support.hpp"
 #include "elements/point_mass.hpp"
 #include "io/hdf5_file.hpp"
+#include "macros/contact_output.hpp"
 #include "solvers/analysis.hpp"
-#include "tire/contact_penalty.hpp"
-#include "deck_support.hpp"
 #include "test_support.hpp"
+#include "tire/contact_penalty.hpp"
 #include "tirefe/test_paths.hpp"
 
 using namespace tirefe;
@@ -1170,8 +1170,9 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
   Analysis analysis(model);
   {
     io::ResultFile file(folder.path("contact.h5"), io::RunMetadata{"contact", "", "", {}});
-    add_contact_output(file, analysis, contact_source(contact), "road", 1);
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    macros::add_contact_output(file, analysis, macros::contact_source(contact), "road", 1);
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
     const ContactSummary summary = summarize_contact(contact);
@@ -1221,10 +1222,11 @@ TEST_CASE("a discarded result file creates no file and evaluates no channel", "[
     io::ResultFile file(folder.path("elsewhere.h5"), io::RunMetadata{"elsewhere", "", "", {}},
                         io::ResultStorage::Discarded);
     file.set_field_interval(1);
-    add_contact_output(file, analysis, contact_source(contact), "road", 1);
-    file.add_channel("counted", "", [&](const Analysis&, const StepRecord&) { return ++evaluated; });
+    macros::add_contact_output(file, analysis, macros::contact_source(contact), "road", 1);
+    file.add_channel("counted", "", [&](const State&, const StepRecord&) { return ++evaluated; });
     CHECK_THROWS_AS(file.add_channel("counted", "", nullptr), io::IoError);  // the deck's errors stay the same
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
     CHECK(file.steps_recorded() == 2);
@@ -1242,12 +1244,13 @@ TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "
   int steps_before = 0;
   {
     io::ResultFile file(folder.path("late.h5"), io::RunMetadata{"late", "", "", {}});
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
     steps_before = file.steps_recorded();
-    file.add_channel("late_uy", "m", [node](const Analysis& run, const StepRecord&) {
-      return run.state().displacement[dof_index(node, kUy)];
+    file.add_channel("late_uy", "m", [node](const State& state, const StepRecord&) {
+      return state.displacement[dof_index(node, kUy)];
     });
     analysis.advance(1.5);
   }

@@ -161,7 +161,8 @@ TEST_CASE("The strain energy channel of a block: k u^2 / 2 at every step in /his
     io::ResultFile file(folder.path("spring.h5"), io::RunMetadata{"spring", "", "", {}});
     examples::add_strain_energy_channel(file, model, "springs");
     CHECK_THROWS_AS(examples::add_strain_energy_channel(file, model, "beams"), ModelError);
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.25);
     analysis.advance(1.0);
   }

@@ -13,10 +13,10 @@
 #include <string>
 #include <utility>
 
-#include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
 #include "formats/road_file.hpp"
+#include "macros/contact_output.hpp"
 #include "macros/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/contact_penalty.hpp"

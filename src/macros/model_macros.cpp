@@ -324,9 +324,10 @@ int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) 
   const std::string unit = is_wheel_quantity(quantity) ? wheel_unit(quantity, arguments)
                                                        : quantity_unit(quantity, component_of(arguments.string("dof")));
   const double scale = arguments.number("scale");
+  const Analysis& analysis = deck.analysis();
   deck.output_or_default().add_channel(
       arguments.string("name"), unit,
-      [reading, scale](const Analysis& analysis, const StepRecord&) { return scale * reading(analysis); });
+      [reading, scale, &analysis](const State&, const StepRecord&) { return scale * reading(analysis); });
   return 0;
 }
 

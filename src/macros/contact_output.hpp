@@ -20,8 +20,9 @@
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
 #include "io/result_file.hpp"
+#include "solvers/analysis.hpp"
 
-namespace tirefe {
+namespace tirefe::macros {
 
 /// What the output reads of a contact block of either kind; the block must outlive the run.
 struct ContactSource {
@@ -45,4 +46,4 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
 /// structure's size beyond the structure.
 void add_surface_output(io::ResultFile& file, const std::string& name, std::shared_ptr<const RigidSurface> surface);
 
-}  // namespace tirefe
+}  // namespace tirefe::macros

@@ -1,10 +1,10 @@
-#include "contact/contact_output.hpp"
+#include "macros/contact_output.hpp"
 
 #include <memory>
 #include <utility>
 #include <vector>
 
-namespace tirefe {
+namespace tirefe::macros {
 
 namespace {
 
@@ -52,12 +52,12 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
   if (!channel_prefix.empty()) {
     const auto summarize = source.summarize;
     file.add_channel(channel_prefix + "_fx", "N",
-                     [summarize](const Analysis&, const StepRecord&) { return summarize().force.x(); });
+                     [summarize](const State&, const StepRecord&) { return summarize().force.x(); });
     file.add_channel(channel_prefix + "_fy", "N",
-                     [summarize](const Analysis&, const StepRecord&) { return summarize().force.y(); });
+                     [summarize](const State&, const StepRecord&) { return summarize().force.y(); });
     file.add_channel(channel_prefix + "_patch_length", "m",
-                     [summarize](const Analysis&, const StepRecord&) { return summarize().patch_length; });
-    file.add_channel(channel_prefix + "_nodes_in_contact", "", [summarize](const Analysis&, const StepRecord&) {
+                     [summarize](const State&, const StepRecord&) { return summarize().patch_length; });
+    file.add_channel(channel_prefix + "_nodes_in_contact", "", [summarize](const State&, const StepRecord&) {
       return static_cast<double>(summarize().nodes_in_contact);
     });
     // The surface's prescribed motion (a drum's angle, a road's travel), to place events
@@ -65,9 +65,9 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
     if (source.surface) {
       const RigidMotion* motion = &source.surface->motion();
       file.add_channel(channel_prefix + "_surface_angle", "rad",
-                       [motion](const Analysis& run, const StepRecord&) { return motion->angle_at(run.state().time); });
-      file.add_channel(channel_prefix + "_surface_x", "m", [motion](const Analysis& run, const StepRecord&) {
-        return motion->translation_at(run.state().time).x();
+                       [motion](const State& state, const StepRecord&) { return motion->angle_at(state.time); });
+      file.add_channel(channel_prefix + "_surface_x", "m", [motion](const State& state, const StepRecord&) {
+        return motion->translation_at(state.time).x();
       });
     }
   }
@@ -119,4 +119,4 @@ void add_surface_output(io::ResultFile& file, const std::string& name, std::shar
                    });
 }
 
-}  // namespace tirefe
+}  // namespace tirefe::macros
