@@ -1180,6 +1180,18 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
     CHECK(summary.patch_length == Approx(0.02).epsilon(1e-6));
     CHECK(summary.force.y() == Approx(60.0).epsilon(1e-3));  // the loads, bar what the springs take
     CHECK(std::abs(summary.force.x()) < 1e-9);
+    // The rows are the block's named responses: asked by name, its points' committed values.
+    const ElementResponses* responses = responses_of(contact);
+    REQUIRE(responses != nullptr);
+    CHECK(responses_of(springs) == nullptr);
+    CHECK(responses->response_points() == 3);
+    CHECK(responses->response_index("pressure") == -1);
+    const int gap = responses->response_index("gap");
+    REQUIRE(gap >= 0);
+    std::vector<double> gaps;
+    responses->response_values(gap, analysis.state(), gaps);
+    REQUIRE(gaps.size() == 3);
+    for (int e = 0; e < 3; ++e) CHECK(gaps[e] == contact.committed_history(e).gap);
   }
   const io::Hdf5File file = io::Hdf5File::open_read_only(folder.path("contact.h5"));
   std::vector<hsize_t> shape;

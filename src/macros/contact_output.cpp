@@ -15,7 +15,7 @@ ContactSource common_source(const Block& block) {
   source.block = block.name();
   if (block.size() > 0) source.surface = &block.kernel(0).surface();
   source.summarize = [&block] { return summarize_contact(block); };
-  source.fill = [&block](ContactNodeResults& results) { fill_contact_results(block, results); };
+  source.responses = responses_of(block);
   return source;
 }
 
@@ -76,36 +76,10 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
   const std::string group = "/contact/" + source.block + "/";
   io::Hdf5File& hdf5 = file.file();
   source.write_points(hdf5, group);
-  ContactNodeResults sizing;
-  source.fill(sizing);
-  const std::vector<hsize_t> row{static_cast<hsize_t>(sizing.gap.size())};
-  struct Datasets {
-    io::ExtendibleDataset *time, *gap, *normal_force, *tangential_force, *state, *coordinate, *sliding_velocity;
-    ContactNodeResults results;
-  };
-  // Per-point rows are fields: compressed (most points are open, most values zero).
-  auto field = [&](const char* name, const char* unit) -> io::ExtendibleDataset* {
-    return &hdf5.create_compressed_extendible(group + name, row, unit);
-  };
-  auto datasets = std::make_shared<Datasets>(Datasets{&hdf5.create_extendible(group + "time", {}, "s"),
-                                                      field("gap", "m"),
-                                                      field("normal_force", "N"),
-                                                      field("tangential_force", "N"),
-                                                      field("state", "0 open, 1 stick, 2 slip"),
-                                                      field("coordinate", "m"),
-                                                      field("sliding_velocity", "m/s"),
-                                                      {}});
-  analysis.add_step_observer([datasets, fill = source.fill, every](const Analysis& run, const StepRecord& record) {
-    if (record.step % every != 0) return;
-    Datasets& d = *datasets;
-    fill(d.results);
-    d.time->append(run.state().time);
-    d.gap->append(d.results.gap.data());
-    d.normal_force->append(d.results.normal_force.data());
-    d.tangential_force->append(d.results.tangential_force.data());
-    d.state->append(d.results.state.data());
-    d.coordinate->append(d.results.coordinate.data());
-    d.sliding_velocity->append(d.results.sliding_velocity.data());
+  // The block's responses every 'every' accepted steps.
+  auto rows = std::make_shared<io::ResponseRows>(hdf5, group, *source.responses);
+  analysis.add_step_observer([rows, every](const Analysis& run, const StepRecord& record) {
+    if (record.step % every == 0) rows->append(run.state());
   });
 }
 
