@@ -197,6 +197,24 @@ TEST_CASE("motion functions: ramped rate and load-function motion with their rat
   CHECK(table.rate(1.0) == Approx(1.5).epsilon(1e-6));
 }
 
+TEST_CASE("motion functions: a (1 - cos) spin-up, its value the integral of its rate", "[contact][surface]") {
+  // omega = 10 rad/s over T = 4 s from 2 s: the rate is omega / 2 halfway up, the value at
+  // the ramp's end omega T / 2 as the linear ramp's, omega (t - t0 - T / 2) after.
+  const MotionFunction spin = MotionFunction::ramped_rate(10.0, 4.0, 2.0, RampLaw::Cosine);
+  CHECK(spin.value(1.0) == 0.0);
+  CHECK(spin.rate(1.0) == 0.0);
+  CHECK(spin.rate(4.0) == Approx(5.0).epsilon(1e-14));
+  CHECK(spin.value(6.0) == Approx(20.0).epsilon(1e-14));
+  CHECK(spin.value(8.0) == Approx(10.0 * (6.0 - 2.0)).epsilon(1e-14));
+  CHECK(spin.rate(8.0) == Approx(10.0).epsilon(1e-14));
+  const double h = 1e-5;
+  for (double t : {2.5, 4.0, 5.9})
+    CHECK((spin.value(t + h) - spin.value(t - h)) / (2.0 * h) == Approx(spin.rate(t)).epsilon(1e-8));
+  CHECK(ramp_law_named("linear") == RampLaw::Linear);
+  CHECK(ramp_law_named("cosine") == RampLaw::Cosine);
+  CHECK_THROWS_AS(ramp_law_named("smooth"), ModelError);
+}
+
 TEST_CASE("vertex rule: gap and normal are continuous as a point passes around a sharp corner",
           "[contact][surface][vertex]") {
   // A cleat 20 mm high on a flat road; its top leading corner at (0, 0.02) is convex.
