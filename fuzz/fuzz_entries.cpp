@@ -19,8 +19,8 @@
 #include "formats/road_file.hpp"
 #include "formats/teim_orbit.hpp"
 #include "include/tirefe.h"
-#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
+#include "deck/checkpoint.hpp"
 #include "deck/deck_session.hpp"
 #include "deck/lua_sandbox.hpp"
 #include "macros/macro_table.hpp"
@@ -59,7 +59,7 @@ void require_names_file(const std::exception& error, const fs::path& file) {
 
 /// Runs a deck through the sandbox and the macro layer, restarted from 'restart' if given:
 /// it runs or stops with a DeckError naming it. Returns whether it ran to its end.
-bool run_deck(const fs::path& deck, std::shared_ptr<const io::Checkpoint> restart = nullptr,
+bool run_deck(const fs::path& deck, std::shared_ptr<const macros::Checkpoint> restart = nullptr,
               const fs::path& output = scratch() / "results") {
   macros::DeckSession session;
   session.output_dir = output.string();
@@ -352,7 +352,7 @@ const ReferenceCheckpoint& reference_checkpoint() {
     fs::remove_all(output);
     if (!run_deck(made.deck, nullptr, output)) throw FuzzFailure("the checkpoint deck does not run");
     made.file = output / "ck.h5";
-    const io::Checkpoint checkpoint = io::read_checkpoint(made.file.string());
+    const macros::Checkpoint checkpoint = macros::read_checkpoint(made.file.string());
     auto attribute = [&](const std::string& object, const std::string& name) { made.places.push_back({object, name}); };
     auto entries = [&](const std::string& dataset, size_t count, bool bytes, bool integers) {
       for (size_t k = 0; k < count; ++k) made.places.push_back({dataset, "", k, bytes, integers});
@@ -456,9 +456,9 @@ void checkpoint_file(const uint8_t* data, size_t size) {
   const ReferenceCheckpoint& reference = reference_checkpoint();
   const fs::path file = scratch() / "changed.ckpt.h5";
   write_changed_checkpoint(data, size, file);
-  std::shared_ptr<const io::Checkpoint> checkpoint;
+  std::shared_ptr<const macros::Checkpoint> checkpoint;
   try {
-    checkpoint = std::make_shared<io::Checkpoint>(io::read_checkpoint(file.string()));
+    checkpoint = std::make_shared<macros::Checkpoint>(macros::read_checkpoint(file.string()));
   } catch (const io::IoError& error) {
     require_names_file(error, file);
     return;

@@ -100,7 +100,7 @@ model:history{ name = "spindle_turn", node = tire.spindle, dof = "rz" }
 model:solve{ to = 1.0, dt = 0.25 }
 model:surface{ name = "drum", type = "drum", diameter = p.drum_diameter, cleat_height = p.cleat_height,
                cleat_length = p.cleat_length, cleat_angle = cleat.cleat_angle, edge_radius = p.cleat_edge_radius,
-               speed = -rig.omega, ramp_time = p.spin_up_time, start_time = rig.start }
+               speed = -rig.omega, ramp_time = p.spin_up_time, ramp = rig.ramp, start_time = rig.start }
 model:tire_contact{ surface = "drum", friction = p.friction, history = "drum", output_every = 20 }
 
 -- 1-2 s: press. Five steps toward a first guess of the deflection, then secant steps on the

@@ -1,10 +1,10 @@
 -- The drum of a drum-cleat rig: its turn as the drum surface of the model drives it (at rest
 -- until 'start', a spin-up of the surface speed over 'spin_up_time', then the full speed),
 -- the times the cleat passes under the tire on top of the drum, and the time step schedule
--- around those passages. The spin-up is linear (ramp = "linear", the default: the drum
--- surface's own `speed` and `ramp_time`), or rises as (1 - cos) (ramp = "cosine": without
--- the jerk that leaves a tire ringing; the surface then turns by a load function, rig:angle).
--- The one drum kinematics of the decks: they plan and drive their drums through it.
+-- around those passages. The spin-up is linear (ramp = "linear", the default) or rises as
+-- (1 - cos) (ramp = "cosine": without the jerk that leaves a tire ringing), as the drum
+-- surface's own `speed`, `ramp_time` and `ramp` make it turn: the angles and speeds are the
+-- surface's motion itself (tirefe.spin_up), so a deck plans its steps on the drum it runs.
 --
 --   local drum = require("drum")
 --   local rig = drum.rig{ diameter = 1.7, speed = 51.3 / 3.6, start = 2.0, spin_up_time = 4.0 }
@@ -12,7 +12,8 @@
 --   local time_step = rig:time_step{ passages = passages, dt = 5e-4, dt_max = 2e-3, dt_cleat = 2.5e-4,
 --                                    ring_time = 0.15 }
 -- The angles are those the model's drum surface turns through with speed = -rig.omega,
--- ramp_time = spin_up_time and start_time = start (its history channel _surface_angle);
+-- ramp_time = spin_up_time, ramp = rig.ramp and start_time = start (its history channel
+-- _surface_angle), or by a load function of -rig:angle(t);
 -- the passages are needed before the run, to plan its steps, so they are computed here.
 local drum = {}
 
@@ -32,39 +33,36 @@ function drum.rig(args)
   return rig
 end
 
--- The drum's clockwise angle at time t [rad].
-function Rig:angle(t)
-  local running = t - self.start
-  if running <= 0 then return 0 end
-  if self.ramp == "cosine" then
-    local omega, ramp = self.omega, self.spin_up_time
-    if running <= ramp then return 0.5 * omega * (running - ramp / math.pi * math.sin(math.pi * running / ramp)) end
-    return omega * (running - 0.5 * ramp)
-  end
-  local ramp = math.min(running, self.spin_up_time)
-  return 0.5 * self.omega * ramp * ramp / self.spin_up_time + self.omega * math.max(running - self.spin_up_time, 0)
+-- The value and rate at time t of a motion whose rate rises to 'rate' by the rig's spin-up.
+function Rig:spin_up(rate, t)
+  return tirefe.spin_up{ rate = rate, ramp_time = self.spin_up_time, start_time = self.start, ramp = self.ramp,
+                         time = t }
 end
 
--- The time at which the drum has turned through 'angle' clockwise (the inverse of Rig:angle).
+-- The drum's clockwise angle at time t [rad].
+function Rig:angle(t)
+  local angle = self:spin_up(self.omega, t)
+  return angle
+end
+
+-- The time at which the drum has turned through 'angle' clockwise (the inverse of Rig:angle):
+-- by bisection during the spin-up (the angle rises monotonically), at full speed after it.
 function Rig:time_at_angle(angle)
-  local ramp_angle = 0.5 * self.omega * self.spin_up_time
-  if self.ramp == "cosine" and angle < ramp_angle then  -- the angle rises monotonically: bisection
-    local low, high = self.start, self.start + self.spin_up_time
-    for _ = 1, 60 do
-      local middle = 0.5 * (low + high)
-      if self:angle(middle) < angle then low = middle else high = middle end
-    end
-    return 0.5 * (low + high)
+  local full_speed = self.start + self.spin_up_time
+  local ramp_angle = self:angle(full_speed)
+  if angle > ramp_angle then return full_speed + (angle - ramp_angle) / self.omega end
+  local low, high = self.start, full_speed
+  for _ = 1, 60 do
+    local middle = 0.5 * (low + high)
+    if self:angle(middle) < angle then low = middle else high = middle end
   end
-  if angle <= ramp_angle then return self.start + math.sqrt(2 * angle * self.spin_up_time / self.omega) end
-  return self.start + self.spin_up_time + (angle - ramp_angle) / self.omega
+  return 0.5 * (low + high)
 end
 
 -- The drum's surface speed at time t [m/s].
 function Rig:surface_speed(t)
-  local share = math.min(math.max(t - self.start, 0) / self.spin_up_time, 1)
-  if self.ramp == "cosine" then return self.speed * 0.5 * (1 - math.cos(math.pi * share)) end
-  return self.speed * share
+  local _, speed = self:spin_up(self.speed, t)
+  return speed
 end
 
 -- The passages of a cleat (middle at 'cleat_angle' from +x at rest, 'cleat_length' along the

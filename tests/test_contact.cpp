@@ -14,14 +14,14 @@
 #include <fstream>
 #include <functional>
 
-#include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
+#include "deck_support.hpp"
 #include "elements/point_mass.hpp"
 #include "io/hdf5_file.hpp"
+#include "deck/contact_output.hpp"
 #include "solvers/analysis.hpp"
-#include "tire/contact_penalty.hpp"
-#include "deck_support.hpp"
 #include "test_support.hpp"
+#include "tire/contact_penalty.hpp"
 #include "tirefe/test_paths.hpp"
 
 using namespace tirefe;
@@ -195,6 +195,24 @@ TEST_CASE("motion functions: ramped rate and load-function motion with their rat
   const MotionFunction table = MotionFunction::from_load_function(LoadFunction::table({{0.0, 0.0}, {2.0, 1.0}}), 3.0);
   CHECK(table.value(1.0) == Approx(1.5).epsilon(1e-12));
   CHECK(table.rate(1.0) == Approx(1.5).epsilon(1e-6));
+}
+
+TEST_CASE("motion functions: a (1 - cos) spin-up, its value the integral of its rate", "[contact][surface]") {
+  // omega = 10 rad/s over T = 4 s from 2 s: the rate is omega / 2 halfway up, the value at
+  // the ramp's end omega T / 2 as the linear ramp's, omega (t - t0 - T / 2) after.
+  const MotionFunction spin = MotionFunction::ramped_rate(10.0, 4.0, 2.0, RampLaw::Cosine);
+  CHECK(spin.value(1.0) == 0.0);
+  CHECK(spin.rate(1.0) == 0.0);
+  CHECK(spin.rate(4.0) == Approx(5.0).epsilon(1e-14));
+  CHECK(spin.value(6.0) == Approx(20.0).epsilon(1e-14));
+  CHECK(spin.value(8.0) == Approx(10.0 * (6.0 - 2.0)).epsilon(1e-14));
+  CHECK(spin.rate(8.0) == Approx(10.0).epsilon(1e-14));
+  const double h = 1e-5;
+  for (double t : {2.5, 4.0, 5.9})
+    CHECK((spin.value(t + h) - spin.value(t - h)) / (2.0 * h) == Approx(spin.rate(t)).epsilon(1e-8));
+  CHECK(ramp_law_named("linear") == RampLaw::Linear);
+  CHECK(ramp_law_named("cosine") == RampLaw::Cosine);
+  CHECK_THROWS_AS(ramp_law_named("smooth"), ModelError);
 }
 
 TEST_CASE("vertex rule: gap and normal are continuous as a point passes around a sharp corner",
@@ -1170,8 +1188,9 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
   Analysis analysis(model);
   {
     io::ResultFile file(folder.path("contact.h5"), io::RunMetadata{"contact", "", "", {}});
-    add_contact_output(file, analysis, contact_source(contact), "road", 1);
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    macros::add_contact_output(file, analysis, macros::contact_source(contact), "road", 1);
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
     const ContactSummary summary = summarize_contact(contact);
@@ -1179,6 +1198,18 @@ TEST_CASE("contact output: totals, patch length and per-node rows in the result 
     CHECK(summary.patch_length == Approx(0.02).epsilon(1e-6));
     CHECK(summary.force.y() == Approx(60.0).epsilon(1e-3));  // the loads, bar what the springs take
     CHECK(std::abs(summary.force.x()) < 1e-9);
+    // The rows are the block's named responses: asked by name, its points' committed values.
+    const ElementResponses* responses = responses_of(contact);
+    REQUIRE(responses != nullptr);
+    CHECK(responses_of(springs) == nullptr);
+    CHECK(responses->response_points() == 3);
+    CHECK(responses->response_index("pressure") == -1);
+    const int gap = responses->response_index("gap");
+    REQUIRE(gap >= 0);
+    std::vector<double> gaps;
+    responses->response_values(gap, analysis.state(), gaps);
+    REQUIRE(gaps.size() == 3);
+    for (int e = 0; e < 3; ++e) CHECK(gaps[e] == contact.committed_history(e).gap);
   }
   const io::Hdf5File file = io::Hdf5File::open_read_only(folder.path("contact.h5"));
   std::vector<hsize_t> shape;
@@ -1221,10 +1252,11 @@ TEST_CASE("a discarded result file creates no file and evaluates no channel", "[
     io::ResultFile file(folder.path("elsewhere.h5"), io::RunMetadata{"elsewhere", "", "", {}},
                         io::ResultStorage::Discarded);
     file.set_field_interval(1);
-    add_contact_output(file, analysis, contact_source(contact), "road", 1);
-    file.add_channel("counted", "", [&](const Analysis&, const StepRecord&) { return ++evaluated; });
+    macros::add_contact_output(file, analysis, macros::contact_source(contact), "road", 1);
+    file.add_channel("counted", "", [&](const State&, const StepRecord&) { return ++evaluated; });
     CHECK_THROWS_AS(file.add_channel("counted", "", nullptr), io::IoError);  // the deck's errors stay the same
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
     CHECK(file.steps_recorded() == 2);
@@ -1242,12 +1274,13 @@ TEST_CASE("a history channel added mid-run holds NaN for the steps before it", "
   int steps_before = 0;
   {
     io::ResultFile file(folder.path("late.h5"), io::RunMetadata{"late", "", "", {}});
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.5);
     analysis.advance(1.0);
     steps_before = file.steps_recorded();
-    file.add_channel("late_uy", "m", [node](const Analysis& run, const StepRecord&) {
-      return run.state().displacement[dof_index(node, kUy)];
+    file.add_channel("late_uy", "m", [node](const State& state, const StepRecord&) {
+      return state.displacement[dof_index(node, kUy)];
     });
     analysis.advance(1.5);
   }

@@ -24,8 +24,8 @@
 #include <sstream>
 #include <thread>
 
-#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
+#include "deck/checkpoint.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -284,7 +284,7 @@ TEST_CASE("runs killed at random instants leave whole, consistent result files a
     }
     if (problem.empty() && fs::exists(checkpoint)) {
       try {
-        tirefe::io::read_checkpoint(checkpoint.string());
+        tirefe::macros::read_checkpoint(checkpoint.string());
       } catch (const std::exception& error) {
         problem = error.what();
       }

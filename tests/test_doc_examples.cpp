@@ -14,8 +14,8 @@
 #include <sstream>
 
 #include "deck_support.hpp"
-#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
+#include "deck/checkpoint.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -105,7 +105,7 @@ TEST_CASE("the commands of docs/restart.md run, and the restarted run's file equ
   tirefe::testing::TempDir folder;
   REQUIRE(run_commands("docs/restart.md", folder) == 2);
   const fs::path whole = folder.path("results"), restarted = whole / "restarted";
-  const auto checkpoint = tirefe::io::read_checkpoint((whole / "rolling.ckpt.h5").string());
+  const auto checkpoint = tirefe::macros::read_checkpoint((whole / "rolling.ckpt.h5").string());
   CHECK(checkpoint.analysis.state.time == Approx(2.3).epsilon(1e-12));
   const auto reference = tirefe::io::Hdf5File::open_read_only((whole / "tire_restart.h5").string());
   const auto result = tirefe::io::Hdf5File::open_read_only((restarted / "tire_restart.h5").string());

@@ -132,7 +132,7 @@ TEST_CASE("model:axial_spring: the example deck passes its checks, and bad argum
       testing::run_deck_in_process(std::string(TIREFE_SOURCE_DIR) + "/examples/extending/axial_spring.lua",
                                    folder.path("out"), add_axial_spring_method);
   CHECK(run.error == "");
-  CHECK(run.checks == 2);
+  CHECK(run.checks == 3);
   CHECK(run.failed_checks == 0);
   const std::string bad = folder.write("bad.lua",
                                        "local model = tirefe.model{}\n"
@@ -151,6 +151,25 @@ TEST_CASE("model:axial_spring: the example deck passes its checks, and bad argum
              Catch::Contains("| `stiffness` | number > 0 | N/m | required | spring stiffness k |"));
 }
 
+TEST_CASE("model:history asks an element block for a response by name, and names what it has", "[extending][decks]") {
+  testing::TempDir folder;
+  const std::string spring =
+      "local model = tirefe.model{}\n"
+      "local a, b = model:node{ x = 0, y = 0 }, model:node{ x = 1, y = 0 }\n"
+      "model:axial_spring{ nodes = { a, b }, stiffness = 1 }\n";
+  const std::string unknown = folder.write(
+      "unknown.lua", spring + "model:history{ name = \"n\", block = \"springs\", response = \"force\" }\n");
+  CHECK_THAT(deck_error(unknown, folder.path("out")),
+             Catch::Contains("unknown.lua:4:") && Catch::Contains("no response 'force' (it has axial_force)"));
+  const std::string point = folder.write(
+      "point.lua",
+      spring + "model:history{ name = \"n\", block = \"springs\", response = \"axial_force\", point = 2 }\n");
+  CHECK_THAT(deck_error(point, folder.path("out")),
+             Catch::Contains("point.lua:4:") && Catch::Contains("point 2 of element block 'springs', which has 1"));
+  const std::string alone = folder.write("alone.lua", spring + "model:history{ name = \"n\", block = \"springs\" }\n");
+  CHECK_THAT(deck_error(alone, folder.path("out")), Catch::Contains("'block' needs 'response'"));
+}
+
 TEST_CASE("The strain energy channel of a block: k u^2 / 2 at every step in /history", "[extending][hdf5]") {
   const double k = 2e4, pull = 100.0;
   testing::TempDir folder;
@@ -161,7 +180,8 @@ TEST_CASE("The strain energy channel of a block: k u^2 / 2 at every step in /his
     io::ResultFile file(folder.path("spring.h5"), io::RunMetadata{"spring", "", "", {}});
     examples::add_strain_energy_channel(file, model, "springs");
     CHECK_THROWS_AS(examples::add_strain_energy_channel(file, model, "beams"), ModelError);
-    analysis.add_step_observer([&](const Analysis& run, const StepRecord& record) { file.record(run, record); });
+    analysis.add_step_observer(
+        [&](const Analysis& run, const StepRecord& record) { file.record(run.model(), run.state(), record); });
     analysis.set_time_step(0.25);
     analysis.advance(1.0);
   }

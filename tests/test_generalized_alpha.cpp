@@ -16,7 +16,7 @@
 
 #include "deck_support.hpp"
 #include "elements/point_mass.hpp"
-#include "io/checkpoint.hpp"
+#include "deck/checkpoint.hpp"
 #include "solvers/analysis.hpp"
 #include "test_support.hpp"
 
@@ -299,8 +299,8 @@ TEST_CASE("a generalized-alpha analysis continues from a checkpoint as it would 
   // Through a checkpoint file: alpha_m and M a_n are among the fields it keeps.
   testing::TempDir folder;
   const std::string file = folder.path("halfway.ckpt.h5");
-  io::write_checkpoint(file, io::capture_checkpoint(whole, nullptr, 1, "generalized-alpha"));
-  const CarriedState halfway = io::read_checkpoint(file).analysis;
+  macros::write_checkpoint(file, macros::capture_checkpoint(whole, nullptr, 1, "generalized-alpha"));
+  const CarriedState halfway = macros::read_checkpoint(file).analysis;
   CHECK(halfway.integrator == scheme.record());
   CHECK(halfway.integrator.alpha_m == Approx(0.2 / 1.6).epsilon(1e-15));  // (2 rho - 1)/(rho + 1)
   CHECK(halfway.old_inertia_forces.size() == whole_model.mesh().dof_count());

@@ -17,8 +17,8 @@
 #include <limits>
 
 #include "elements/beam_mesh.hpp"
-#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
+#include "deck/checkpoint.hpp"
 #include "test_support.hpp"
 #include "tirefe/test_paths.hpp"
 
@@ -70,7 +70,7 @@ TEST_CASE("a run restarted from a checkpoint continues bit for bit", "[reliabili
   const fs::path whole = root / "whole";
   const Run uninterrupted = run_deck(whole, "--quiet");
   REQUIRE(uninterrupted.status == 0);
-  const auto reference_end = tirefe::io::read_checkpoint((whole / "end.ckpt.h5").string());
+  const auto reference_end = tirefe::macros::read_checkpoint((whole / "end.ckpt.h5").string());
   const Hdf5File reference = Hdf5File::open_read_only((whole / "restart.h5").string());
   REQUIRE(reference_end.analysis.accepted_steps == 150);
   // The case is not trivial: the ring slides in contact and the road drags it.
@@ -80,7 +80,7 @@ TEST_CASE("a run restarted from a checkpoint continues bit for bit", "[reliabili
 
   for (const char* checkpoint : {"mid.ckpt.h5", "auto.ckpt.h5"}) {
     DYNAMIC_SECTION("restarted from " << checkpoint) {
-      const auto saved = tirefe::io::read_checkpoint((whole / checkpoint).string());
+      const auto saved = tirefe::macros::read_checkpoint((whole / checkpoint).string());
       const int start_step = saved.analysis.accepted_steps;
       CHECK(start_step == (std::string(checkpoint) == "mid.ckpt.h5" ? 60 : 120));
       const fs::path folder = root / fs::path(checkpoint).stem().stem();
@@ -110,7 +110,7 @@ TEST_CASE("a run restarted from a checkpoint continues bit for bit", "[reliabili
       CHECK(text_of(folder / "restart.xmf") == text_of(whole / "restart.xmf"));
 
       // The final state, element and contact history included.
-      const auto end = tirefe::io::read_checkpoint((folder / "end.ckpt.h5").string());
+      const auto end = tirefe::macros::read_checkpoint((folder / "end.ckpt.h5").string());
       const auto& a = end.analysis;
       const auto& b = reference_end.analysis;
       CHECK(a.state.time == b.state.time);
@@ -158,7 +158,7 @@ TEST_CASE("a restart refuses parameters other than the checkpoint's", "[reliabil
   const fs::path root = fs::temp_directory_path() / "tirefe_restart_parameters";
   REQUIRE(run_deck(root / "whole", "--quiet t_mid=0.02 t_end=0.04").status == 0);
   const std::string checkpoint = (root / "whole" / "mid.ckpt.h5").string();
-  CHECK(tirefe::io::read_checkpoint(checkpoint).parameters.size() == 7);
+  CHECK(tirefe::macros::read_checkpoint(checkpoint).parameters.size() == 7);
   const Run changed = run_deck(root / "changed", "--quiet t_mid=0.02 t_end=0.05 dt=0.001 --restart " + checkpoint);
   CHECK(changed.status == 1);
   CHECK(changed.output == "tirefe: " + kDeck +
@@ -174,10 +174,10 @@ TEST_CASE("two checkpoints of the same state are the same bytes, element histori
   // Two processes, so that bytes left uninitialised (an empty history's padding byte, the
   // gaps of a struct) would differ: the tread beams and the contact nodes' histories.
   const fs::path root = fs::temp_directory_path() / "tirefe_restart_identical";
-  std::vector<tirefe::io::Checkpoint> ends;
+  std::vector<tirefe::macros::Checkpoint> ends;
   for (const char* run : {"first", "second"}) {
     REQUIRE(run_deck(root / run, "--quiet t_mid=0.02 t_end=0.04").status == 0);
-    ends.push_back(tirefe::io::read_checkpoint((root / run / "end.ckpt.h5").string()));
+    ends.push_back(tirefe::macros::read_checkpoint((root / run / "end.ckpt.h5").string()));
   }
   REQUIRE(ends[0].blocks.size() == 2);  // tread beams and contact
   REQUIRE(ends[1].blocks.size() == 2);
@@ -216,7 +216,7 @@ struct SmallRun {
 
 std::string refusal_of(const std::string& checkpoint) {
   try {
-    tirefe::io::read_checkpoint(checkpoint);
+    tirefe::macros::read_checkpoint(checkpoint);
   } catch (const tirefe::io::IoError& error) {
     return error.what();
   }
@@ -229,10 +229,10 @@ TEST_CASE("a checkpoint holding a count out of range or a non-finite number is r
           "[reliability][restart]") {
   tirefe::testing::TempDir dir;
   SmallRun run;
-  tirefe::io::Checkpoint checkpoint = tirefe::io::capture_checkpoint(run.analysis, nullptr, 1, "small");
+  tirefe::macros::Checkpoint checkpoint = tirefe::macros::capture_checkpoint(run.analysis, nullptr, 1, "small");
   const std::string path = dir.path("small.ckpt.h5");
-  tirefe::io::write_checkpoint(path, checkpoint);
-  REQUIRE(tirefe::io::read_checkpoint(path).analysis.accepted_steps == 2);
+  tirefe::macros::write_checkpoint(path, checkpoint);
+  REQUIRE(tirefe::macros::read_checkpoint(path).analysis.accepted_steps == 2);
 
   SECTION("an attribute changed in the file") {
     struct Tampering {
@@ -270,10 +270,10 @@ TEST_CASE("a checkpoint holding a count out of range or a non-finite number is r
   SECTION("rows whose shape overflows, and a time row that is not a number") {
     checkpoint.has_output = true;
     checkpoint.rows.push_back({"/fields/displacement", {1LL << 40, 1LL << 40}, 0, {}});
-    tirefe::io::write_checkpoint(path, checkpoint);
+    tirefe::macros::write_checkpoint(path, checkpoint);
     CHECK_THAT(refusal_of(path), Catch::Contains("rows of '/fields/displacement' are incomplete"));
     checkpoint.rows = {{"/history/time", {}, 2, {0.1, std::numeric_limits<double>::quiet_NaN()}}};
-    tirefe::io::write_checkpoint(path, checkpoint);
+    tirefe::macros::write_checkpoint(path, checkpoint);
     CHECK_THAT(refusal_of(path), Catch::Contains("'/rows/0/values' holds nan, not a finite number"));
   }
 }

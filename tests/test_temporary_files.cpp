@@ -8,9 +8,9 @@
 #include <iterator>
 #include <string>
 
-#include "io/checkpoint.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
+#include "deck/checkpoint.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -63,7 +63,7 @@ TEST_CASE("a symbolic link in the place of a temporary file is never written thr
   if (temporary == "run.xmf.partial") {
     message = refusal([&] { small_index().write(dir.path("run.xmf")); });
   } else if (temporary == "ck.h5.partial") {
-    message = refusal([&] { tirefe::io::write_checkpoint(dir.path("ck.h5"), tirefe::io::Checkpoint{}); });
+    message = refusal([&] { tirefe::macros::write_checkpoint(dir.path("ck.h5"), tirefe::macros::Checkpoint{}); });
   } else {
     message = refusal([&] { Hdf5File::create_published(dir.path("run.h5")).flush(); });
   }
@@ -79,10 +79,10 @@ TEST_CASE("a file in the place of a temporary is removed only if a killed run of
   TempDir dir;
   SECTION("a user's file is kept, and the write refused") {
     dir.write("ck.h5.partial", "my notes\n");
-    CHECK_THAT(refusal([&] { tirefe::io::remove_unfinished_checkpoint(dir.path("ck.h5")); }),
+    CHECK_THAT(refusal([&] { tirefe::macros::remove_unfinished_checkpoint(dir.path("ck.h5")); }),
                Contains("ck.h5.partial' is in the way of the temporary file tirefe writes there: it is a file tirefe "
                         "did not write; remove it"));
-    CHECK_THAT(refusal([&] { tirefe::io::write_checkpoint(dir.path("ck.h5"), tirefe::io::Checkpoint{}); }),
+    CHECK_THAT(refusal([&] { tirefe::macros::write_checkpoint(dir.path("ck.h5"), tirefe::macros::Checkpoint{}); }),
                Contains("it is a file tirefe did not write"));
     dir.write("run.h5.partial", "my notes\n");
     CHECK_THAT(refusal([&] { Hdf5File::create_published(dir.path("run.h5")); }),

@@ -16,6 +16,7 @@
 #include "elements/tread_beam.hpp"
 #include "io/result_file.hpp"
 #include "io/xdmf.hpp"
+#include "solvers/analysis.hpp"
 #include "test_support.hpp"
 
 using tirefe::io::Hdf5File;
@@ -168,7 +169,7 @@ TEST_CASE("result file: the deformation takes the rim's rigid motion out, in the
     state.displacement.segment<2>(dof_index(3, kUx)) += bulge;
     state.displacement[dof_index(3, kRz)] += twist;
     state.displacement.segment<2>(dof_index(7, kUx)) = Eigen::Vector2d(0.5, 0.25);  // no tire's node
-    file.write_fields(analysis, 1);
+    file.write_fields(analysis.model(), analysis.state(), 1);
   }
   const Hdf5File file = Hdf5File::open_read_only(folder.path("ring.h5"));
   std::vector<hsize_t> shape;
@@ -215,7 +216,7 @@ TEST_CASE("result file: the index after every flush, a surface drawn in every fr
     file.show_node_set("ring");
     for (int frame = 0; frame < 3; ++frame) {
       analysis.mutable_state().time = 0.5 * frame;
-      file.write_fields(analysis, frame);
+      file.write_fields(analysis.model(), analysis.state(), frame);
       if (frame == 0) file.add_surface("square", true, turned);
       // Frames this close together (a flush's own time apart) wait for the next flush.
       file.flush();
@@ -269,7 +270,7 @@ TEST_CASE("result file: the views of frames written between flushes are made at 
       analysis.mutable_state().time = 0.5 * frame;
       analysis.mutable_state().displacement = Eigen::VectorXd::LinSpaced(dofs, frame, frame + 1.0);
       analysis.mutable_state().velocity = -analysis.state().displacement;
-      file.write_fields(analysis, frame);
+      file.write_fields(analysis.model(), analysis.state(), frame);
       if (frame == 1) file.flush();
       // Added with frames 0 and 1 flushed and frame 2 waiting for the flush.
       if (frame == 2) file.add_surface("square", true, moved);
@@ -315,7 +316,7 @@ struct RingFrames {
   void write(io::ResultFile& file, int frame) {
     analysis.mutable_state().time = 0.001 * frame;
     analysis.mutable_state().displacement = analysis.mutable_state().velocity = Eigen::VectorXd::Constant(dofs, frame);
-    file.write_fields(analysis, frame);
+    file.write_fields(analysis.model(), analysis.state(), frame);
   }
 };
 

@@ -3,12 +3,14 @@
 // current positions, l = |x_b - x_a|, n = (x_b - x_a) / l and L the rest length:
 //     axial force N = k (l - L),   f_b = -f_a = N n,   energy k (l - L)^2 / 2,
 //     dF/du on the b-b block = k n n^T + (N / l) (I - n n^T), the a-b blocks its negative.
-// It has no mass and no damping, and leaves the node rotations alone.
+// It has no mass and no damping, and leaves the node rotations alone. Its axial force is a
+// named response (core/element_response.hpp) that output asks for by name.
 #pragma once
 
 #include <Eigen/Dense>
 #include <array>
 #include <string>
+#include <vector>
 
 #include "core/element.hpp"
 
@@ -53,6 +55,16 @@ class AxialSpring : public KernelShape<2> {
     ElementEnergy energy;
     energy.strain = 0.5 * stiffness_ * stretch * stretch;
     return energy;
+  }
+
+  // Its named response: the axial force N, at one point.
+  static constexpr int kResponsePoints = 1;
+  static const std::vector<ResponseName>& response_names() {
+    static const std::vector<ResponseName> names{{"axial_force", "N"}};
+    return names;
+  }
+  double response(int, int, const LocalState<kDofs>& local, const History&) const {
+    return stiffness_ * (current(local).norm() - rest_length_);
   }
 
  private:

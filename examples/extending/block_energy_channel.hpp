@@ -12,9 +12,8 @@ namespace tirefe::examples {
 /// Adds the channel for the block 'name' of the analysis's model; ModelError if there is none.
 inline void add_strain_energy_channel(io::ResultFile& file, const Model& model, const std::string& name) {
   const ElementBlock& block = model.block(name);
-  file.add_channel(name + "_strain_energy", "J", [&block](const Analysis& analysis, const StepRecord&) {
-    return block.energy(analysis.state()).strain;
-  });
+  file.add_channel(name + "_strain_energy", "J",
+                   [&block](const State& state, const StepRecord&) { return block.energy(state).strain; });
 }
 
 }  // namespace tirefe::examples

@@ -10,7 +10,7 @@
 #include <map>
 #include <vector>
 
-#include "io/checkpoint.hpp"
+#include "deck/checkpoint.hpp"
 #include "deck/interrupt.hpp"
 #include "deck/lua_module_dir.hpp"
 #include "deck/lua_sandbox.hpp"
@@ -185,7 +185,7 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
   }
   if (!line.restart.empty()) {
     try {
-      session.restart = std::make_shared<io::Checkpoint>(io::read_checkpoint(line.restart));
+      session.restart = std::make_shared<Checkpoint>(read_checkpoint(line.restart));
     } catch (const std::exception& error) {
       return {1, "tirefe: " + line.deck + ": " + error.what() + "\n"};
     }

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "formats/road_file.hpp"
-#include "io/checkpoint.hpp"
+#include "deck/checkpoint.hpp"
 #include "deck/deck_model.hpp"
 #include "deck/interrupt.hpp"
 #include "deck/lua_module_dir.hpp"
@@ -123,7 +123,7 @@ struct OpenTire {
 
 /// A saved state, behind its tirefe_saved_state* handle.
 struct SavedState {
-  tirefe::io::Checkpoint checkpoint;
+  tirefe::macros::Checkpoint checkpoint;
 };
 
 namespace {
@@ -886,7 +886,7 @@ tirefe_status tirefe_save_state(tirefe_tire* tire, tirefe_saved_state** saved) {
     if (!saved) return refuse(t, TIREFE_INVALID_ARGUMENT, "saved must not be NULL");
     if (t.deck) return refuse(t, TIREFE_INVALID_CALL, "a deck's tire is saved with the deck's model:checkpoint");
     auto state =
-        std::make_shared<SavedState>(SavedState{io::capture_checkpoint(*t.analysis, nullptr, 1, "tirefe C API")});
+        std::make_shared<SavedState>(SavedState{macros::capture_checkpoint(*t.analysis, nullptr, 1, "tirefe C API")});
     *saved = saved_states().add(std::move(state));
     return TIREFE_OK;
   });
@@ -909,7 +909,7 @@ tirefe_status tirefe_restore_state(tirefe_tire* tire, const tirefe_saved_state* 
                     "saved is the state of another tire (of " + std::to_string(state->checkpoint.node_count) +
                         " nodes, this one has " + std::to_string(nodes) +
                         "): restore a state into a tire built with the same parameters");
-    io::restore_checkpoint(state->checkpoint, *t.analysis, nullptr);
+    macros::restore_checkpoint(state->checkpoint, *t.analysis, nullptr);
     return TIREFE_OK;
   });
 }

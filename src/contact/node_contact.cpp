@@ -207,10 +207,4 @@ ContactSummary summarize_contact(const ContactBlock& block) {
   return summary;
 }
 
-void fill_contact_results(const ContactBlock& block, ContactNodeResults& results) {
-  const size_t count = static_cast<size_t>(block.size());
-  results.resize(count);
-  for (size_t e = 0; e < count; ++e) results.set(e, block.committed_history(static_cast<int>(e)));
-}
-
 }  // namespace tirefe

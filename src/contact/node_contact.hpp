@@ -103,6 +103,28 @@ struct ContactHistory {
 // No implicit padding, whose bytes would be uninitialised in a checkpoint.
 static_assert(sizeof(ContactHistory) == 12 * sizeof(double), "ContactHistory must have no implicit padding");
 
+/// A contact point's named responses (core/element_response.hpp; docs/output.md): a node's
+/// ContactHistory or a tread's TreadSample, which carry the same names. The result file
+/// writes each as /contact/<block>/<name>; a new one is a name here and its value below.
+inline const std::vector<ResponseName>& contact_point_responses() {
+  static const std::vector<ResponseName> names{
+      {"gap", "m"},        {"normal_force", "N"},      {"tangential_force", "N"}, {"state", "0 open, 1 stick, 2 slip"},
+      {"coordinate", "m"}, {"sliding_velocity", "m/s"}};
+  return names;
+}
+template <class Point>
+double contact_point_response(int index, const Point& point) {
+  switch (index) {
+    case 0: return point.gap;
+    case 1: return point.normal_force;
+    case 2: return point.tangential_force;
+    case 3: return static_cast<double>(point.state);
+    case 4: return point.coordinate;
+    case 5: return point.sliding_velocity;
+    default: throw std::out_of_range("a contact point has no response " + std::to_string(index));
+  }
+}
+
 class NodeSurfaceContact : public KernelShape<1, ContactHistory> {
  public:
   /// 'node' (0-based) only names the node in messages. A node that touches down in its
@@ -120,6 +142,13 @@ class NodeSurfaceContact : public KernelShape<1, ContactHistory> {
   /// Uzawa update; true if this node wants another solve. Throws ContactFailure beyond the
   /// penetration limit.
   bool augment(History& base, const History& trial) const;
+
+  // Named responses (core/element_response.hpp): the node's contact point after a step.
+  static constexpr int kResponsePoints = 1;
+  static const std::vector<ResponseName>& response_names() { return contact_point_responses(); }
+  double response(int index, int, const LocalState<kDofs>&, const History& committed) const {
+    return contact_point_response(index, committed);
+  }
 
   const RigidSurface& surface() const { return *surface_; }
   const ContactParameters& parameters() const { return parameters_; }
@@ -157,27 +186,5 @@ struct ContactSummary {
   double first_ = 0.0, low_ = 0.0, high_ = 0.0;
 };
 ContactSummary summarize_contact(const ContactBlock& block);
-
-/// Per-node results of the last accepted step, one entry per element of the block.
-struct ContactNodeResults {
-  std::vector<double> gap, normal_force, tangential_force, state, coordinate, sliding_velocity;
-
-  void resize(size_t count) {
-    for (auto* column : {&gap, &normal_force, &tangential_force, &state, &coordinate, &sliding_velocity})
-      column->resize(count);
-  }
-  /// Point k's values from a contact point's committed history: a node's ContactHistory or
-  /// a tread's TreadSample, which carry the same names.
-  template <class Point>
-  void set(size_t k, const Point& point) {
-    gap[k] = point.gap;
-    normal_force[k] = point.normal_force;
-    tangential_force[k] = point.tangential_force;
-    state[k] = static_cast<double>(point.state);
-    coordinate[k] = point.coordinate;
-    sliding_velocity[k] = point.sliding_velocity;
-  }
-};
-void fill_contact_results(const ContactBlock& block, ContactNodeResults& results);
 
 }  // namespace tirefe

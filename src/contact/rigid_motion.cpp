@@ -17,9 +17,37 @@ MotionFunction MotionFunction::linear(double rate) {
   return MotionFunction([rate](double t) { return rate * t; }, [rate](double) { return rate; });
 }
 
-MotionFunction MotionFunction::ramped_rate(double final_rate, double ramp_time, double start_time) {
+RampLaw ramp_law_named(const std::string& name) {
+  if (name == "linear") return RampLaw::Linear;
+  if (name == "cosine") return RampLaw::Cosine;
+  throw ModelError("ramp '" + name + "' is no ramp law: give \"linear\" or \"cosine\"");
+}
+
+namespace {
+
+/// rate(t) = final_rate (1 - cos(pi (t - t0) / T)) / 2 up to t0 + T; value = its integral from t0.
+MotionFunction cosine_ramped_rate(double final_rate, double ramp_time, double start_time) {
+  constexpr double kPi = 3.14159265358979323846;
+  auto value = [=](double t) {
+    const double elapsed = t - start_time;
+    if (elapsed <= 0.0) return 0.0;
+    if (elapsed <= ramp_time)
+      return 0.5 * final_rate * (elapsed - ramp_time / kPi * std::sin(kPi * elapsed / ramp_time));
+    return final_rate * (elapsed - 0.5 * ramp_time);
+  };
+  auto rate = [=](double t) {
+    const double share = std::min(std::max(t - start_time, 0.0) / ramp_time, 1.0);
+    return final_rate * 0.5 * (1.0 - std::cos(kPi * share));
+  };
+  return MotionFunction(value, rate);
+}
+
+}  // namespace
+
+MotionFunction MotionFunction::ramped_rate(double final_rate, double ramp_time, double start_time, RampLaw law) {
   if (!(ramp_time >= 0.0) || !std::isfinite(ramp_time))
     throw ModelError("a motion's ramp time must be non-negative (got " + std::to_string(ramp_time) + ")");
+  if (law == RampLaw::Cosine && ramp_time > 0.0) return cosine_ramped_rate(final_rate, ramp_time, start_time);
   // rate(t) = final_rate * clamp((t - t0) / T, 0, 1); value = its integral from t0.
   auto value = [=](double t) {
     const double elapsed = t - start_time;

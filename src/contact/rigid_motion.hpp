@@ -14,10 +14,19 @@
 #include <Eigen/Dense>
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "core/load_function.hpp"
 
 namespace tirefe {
+
+/// How a ramped rate rises from rest to its final value over the ramp time T.
+enum class RampLaw {
+  Linear,  // in proportion to the time since the start
+  Cosine,  // as (1 - cos(pi t / T)) / 2: the rate's own rate neither jumps at the start nor at the end
+};
+/// The law named "linear" or "cosine"; ModelError for any other name.
+RampLaw ramp_law_named(const std::string& name);
 
 /// A scalar function of time with its rate: a translation component [m] or an angle [rad].
 class MotionFunction {
@@ -26,10 +35,12 @@ class MotionFunction {
   static MotionFunction constant(double value = 0.0);
   /// value = rate * t: uniform motion.
   static MotionFunction linear(double rate);
-  /// The rate ramps linearly from 0 at start_time to final_rate at start_time + ramp_time
+  /// The rate rises by 'law' from 0 at start_time to final_rate at start_time + ramp_time
   /// and is held after; the value is its integral, 0 before start_time. A drum that spins
-  /// up, or a road that accelerates uniformly under a vehicle. ramp_time = 0 jumps.
-  static MotionFunction ramped_rate(double final_rate, double ramp_time, double start_time = 0.0);
+  /// up (the decks' drum kinematics: lua/drum.lua asks it through tirefe.spin_up), or a
+  /// road that accelerates under a vehicle. ramp_time = 0 jumps.
+  static MotionFunction ramped_rate(double final_rate, double ramp_time, double start_time = 0.0,
+                                    RampLaw law = RampLaw::Linear);
   /// value = scale * f(t) for a load function f; the rate by central differences
   /// (at the kinks of a table it is the mean of the two slopes).
   static MotionFunction from_load_function(LoadFunction function, double scale = 1.0);

@@ -237,11 +237,4 @@ ContactSummary summarize_contact(const TreadContactBlock& block) {
   return summary;
 }
 
-void fill_contact_results(const TreadContactBlock& block, ContactNodeResults& results) {
-  results.resize(static_cast<size_t>(block.size()) * TreadContact::kSamples);
-  size_t k = 0;
-  for (int e = 0; e < block.size(); ++e)
-    for (const TreadSample& sample : block.committed_history(e)) results.set(k++, sample);
-}
-
 }  // namespace tirefe

@@ -116,6 +116,13 @@ class TreadContact : public KernelShape<2, std::array<TreadSample, 8>> {
   /// The layer's stored energy, and what the samples booked (surface work, dissipation).
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
 
+  // Named responses (core/element_response.hpp): each sample's contact point after a step.
+  static constexpr int kResponsePoints = kSamples;
+  static const std::vector<ResponseName>& response_names() { return contact_point_responses(); }
+  double response(int index, int sample, const LocalState<kDofs>&, const History& committed) const {
+    return contact_point_response(index, committed[sample]);
+  }
+
   const RigidSurface& surface() const { return *surface_; }
   const TreadRubber& rubber() const { return rubber_; }
   /// Reference position of sample q.
@@ -144,7 +151,5 @@ TreadContactBlock& add_tread_contact_block(Model& model, const std::string& name
                                            const std::vector<int>& tread_nodes, const TreadRubber& rubber);
 
 ContactSummary summarize_contact(const TreadContactBlock& block);
-/// Per-sample results of the last accepted step, element by element, sample by sample.
-void fill_contact_results(const TreadContactBlock& block, ContactNodeResults& results);
 
 }  // namespace tirefe

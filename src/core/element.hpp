@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/element_response.hpp"
 #include "core/mesh.hpp"
 #include "core/state.hpp"
 
@@ -313,7 +314,7 @@ struct ZeroTangentEntries<Kernel, std::void_t<decltype(Kernel::zero_tangent_entr
 }  // namespace detail
 
 template <class Kernel>
-class ElementBlockOf final : public ElementBlock {
+class ElementBlockOf final : public ElementBlock, public BlockResponses<ElementBlockOf<Kernel>, Kernel> {
  public:
   static constexpr int kNodes = Kernel::kNodes;
   static constexpr int kDofs = kDofsPerNode * kNodes;

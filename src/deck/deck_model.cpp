@@ -5,9 +5,9 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "deck/checkpoint.hpp"
 #include "deck/deck_files.hpp"
 #include "deck/interrupt.hpp"
-#include "io/checkpoint.hpp"
 #include "vehicle/tire_spindle.hpp"
 
 namespace tirefe::macros {
@@ -21,7 +21,7 @@ DeckModel::DeckModel(std::string title, DeckSession& session)
   load_functions_["ramp"] = Model::kRampLoadFunction;
   load_functions_["constant"] = model_.add_load_function(LoadFunction::constant(1.0));
   analysis_.add_step_observer([this](const Analysis& analysis, const StepRecord& record) {
-    if (output_) output_->record(analysis, record);
+    if (output_) output_->record(analysis.model(), analysis.state(), record);
     report_step(record);
     if (const int signal = stop_signal().load()) {
       // No flush here: the close that follows writes the rest without copying the file.
@@ -61,9 +61,9 @@ void DeckModel::write_checkpoint(const std::string& file) {
   if (restart_) return;  // a restart has not reached its checkpoint yet: the file holds a later state
   if (analysis_.accepted_steps() == 0) throw ModelError("a checkpoint needs at least one solved step");
   if (!owned()) return;  // the owner writes it (after the same checks: every rank fails alike)
-  io::Checkpoint checkpoint = io::capture_checkpoint(analysis_, output_.get(), index_, title_);
+  Checkpoint checkpoint = capture_checkpoint(analysis_, output_.get(), index_, title_);
   checkpoint.parameters = session_.parameters;
-  io::write_checkpoint(path, checkpoint);
+  macros::write_checkpoint(path, checkpoint);
   last_checkpoint_ = std::chrono::steady_clock::now();
 }
 
@@ -71,7 +71,7 @@ void DeckModel::schedule_checkpoints(const std::string& file, int steps, double 
   // Refused at the macro's line, not at the first step that writes it.
   const std::string path = checkpoint_path(file);
   checkpoint_file_ = file;
-  if (owned()) io::remove_unfinished_checkpoint(path);  // a killed run's
+  if (owned()) remove_unfinished_checkpoint(path);  // a killed run's
   checkpoint_steps_ = steps;
   checkpoint_minutes_ = minutes;
   last_checkpoint_ = std::chrono::steady_clock::now();
@@ -112,8 +112,8 @@ void DeckModel::require_state(const std::string& what) const {
 }
 
 void DeckModel::load_checkpoint() {
-  io::check_parameters(*restart_, session_.parameters);
-  io::restore_checkpoint(*restart_, analysis_, output_.get());
+  check_parameters(*restart_, session_.parameters);
+  restore_checkpoint(*restart_, analysis_, output_.get());
   restart_.reset();
   session_.restart.reset();
   session_.progress.clear();

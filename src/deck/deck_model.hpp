@@ -150,7 +150,7 @@ class DeckModel {
   std::vector<std::function<void(io::ResultFile&)>> output_descriptions_;  // until it opens
   bool calls_lua_ = false;
   int index_;  // counted from 1 in the order the deck creates its models
-  std::shared_ptr<const io::Checkpoint> restart_;
+  std::shared_ptr<const Checkpoint> restart_;
   bool skipped_steps_ = false;
   std::string checkpoint_file_;
   int checkpoint_steps_ = 0;

@@ -17,12 +17,9 @@ namespace tirefe {
 class TireExchange;
 class TireSpindle;
 }  // namespace tirefe
-namespace tirefe::io {
-struct Checkpoint;
-}
-
 namespace tirefe::macros {
 
+struct Checkpoint;
 class DeckModel;
 
 struct CheckResult {
@@ -66,7 +63,7 @@ struct DeckSession {
   /// The models alive now (made, not yet collected): their size is bounded together.
   std::set<const DeckModel*> live_models;
   /// --restart: the checkpoint a model continues from (docs/restart.md); cleared once loaded.
-  std::shared_ptr<const io::Checkpoint> restart;
+  std::shared_ptr<const Checkpoint> restart;
   DeckProcesses processes;
   /// Unset: a TireGroup in this process (threads). An MPI run installs its own.
   TireExchangeFactory tire_exchange;

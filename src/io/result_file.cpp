@@ -61,25 +61,25 @@ ResultFile::ResultFile(const std::string& path, const RunMetadata& metadata, Res
       file_.write_attribute("/parameters", name, text);
   }
   // The built-in step channels come first in every history.
-  add_channel("time", "s", [](const Analysis&, const StepRecord& step) { return step.time; });
-  add_channel("step_size", "s", [](const Analysis&, const StepRecord& step) { return step.step_size; });
+  add_channel("time", "s", [](const State&, const StepRecord& step) { return step.time; });
+  add_channel("step_size", "s", [](const State&, const StepRecord& step) { return step.step_size; });
   add_channel("newton_iterations", "",
-              [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.newton_iterations); });
-  add_channel("cuts", "", [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.cuts); });
-  add_channel("residual", "N", [](const Analysis&, const StepRecord& step) { return step.residual; });
+              [](const State&, const StepRecord& step) { return static_cast<double>(step.newton_iterations); });
+  add_channel("cuts", "", [](const State&, const StepRecord& step) { return static_cast<double>(step.cuts); });
+  add_channel("residual", "N", [](const State&, const StepRecord& step) { return step.residual; });
   add_channel("augmentations", "",
-              [](const Analysis&, const StepRecord& step) { return static_cast<double>(step.augmentations); });
-  add_channel("energy_kinetic", "J", [](const Analysis&, const StepRecord& step) { return step.energy.kinetic; });
-  add_channel("energy_strain", "J", [](const Analysis&, const StepRecord& step) { return step.energy.strain; });
-  add_channel("external_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.external_work; });
-  add_channel("energy_dissipated", "J", [](const Analysis&, const StepRecord& step) { return step.energy.dissipated; });
-  add_channel("surface_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.surface_work; });
-  add_channel("unstored_work", "J", [](const Analysis&, const StepRecord& step) { return step.energy.unstored_work; });
-  add_channel("energy_damping", "J", [](const Analysis&, const StepRecord& step) { return step.energy.damping; });
+              [](const State&, const StepRecord& step) { return static_cast<double>(step.augmentations); });
+  add_channel("energy_kinetic", "J", [](const State&, const StepRecord& step) { return step.energy.kinetic; });
+  add_channel("energy_strain", "J", [](const State&, const StepRecord& step) { return step.energy.strain; });
+  add_channel("external_work", "J", [](const State&, const StepRecord& step) { return step.energy.external_work; });
+  add_channel("energy_dissipated", "J", [](const State&, const StepRecord& step) { return step.energy.dissipated; });
+  add_channel("surface_work", "J", [](const State&, const StepRecord& step) { return step.energy.surface_work; });
+  add_channel("unstored_work", "J", [](const State&, const StepRecord& step) { return step.energy.unstored_work; });
+  add_channel("energy_damping", "J", [](const State&, const StepRecord& step) { return step.energy.damping; });
   add_channel("contact_dissipated", "J",
-              [](const Analysis&, const StepRecord& step) { return step.energy.contact_dissipated; });
+              [](const State&, const StepRecord& step) { return step.energy.contact_dissipated; });
   add_channel("energy_balance_error", "J",
-              [](const Analysis&, const StepRecord& step) { return step.energy.balance_error; });
+              [](const State&, const StepRecord& step) { return step.energy.balance_error; });
   file_.flush();
 }
 
@@ -395,39 +395,27 @@ void ResultFile::index_restored_frames() {
   write_index();
 }
 
-void ResultFile::write_modes(const std::string& label, const Analysis& analysis, const ModalResult& modes) {
+void ResultFile::write_modes(const std::string& label, const Model& model, const ModeTable& modes) {
   if (discarded_) return;
   flush_job_.wait();
-  write_mode_group(label, analysis, modes.frequencies_hz, modes.rigid_body, modes.shapes);
-  flush();
-}
-
-void ResultFile::write_modes(const std::string& label, const Analysis& analysis, const DampedModalResult& modes) {
-  if (discarded_) return;
-  flush_job_.wait();
-  const std::string group =
-      write_mode_group(label, analysis, modes.frequencies_hz, modes.rigid_body, modes.shapes.real());
-  file_.write_attribute(group, "spin_rate", modes.spin_rate);
-  file_.write_vector(group + "/damping_ratio", modes.damping_ratios);
-  file_.write_vector(group + "/natural_frequency", modes.natural_frequencies_hz);
-  write_shape_table(group + "/shapes_imag", analysis, modes.shapes.imag());
-  flush();
-}
-
-std::string ResultFile::write_mode_group(const std::string& label, const Analysis& analysis,
-                                         const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
-                                         const Eigen::MatrixXd& shapes) {
-  if (!mesh_written_) write_mesh(analysis.model());
+  if (!mesh_written_) write_mesh(model);
   const std::string group = "/modes/" + label;
-  file_.write_attribute(group, "time", analysis.state().time);
-  file_.write_vector(group + "/frequency", frequencies_hz);
-  file_.write_int_vector(group + "/rigid_body", std::vector<long long>(rigid_body.begin(), rigid_body.end()));
-  write_shape_table(group + "/shapes", analysis, shapes);
-  return group;
+  file_.write_attribute(group, "time", modes.time);
+  file_.write_vector(group + "/frequency", modes.frequencies_hz);
+  file_.write_int_vector(group + "/rigid_body",
+                         std::vector<long long>(modes.rigid_body.begin(), modes.rigid_body.end()));
+  write_shape_table(group + "/shapes", model, modes.shapes);
+  if (modes.damped) {
+    file_.write_attribute(group, "spin_rate", modes.spin_rate);
+    file_.write_vector(group + "/damping_ratio", modes.damping_ratios);
+    file_.write_vector(group + "/natural_frequency", modes.natural_frequencies_hz);
+    write_shape_table(group + "/shapes_imag", model, modes.shapes_imag);
+  }
+  flush();
 }
 
-void ResultFile::write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes) {
-  const int nodes = analysis.model().mesh().node_count();
+void ResultFile::write_shape_table(const std::string& path, const Model& model, const Eigen::MatrixXd& shapes) {
+  const int nodes = model.mesh().node_count();
   std::vector<double> values(static_cast<size_t>(shapes.cols()) * nodes * kDofsPerNode);
   for (Eigen::Index mode = 0; mode < shapes.cols(); ++mode)
     for (int dof = 0; dof < nodes * kDofsPerNode; ++dof) values[mode * nodes * kDofsPerNode + dof] = shapes(dof, mode);
@@ -437,13 +425,11 @@ void ResultFile::write_shape_table(const std::string& path, const Analysis& anal
   file_.write_attribute(path, "layout", std::string("modes x (3 nodes): u_x, u_y, theta_z per node"));
 }
 
-void ResultFile::write_fields(const Analysis& analysis, int step) {
+void ResultFile::write_fields(const Model& model, const State& state, int step) {
   if (discarded_) return;
-  if (!mesh_written_) write_mesh(analysis.model());
-  const State& state = analysis.state();
+  if (!mesh_written_) write_mesh(model);
   if (state.displacement.size() != static_cast<Eigen::Index>(field_displacement_->row_size()))
     throw IoError("the mesh changed after output started; fields cannot be written to '" + path() + "'");
-  const Model& model = analysis.model();
   // Where the structure is: a road is drawn a structure's size beyond it (at least a metre).
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), high = -low;
   for (int node = 0; node < model.mesh().node_count(); ++node) {
@@ -465,24 +451,24 @@ void ResultFile::write_fields(const Analysis& analysis, int step) {
   flush_if_due();
 }
 
-void ResultFile::start(const Analysis& analysis) {
+void ResultFile::start(const Model& model) {
   if (discarded_) return;
-  if (!mesh_written_) write_mesh(analysis.model());
+  if (!mesh_written_) write_mesh(model);
   if (channels_.empty()) start_history();
 }
 
-void ResultFile::record(const Analysis& analysis, const StepRecord& record) {
+void ResultFile::record(const Model& model, const State& state, const StepRecord& record) {
   if (discarded_) {  // the model's owner records the step; the channels are not evaluated here
     ++steps_recorded_;
     return;
   }
-  start(analysis);
-  for (auto& channel : channels_) channel.dataset->append(channel.value(analysis, record));
+  start(model);
+  for (auto& channel : channels_) channel.dataset->append(channel.value(state, record));
   ++steps_recorded_;
   const bool frame_due = (field_interval_ > 0 && record.step % field_interval_ == 0) ||
                          (field_time_interval_ > 0.0 && record.time >= next_field_time_);
   if (frame_due) {
-    write_fields(analysis, record.step);
+    write_fields(model, state, record.step);
     schedule_next_frame(record.time);
   }
   flush_if_due();

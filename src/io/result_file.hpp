@@ -51,11 +51,12 @@
 #include <unordered_set>
 #include <vector>
 
+#include "core/model.hpp"
+#include "core/state.hpp"
+#include "core/step_record.hpp"
 #include "io/background_job.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/xdmf.hpp"
-#include "solvers/analysis.hpp"
-#include "solvers/modal.hpp"
 
 namespace tirefe::io {
 
@@ -84,9 +85,24 @@ struct RunMetadata {
 /// it is non-empty, without '/' and not '.' or '..'. 'what' says whose it is ("surface name").
 void require_path_name(const std::string& name, const std::string& what);
 
+/// A modal analysis's result as /modes/<label> holds it: frequencies, rigid-body flags and
+/// shapes (dof_count x modes; the real part of complex ones); a damped one adds its spin
+/// rate, damping ratios, natural frequencies and the shapes' imaginary part.
+struct ModeTable {
+  double time = 0.0;  // of the state the modes linearise about [s]
+  std::vector<double> frequencies_hz;
+  std::vector<bool> rigid_body;
+  Eigen::MatrixXd shapes;
+  bool damped = false;
+  double spin_rate = 0.0;
+  std::vector<double> damping_ratios, natural_frequencies_hz;
+  Eigen::MatrixXd shapes_imag;
+};
+
 class ResultFile {
  public:
-  using Channel = std::function<double(const Analysis&, const StepRecord&)>;
+  /// A history channel's value at an accepted step, from the committed state and the step's record.
+  using Channel = std::function<double(const State&, const StepRecord&)>;
 
   ResultFile(const std::string& path, const RunMetadata& metadata, ResultStorage storage = ResultStorage::File);
   /// Closes the file, with the index of every frame beside it.
@@ -128,15 +144,14 @@ class ResultFile {
   /// first step): what the file will hold, flushed or not.
   std::vector<double> history_values(const std::string& name);
   /// Records one accepted step (writes the mesh first if it has not been written).
-  void record(const Analysis& analysis, const StepRecord& record);
-  /// Writes the result of a modal analysis under /modes/<label>.
-  void write_modes(const std::string& label, const Analysis& analysis, const ModalResult& modes);
-  void write_modes(const std::string& label, const Analysis& analysis, const DampedModalResult& modes);
+  void record(const Model& model, const State& state, const StepRecord& record);
+  /// Writes the result of a modal analysis of 'model' under /modes/<label>.
+  void write_modes(const std::string& label, const Model& model, const ModeTable& modes);
   /// Writes a field frame now, whatever the interval.
-  void write_fields(const Analysis& analysis, int step);
+  void write_fields(const Model& model, const State& state, int step);
   int steps_recorded() const { return steps_recorded_; }
   /// Writes the mesh and opens the history datasets now (a restart refills them).
-  void start(const Analysis& analysis);
+  void start(const Model& model);
   /// A restart's count of the rows refilled from its checkpoint.
   void set_steps_recorded(int steps) { steps_recorded_ = steps; }
   /// Flushes and waits for the flush to be written.
@@ -209,12 +224,8 @@ class ResultFile {
   void index_flushed_frames();
   size_t frames_written() const { return index_.frames() + unflushed_frames_.size(); }
   double frame_time(size_t frame) const;
-  /// The common part of write_modes: time, frequencies, flags and the shapes' real part.
-  std::string write_mode_group(const std::string& label, const Analysis& analysis,
-                               const std::vector<double>& frequencies_hz, const std::vector<bool>& rigid_body,
-                               const Eigen::MatrixXd& shapes);
   /// Shapes as modes x (3 nodes), like the displacement fields.
-  void write_shape_table(const std::string& path, const Analysis& analysis, const Eigen::MatrixXd& shapes);
+  void write_shape_table(const std::string& path, const Model& model, const Eigen::MatrixXd& shapes);
   void start_history();
   /// With frames by time: the first step at or after the next multiple of the interval.
   void schedule_next_frame(double frame_time);

@@ -13,10 +13,10 @@
 #include <string>
 #include <utility>
 
-#include "contact/contact_output.hpp"
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
 #include "formats/road_file.hpp"
+#include "deck/contact_output.hpp"
 #include "deck/deck_model.hpp"
 #include "macros/macro_table.hpp"
 #include "tire/contact_penalty.hpp"
@@ -48,7 +48,7 @@ MotionFunction motion_of(DeckModel& deck, const MacroArguments& arguments) {
     for (const char* key : keys)
       if (arguments.has(key)) throw ModelError(std::string("'") + key + "' needs '" + needs + "'");
   };
-  if (!by_speed) refuse({"ramp_time", "start_time"}, "speed");
+  if (!by_speed) refuse({"ramp_time", "start_time", "ramp"}, "speed");
   if (!by_function) refuse({"amplitude"}, "load_function");
   if (by_function)
     return MotionFunction::from_load_function(
@@ -56,8 +56,28 @@ MotionFunction motion_of(DeckModel& deck, const MacroArguments& arguments) {
         arguments.number("amplitude"));
   if (by_speed)
     return MotionFunction::ramped_rate(arguments.number("speed"), arguments.number("ramp_time"),
-                                       arguments.number("start_time"));
+                                       arguments.number("start_time"), ramp_law_named(arguments.string("ramp")));
   return MotionFunction();
+}
+
+const ParameterSpec kRampKey{"ramp",
+                             VT::String,
+                             false,
+                             "",
+                             "how the rate rises over ramp_time: linear, or cosine, as (1 - cos) / 2 (no jerk at "
+                             "either end)",
+                             std::string("linear"),
+                             Range::Any,
+                             {"linear", "cosine"}};
+
+int spin_up_macro(lua_State* L, DeckSession&, const MacroArguments& arguments) {
+  const MotionFunction motion =
+      MotionFunction::ramped_rate(arguments.number("rate"), arguments.number("ramp_time"),
+                                  arguments.number("start_time"), ramp_law_named(arguments.string("ramp")));
+  const double time = arguments.number("time");
+  lua_pushnumber(L, motion.value(time));
+  lua_pushnumber(L, motion.rate(time));
+  return 2;
 }
 
 bool has_extension(const std::string& file, const std::string& extension) {
@@ -101,8 +121,8 @@ struct SurfaceKeys {
 };
 
 /// Keys every type takes: the surface's name and type, and its motion.
-const std::vector<std::string> kEverySurfaceKeys{"name",       "type",          "speed",    "ramp_time",
-                                                 "start_time", "load_function", "amplitude"};
+const std::vector<std::string> kEverySurfaceKeys{"name", "type",       "speed",         "ramp_time",
+                                                 "ramp", "start_time", "load_function", "amplitude"};
 
 bool listed(const std::vector<std::string>& keys, const std::string& key) {
   return std::find(keys.begin(), keys.end(), key) != keys.end();
@@ -355,6 +375,18 @@ int surface_projection_macro(lua_State* L, DeckModel& deck, const MacroArguments
 }  // namespace
 
 void add_contact_macros(MacroTable& table) {
+  table.module_macros.push_back(
+      {{"spin_up",
+        "The value and the rate at 'time' of a motion whose rate rises from rest at 'start_time' to 'rate' over "
+        "'ramp_time' (the drum surface's motion by 'speed', 'ramp_time', 'ramp' and 'start_time'): what "
+        "lua/drum.lua plans a drum's turn with. Returns the value (the angle for a spin) and the rate.",
+        {{"rate", VT::Number, true, "rad/s or m/s", "the final rate of an angle or a travel"},
+         {"ramp_time", VT::Number, true, "s", "time to reach 'rate' from rest", std::nullopt, Range::NonNegative},
+         kRampKey,
+         {"start_time", VT::Number, false, "s", "when the ramp starts", std::string("0")},
+         {"time", VT::Number, true, "s", "when the value and rate are read"}},
+        "local angle, spin = tirefe.spin_up{ rate = 16.76, ramp_time = 4.0, start_time = 2.0, time = 3.0 }"},
+       spin_up_macro});
   auto add = [&table](MacroSpec spec, ModelHandler handler) {
     table.model_macros.push_back({std::move(spec), handler});
   };
@@ -409,6 +441,7 @@ void add_contact_macros(MacroTable& table) {
          Range::NonNegative},
         {"speed", VT::Number, false, "m/s or rad/s", "final speed along x (flat, profile) or spin (drum, ccw)"},
         {"ramp_time", VT::Number, false, "s", "time to reach 'speed' from rest", std::string("0"), Range::NonNegative},
+        kRampKey,
         {"start_time", VT::Number, false, "s", "when the ramp starts", std::string("0")},
         {"load_function", VT::String, false, "", "x offset (flat, profile) or angle (drum) = amplitude * f(t)"},
         {"amplitude", VT::Number, false, "m or rad", "scale of the load function", std::string("1")}},

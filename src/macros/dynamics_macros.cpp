@@ -48,10 +48,33 @@ void push_reactions(lua_State* L, int node, const Reactions& reactions, Value va
   }
 }
 
+/// The modes as the result file's /modes/<label> holds them.
+io::ModeTable mode_table(const Analysis& analysis, const ModalResult& modes) {
+  io::ModeTable table;
+  table.time = analysis.state().time;
+  table.frequencies_hz = modes.frequencies_hz;
+  table.rigid_body = modes.rigid_body;
+  table.shapes = modes.shapes;
+  return table;
+}
+io::ModeTable mode_table(const Analysis& analysis, const DampedModalResult& modes) {
+  io::ModeTable table;
+  table.time = analysis.state().time;
+  table.frequencies_hz = modes.frequencies_hz;
+  table.rigid_body = modes.rigid_body;
+  table.shapes = modes.shapes.real();
+  table.damped = true;
+  table.spin_rate = modes.spin_rate;
+  table.damping_ratios = modes.damping_ratios;
+  table.natural_frequencies_hz = modes.natural_frequencies_hz;
+  table.shapes_imag = modes.shapes.imag();
+  return table;
+}
+
 int undamped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments, const std::string& label,
                    int count) {
   const ModalResult result = modal_analysis(deck.analysis(), count);
-  deck.output_or_default().write_modes(label, deck.analysis(), result);
+  deck.output_or_default().write_modes(label, deck.model(), mode_table(deck.analysis(), result));
   if (!deck.session().quiet) {
     deck.session().progress.clear();
     std::printf("  modal analysis at t = %g (%s):\n", deck.analysis().state().time, label.c_str());
@@ -72,7 +95,7 @@ int damped_modes(lua_State* L, DeckModel& deck, const MacroArguments& arguments,
   settings.damping = arguments.boolean("damped");
   settings.spin_rate = arguments.number_or("spin_rate", 0.0);
   const DampedModalResult result = damped_modal_analysis(deck.analysis(), count, settings);
-  deck.output_or_default().write_modes(label, deck.analysis(), result);
+  deck.output_or_default().write_modes(label, deck.model(), mode_table(deck.analysis(), result));
   const int node = arguments.has("reaction_node") ? deck_node(deck, arguments.integer("reaction_node")) : -1;
   if (!deck.session().quiet) {
     deck.session().progress.clear();

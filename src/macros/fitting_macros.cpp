@@ -17,8 +17,8 @@
 #include <optional>
 
 #include "fitting/curve_data.hpp"
-#include "fitting/fit_output.hpp"
 #include "fitting/fit_problem.hpp"
+#include "io/fit_file.hpp"
 #include "deck/deck_session.hpp"
 #include "deck/interrupt.hpp"
 #include "macros/macro_table.hpp"
@@ -267,7 +267,7 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
     throw std::invalid_argument("'curve_points' = " + std::to_string(curve_points) +
                                 " is more than a plot needs "
                                 "(at most 10000)");
-  fitting::FitAxes axes;
+  io::FitAxes axes;
   std::optional<fitting::CurveData> curve;  // the data file
   size_t x_column = 0;
   if (arguments.has("data")) {
@@ -327,7 +327,7 @@ int fit_macro(lua_State* L, DeckSession& session, const MacroArguments& argument
     } catch (const std::invalid_argument&) {     // it returned something else than numbers: no curve
     }
   }
-  if (!output.empty()) fitting::write_fit_file(output, problem, result, axes, session.deck_path);
+  if (!output.empty()) io::write_fit_file(output, problem, result, axes, session.deck_path);
   push_result(L, result, problem.parameters);
   return 1;
 }

@@ -6,7 +6,7 @@
 #include <type_traits>
 
 #include "core/spelling.hpp"
-#include "io/checkpoint.hpp"
+#include "deck/checkpoint.hpp"
 #include "deck/deck_model.hpp"
 
 namespace tirefe::macros {
@@ -187,7 +187,7 @@ void install_macros(LuaSandbox& sandbox, DeckSession& session) {
 
   sandbox.set_parameters_observer([&session](const std::vector<std::pair<std::string, std::string>>& resolved) {
     session.parameters = resolved;
-    if (session.restart) io::check_parameters(*session.restart, resolved);  // at the deck's parameters line
+    if (session.restart) check_parameters(*session.restart, resolved);  // at the deck's parameters line
   });
   lua_getglobal(L, "tirefe");
   for (size_t i = 0; i < table.module_macros.size(); ++i) {

@@ -318,15 +318,49 @@ Reading reading_of(DeckModel& deck, const MacroArguments& arguments, const std::
   return [nodes, component, reader](const Analysis& a) { return summed_quantity(a, reader, nodes, component); };
 }
 
+/// A history channel of an element block's named response at one of its points
+/// (core/element_response.hpp): the block answers by name.
+void add_response_channel(DeckModel& deck, const MacroArguments& arguments) {
+  for (const char* key : {"node", "set", "dof", "component"})
+    if (arguments.has(key)) throw ModelError(std::string("'") + key + "' belongs to a nodal quantity: leave it out");
+  if (!arguments.has("block")) throw ModelError("a response needs block = \"<element block name>\"");
+  const std::string block = arguments.string("block"), name = arguments.string("response");
+  const ElementResponses* responses = responses_of(deck.model().block(block));
+  if (!responses) throw ModelError("element block '" + block + "' gives no named responses");
+  const int index = responses->response_index(name);
+  if (index < 0) {
+    std::string names;
+    for (const ResponseName& response : responses->response_names())
+      names += (names.empty() ? "" : ", ") + response.name;
+    throw ModelError("element block '" + block + "' has no response '" + name + "' (it has " + names + ")");
+  }
+  const long long point = arguments.integer("point");
+  if (point > responses->response_points())
+    throw ModelError("point " + std::to_string(point) + " of element block '" + block + "', which has " +
+                     std::to_string(responses->response_points()));
+  deck.output_or_default().add_channel(arguments.string("name"), responses->response_names()[index].unit,
+                                       [responses, index, point, scale = arguments.number("scale"),
+                                        values = std::vector<double>()](const State& state, const StepRecord&) mutable {
+                                         responses->response_values(index, state, values);
+                                         return scale * values[static_cast<size_t>(point - 1)];
+                                       });
+}
+
 int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
+  if (arguments.has("response")) {
+    add_response_channel(deck, arguments);
+    return 0;
+  }
+  if (arguments.has("block")) throw ModelError("'block' needs 'response'");
   const std::string quantity = arguments.string("quantity");
   const Reading reading = reading_of(deck, arguments, quantity);
   const std::string unit = is_wheel_quantity(quantity) ? wheel_unit(quantity, arguments)
                                                        : quantity_unit(quantity, component_of(arguments.string("dof")));
   const double scale = arguments.number("scale");
+  const Analysis& analysis = deck.analysis();
   deck.output_or_default().add_channel(
       arguments.string("name"), unit,
-      [reading, scale](const Analysis& analysis, const StepRecord&) { return scale * reading(analysis); });
+      [reading, scale, &analysis](const State&, const StepRecord&) { return scale * reading(analysis); });
   return 0;
 }
 
@@ -631,14 +665,20 @@ void add_model_macros(MacroTable& table) {
        "model:output{ file = \"cantilever.h5\", fields_every = 1 }"},
       output_macro);
   add({"history",
-       "Adds a history channel written at every step: a nodal quantity (summed over a set), or a tire's spindle "
-       "force or spin rate in ISO 8855 wheel axes.",
+       "Adds a history channel written at every step: a nodal quantity (summed over a set), a tire's spindle "
+       "force or spin rate in ISO 8855 wheel axes, or a named response of an element block at one of its points "
+       "(a contact block's gap, normal_force, tangential_force, state, coordinate or sliding_velocity; "
+       "docs/output.md).",
        {{"name", VT::String, true, "", "channel name (/history/<name>)"},
         kNodeKey,
         kSetKey,
         kQuantityDofKey,
         kQuantityKey,
         kComponentKey,
+        {"block", VT::String, false, "", "element block whose response is recorded (with 'response')"},
+        {"response", VT::String, false, "", "name of the block's response, in the unit the block gives"},
+        {"point", VT::Integer, false, "", "the block's point, from 1: its elements' points in order", std::string("1"),
+         Range::Positive},
         {"scale", VT::Number, false, "", "factor on the value (-1: the force on a support instead of its reaction)",
          std::string("1")}},
        "model:history{ name = \"spindle_fz\", node = tire.spindle, quantity = \"spindle_force\", component = \"fz\" }"},

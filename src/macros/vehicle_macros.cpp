@@ -223,7 +223,7 @@ void add_vehicle_channels(const std::vector<DeckModel*>& decks, const Vehicle& v
     io::ResultFile& file = decks[i]->output_or_default();
     const int c = static_cast<int>(i);
     auto channel = [view](std::function<double(const Vehicle&)> read) {
-      return [view, read](const Analysis&, const StepRecord&) {
+      return [view, read](const State&, const StepRecord&) {
         return view->vehicle ? read(*view->vehicle) : std::numeric_limits<double>::quiet_NaN();
       };
     };

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/step_record.hpp"
 #include "solvers/carried_state.hpp"
 
 namespace tirefe {
@@ -34,17 +35,6 @@ struct StepControl {
   // (an out-of-balance start, a tiny rotary inertia) stops the run instead of filling the
   // disk with steps. 0: no budget.
   int step_budget = 100;
-};
-
-struct StepRecord {
-  int step = 0;       // accepted steps since the start
-  double time = 0.0;  // at the end of the step
-  double step_size = 0.0;
-  int newton_iterations = 0;
-  int cuts = 0;           // cuts taken before this step converged
-  int augmentations = 0;  // augmented-Lagrangian multiplier updates
-  double residual = 0.0;  // final |R|
-  EnergyRecord energy;    // at the end of the step
 };
 
 /// Steps of their own size between two times (absolute, e.g. around an obstacle's impacts).

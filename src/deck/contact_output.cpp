@@ -1,10 +1,10 @@
-#include "contact/contact_output.hpp"
+#include "deck/contact_output.hpp"
 
 #include <memory>
 #include <utility>
 #include <vector>
 
-namespace tirefe {
+namespace tirefe::macros {
 
 namespace {
 
@@ -15,7 +15,7 @@ ContactSource common_source(const Block& block) {
   source.block = block.name();
   if (block.size() > 0) source.surface = &block.kernel(0).surface();
   source.summarize = [&block] { return summarize_contact(block); };
-  source.fill = [&block](ContactNodeResults& results) { fill_contact_results(block, results); };
+  source.responses = responses_of(block);
   return source;
 }
 
@@ -52,12 +52,12 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
   if (!channel_prefix.empty()) {
     const auto summarize = source.summarize;
     file.add_channel(channel_prefix + "_fx", "N",
-                     [summarize](const Analysis&, const StepRecord&) { return summarize().force.x(); });
+                     [summarize](const State&, const StepRecord&) { return summarize().force.x(); });
     file.add_channel(channel_prefix + "_fy", "N",
-                     [summarize](const Analysis&, const StepRecord&) { return summarize().force.y(); });
+                     [summarize](const State&, const StepRecord&) { return summarize().force.y(); });
     file.add_channel(channel_prefix + "_patch_length", "m",
-                     [summarize](const Analysis&, const StepRecord&) { return summarize().patch_length; });
-    file.add_channel(channel_prefix + "_nodes_in_contact", "", [summarize](const Analysis&, const StepRecord&) {
+                     [summarize](const State&, const StepRecord&) { return summarize().patch_length; });
+    file.add_channel(channel_prefix + "_nodes_in_contact", "", [summarize](const State&, const StepRecord&) {
       return static_cast<double>(summarize().nodes_in_contact);
     });
     // The surface's prescribed motion (a drum's angle, a road's travel), to place events
@@ -65,9 +65,9 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
     if (source.surface) {
       const RigidMotion* motion = &source.surface->motion();
       file.add_channel(channel_prefix + "_surface_angle", "rad",
-                       [motion](const Analysis& run, const StepRecord&) { return motion->angle_at(run.state().time); });
-      file.add_channel(channel_prefix + "_surface_x", "m", [motion](const Analysis& run, const StepRecord&) {
-        return motion->translation_at(run.state().time).x();
+                       [motion](const State& state, const StepRecord&) { return motion->angle_at(state.time); });
+      file.add_channel(channel_prefix + "_surface_x", "m", [motion](const State& state, const StepRecord&) {
+        return motion->translation_at(state.time).x();
       });
     }
   }
@@ -76,36 +76,10 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
   const std::string group = "/contact/" + source.block + "/";
   io::Hdf5File& hdf5 = file.file();
   source.write_points(hdf5, group);
-  ContactNodeResults sizing;
-  source.fill(sizing);
-  const std::vector<hsize_t> row{static_cast<hsize_t>(sizing.gap.size())};
-  struct Datasets {
-    io::ExtendibleDataset *time, *gap, *normal_force, *tangential_force, *state, *coordinate, *sliding_velocity;
-    ContactNodeResults results;
-  };
-  // Per-point rows are fields: compressed (most points are open, most values zero).
-  auto field = [&](const char* name, const char* unit) -> io::ExtendibleDataset* {
-    return &hdf5.create_compressed_extendible(group + name, row, unit);
-  };
-  auto datasets = std::make_shared<Datasets>(Datasets{&hdf5.create_extendible(group + "time", {}, "s"),
-                                                      field("gap", "m"),
-                                                      field("normal_force", "N"),
-                                                      field("tangential_force", "N"),
-                                                      field("state", "0 open, 1 stick, 2 slip"),
-                                                      field("coordinate", "m"),
-                                                      field("sliding_velocity", "m/s"),
-                                                      {}});
-  analysis.add_step_observer([datasets, fill = source.fill, every](const Analysis& run, const StepRecord& record) {
-    if (record.step % every != 0) return;
-    Datasets& d = *datasets;
-    fill(d.results);
-    d.time->append(run.state().time);
-    d.gap->append(d.results.gap.data());
-    d.normal_force->append(d.results.normal_force.data());
-    d.tangential_force->append(d.results.tangential_force.data());
-    d.state->append(d.results.state.data());
-    d.coordinate->append(d.results.coordinate.data());
-    d.sliding_velocity->append(d.results.sliding_velocity.data());
+  // The block's responses every 'every' accepted steps.
+  auto rows = std::make_shared<io::ResponseRows>(hdf5, group, *source.responses);
+  analysis.add_step_observer([rows, every](const Analysis& run, const StepRecord& record) {
+    if (record.step % every == 0) rows->append(run.state());
   });
 }
 
@@ -119,4 +93,4 @@ void add_surface_output(io::ResultFile& file, const std::string& name, std::shar
                    });
 }
 
-}  // namespace tirefe
+}  // namespace tirefe::macros

@@ -20,7 +20,7 @@
 #include "io/result_file.hpp"
 #include "solvers/analysis.hpp"
 
-namespace tirefe::io {
+namespace tirefe::macros {
 
 struct SavedBlock {
   std::string name, kernel_type;
@@ -49,9 +49,9 @@ struct Checkpoint {
 };
 
 /// The state of 'analysis' and the rows of 'output' (may be null) now.
-Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_index, const std::string& title);
+Checkpoint capture_checkpoint(Analysis& analysis, io::ResultFile* output, int model_index, const std::string& title);
 /// Loads a checkpoint into a model built by the same deck; throws ModelError naming what differs.
-void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, ResultFile* output);
+void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, io::ResultFile* output);
 
 /// Throws ModelError listing every parameter whose value differs from the checkpoint's:
 /// a restart continues the same case, so that the result file's /parameters stay true.
@@ -61,7 +61,7 @@ void check_parameters(const Checkpoint& checkpoint, const std::vector<std::pair<
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint);
 /// Removes what a run killed while writing the checkpoint 'path' left beside it.
 void remove_unfinished_checkpoint(const std::string& path);
-/// Throws IoError for a missing, unreadable or incomplete checkpoint file.
+/// Throws io::IoError for a missing, unreadable or incomplete checkpoint file.
 Checkpoint read_checkpoint(const std::string& path);
 
-}  // namespace tirefe::io
+}  // namespace tirefe::macros

@@ -1,9 +1,9 @@
-#include "fitting/fit_output.hpp"
+#include "io/fit_file.hpp"
 
 #include "io/hdf5_file.hpp"
 #include "tirefe/version.hpp"
 
-namespace tirefe::fitting {
+namespace tirefe::io {
 
 namespace {
 
@@ -11,14 +11,14 @@ std::vector<double> to_std(const Eigen::VectorXd& values) { return {values.data(
 
 }  // namespace
 
-void write_fit_file(const std::string& path, const FitProblem& problem, const FitResult& result, const FitAxes& axes,
-                    const std::string& deck_path) {
-  io::Hdf5File file = io::Hdf5File::create(path);
+void write_fit_file(const std::string& path, const fitting::FitProblem& problem, const fitting::FitResult& result,
+                    const FitAxes& axes, const std::string& deck_path) {
+  Hdf5File file = Hdf5File::create(path);
   file.write_attribute("/", "tirefe_version", std::string(kVersion));
   file.write_attribute("/", "git_commit", std::string(kGitCommit));
   file.write_attribute("/", "deck_path", deck_path);
   file.write_attribute("/", "method", result.method);
-  file.write_attribute("/", "status", std::string(status_name(result.status)));
+  file.write_attribute("/", "status", std::string(fitting::status_name(result.status)));
   file.write_attribute("/", "message", result.message);
   file.write_attribute("/", "objective", result.objective);
   file.write_attribute("/", "evaluations", result.evaluations);
@@ -28,7 +28,7 @@ void write_fit_file(const std::string& path, const FitProblem& problem, const Fi
   std::vector<std::string> names;
   std::vector<double> initial, lower, upper;
   std::vector<long long> log;
-  for (const FitParameter& p : problem.parameters) {
+  for (const fitting::FitParameter& p : problem.parameters) {
     names.push_back(p.name);
     initial.push_back(p.initial);
     lower.push_back(p.lower);
@@ -68,7 +68,7 @@ void write_fit_file(const std::string& path, const FitProblem& problem, const Fi
   std::vector<std::string> step;
   Eigen::MatrixXd values(rows, n);
   for (size_t i = 0; i < rows; ++i) {
-    const FitIteration& record = result.history[i];
+    const fitting::FitIteration& record = result.history[i];
     iteration.push_back(record.iteration);
     evaluations.push_back(record.evaluations);
     objective.push_back(record.objective);
@@ -85,4 +85,4 @@ void write_fit_file(const std::string& path, const FitProblem& problem, const Fi
   file.flush();
 }
 
-}  // namespace tirefe::fitting
+}  // namespace tirefe::io

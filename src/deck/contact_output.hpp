@@ -7,7 +7,8 @@
 //                                        chord's first node and the point's place on it (0..1)
 //   /contact/<block>/time                one row per written step [s]
 //   /contact/<block>/gap, normal_force, tangential_force, state, coordinate, sliding_velocity
-//                                        one row per written step, one column per point
+//                                        one row per written step, one column per point: the
+//                                        block's named responses (contact_point_responses())
 //   /surfaces/<name>/outline             the surface at every field frame (add_surface_output)
 // state is 0 open, 1 stick, 2 slip.
 #pragma once
@@ -19,16 +20,18 @@
 
 #include "contact/node_contact.hpp"
 #include "contact/tread_contact.hpp"
+#include "io/response_rows.hpp"
 #include "io/result_file.hpp"
+#include "solvers/analysis.hpp"
 
-namespace tirefe {
+namespace tirefe::macros {
 
 /// What the output reads of a contact block of either kind; the block must outlive the run.
 struct ContactSource {
   std::string block;
   const RigidSurface* surface = nullptr;
   std::function<ContactSummary()> summarize;
-  std::function<void(ContactNodeResults&)> fill;  // one entry per point
+  const ElementResponses* responses = nullptr;  // the per-point rows, by name
   std::function<void(io::Hdf5File&, const std::string& group)> write_points;
 };
 ContactSource contact_source(const ContactBlock& block);
@@ -45,4 +48,4 @@ void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactS
 /// structure's size beyond the structure.
 void add_surface_output(io::ResultFile& file, const std::string& name, std::shared_ptr<const RigidSurface> surface);
 
-}  // namespace tirefe
+}  // namespace tirefe::macros

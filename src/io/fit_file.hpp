@@ -17,7 +17,7 @@
 
 #include "fitting/fit_problem.hpp"
 
-namespace tirefe::fitting {
+namespace tirefe::io {
 
 /// What the data points are, for plots.
 struct FitAxes {
@@ -33,7 +33,7 @@ struct FitAxes {
 };
 
 /// Creates (truncates) 'path' and writes the problem's data and the result.
-void write_fit_file(const std::string& path, const FitProblem& problem, const FitResult& result,
+void write_fit_file(const std::string& path, const fitting::FitProblem& problem, const fitting::FitResult& result,
                     const FitAxes& axes = {}, const std::string& deck_path = "");
 
-}  // namespace tirefe::fitting
+}  // namespace tirefe::io

@@ -1,4 +1,4 @@
-#include "io/checkpoint.hpp"
+#include "deck/checkpoint.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -9,7 +9,7 @@
 
 #include "io/temporary_file.hpp"
 
-namespace tirefe::io {
+namespace tirefe::macros {
 
 namespace {
 
@@ -34,12 +34,12 @@ std::string field_path(const std::string& object, const std::string& name) {
 
 /// An integer attribute from 'low' to 'high': a tampered file's 1e300 or -2^31 - 1 is
 /// refused, never wrapped (the counts are ints in the model).
-long long integer_attribute(const Hdf5File& file, const std::string& object, const char* name, long long low = 0,
+long long integer_attribute(const io::Hdf5File& file, const std::string& object, const char* name, long long low = 0,
                             long long high = std::numeric_limits<int>::max()) {
   const double value = file.read_double_attribute(object, name);
   if (!(value >= static_cast<double>(low) && value <= static_cast<double>(high)) || value != std::floor(value))
-    throw IoError("'" + field_path(object, name) + "' = " + number_text(value) + " is not an integer from " +
-                  std::to_string(low) + " to " + std::to_string(high));
+    throw io::IoError("'" + field_path(object, name) + "' = " + number_text(value) + " is not an integer from " +
+                      std::to_string(low) + " to " + std::to_string(high));
   return static_cast<long long>(value);
 }
 
@@ -59,7 +59,8 @@ long long row_size_of(const std::vector<long long>& shape) {
 template <class Values>
 void require_finite(const Values& values, const std::string& path) {
   for (double value : values)
-    if (!std::isfinite(value)) throw IoError("'" + path + "' holds " + number_text(value) + ", not a finite number");
+    if (!std::isfinite(value))
+      throw io::IoError("'" + path + "' holds " + number_text(value) + ", not a finite number");
 }
 
 /// A field's place in the file, "/analysis/beta": the object "/analysis" and the name "beta".
@@ -70,7 +71,7 @@ std::pair<std::string, std::string> attribute_place(const std::string& path) {
 
 /// Writes each of the carried state's fields where CarriedState::for_each_field puts it.
 struct FieldWriter {
-  Hdf5File& file;
+  io::Hdf5File& file;
   void operator()(const char* path, const Eigen::VectorXd& field) const { file.write_vector(path, to_std(field)); }
   void operator()(const char* path, double field) const {
     const auto [object, name] = attribute_place(path);
@@ -86,7 +87,7 @@ struct FieldWriter {
 
 /// Reads them back.
 struct FieldReader {
-  const Hdf5File& file;
+  const io::Hdf5File& file;
   void operator()(const char* path, Eigen::VectorXd& field) const {
     const std::vector<double> values = file.read_doubles(path);
     require_finite(values, path);
@@ -108,7 +109,7 @@ struct FieldReader {
 
 }  // namespace
 
-Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_index, const std::string& title) {
+Checkpoint capture_checkpoint(Analysis& analysis, io::ResultFile* output, int model_index, const std::string& title) {
   Checkpoint checkpoint;
   checkpoint.title = title;
   checkpoint.model_index = model_index;
@@ -122,8 +123,8 @@ Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_
     checkpoint.has_output = true;
     checkpoint.steps_recorded = output->steps_recorded();
     output->flush();  // the rows still in memory
-    Hdf5File& file = output->file();
-    for (const ExtendibleDataset& dataset : file.extendible_datasets()) {
+    io::Hdf5File& file = output->file();
+    for (const io::ExtendibleDataset& dataset : file.extendible_datasets()) {
       SavedRows rows;
       rows.path = dataset.path();
       std::vector<hsize_t> shape;
@@ -136,7 +137,7 @@ Checkpoint capture_checkpoint(Analysis& analysis, ResultFile* output, int model_
   return checkpoint;
 }
 
-void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, ResultFile* output) {
+void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, io::ResultFile* output) {
   const Model& model = analysis.model();
   auto differs = [](const std::string& what) { return ModelError("the checkpoint is of another model: " + what); };
   if (checkpoint.node_count != model.mesh().node_count())
@@ -163,13 +164,13 @@ void restore_checkpoint(const Checkpoint& checkpoint, Analysis& analysis, Result
   for (size_t b = 0; b < checkpoint.blocks.size(); ++b)
     model.blocks()[b]->set_history_bytes(checkpoint.blocks[b].history);
   if (!output) return;
-  output->start(analysis);
-  Hdf5File& file = output->file();
+  output->start(analysis.model());
+  io::Hdf5File& file = output->file();
   if (file.extendible_datasets().size() != checkpoint.rows.size())
     throw differs("its result file had " + std::to_string(checkpoint.rows.size()) + " row datasets, the deck's " +
                   std::to_string(file.extendible_datasets().size()));
   for (const SavedRows& rows : checkpoint.rows) {
-    ExtendibleDataset* dataset = file.find_extendible(rows.path);
+    io::ExtendibleDataset* dataset = file.find_extendible(rows.path);
     const long long row_size = row_size_of(rows.row_shape);
     if (!dataset || dataset->rows() != 0 || static_cast<long long>(dataset->row_size()) != row_size)
       throw differs("its result file has '" + rows.path + "' which the deck's does not write alike");
@@ -184,7 +185,9 @@ namespace {
 const char* const kUnfinished = ".partial";  // a checkpoint being written
 }  // namespace
 
-void remove_unfinished_checkpoint(const std::string& path) { clear_for_temporary(path + kUnfinished, kHdf5Signature); }
+void remove_unfinished_checkpoint(const std::string& path) {
+  io::clear_for_temporary(path + kUnfinished, io::kHdf5Signature);
+}
 
 void check_parameters(const Checkpoint& checkpoint,
                       const std::vector<std::pair<std::string, std::string>>& parameters) {
@@ -207,9 +210,9 @@ void check_parameters(const Checkpoint& checkpoint,
 
 void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
   const std::string partial = path + kUnfinished;
-  clear_for_temporary(partial, kHdf5Signature);
+  io::clear_for_temporary(partial, io::kHdf5Signature);
   {
-    Hdf5File file = Hdf5File::create_new(partial);
+    io::Hdf5File file = io::Hdf5File::create_new(partial);
     file.write_attribute("/", "title", checkpoint.title);
     file.write_attribute("/", "model_index", checkpoint.model_index);
     file.write_attribute("/", "node_count", checkpoint.node_count);
@@ -250,20 +253,20 @@ void write_checkpoint(const std::string& path, const Checkpoint& checkpoint) {
   }
   std::error_code error;
   std::filesystem::rename(partial, path, error);
-  if (error) throw IoError("cannot write checkpoint '" + path + "': " + error.message());
+  if (error) throw io::IoError("cannot write checkpoint '" + path + "': " + error.message());
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
   const std::string unfinished = kUnfinished;
   if (path.size() > unfinished.size() &&
       path.compare(path.size() - unfinished.size(), unfinished.size(), unfinished) == 0)
-    throw IoError("restart file '" + path + "' is a checkpoint a run did not finish writing; restart from '" +
-                  path.substr(0, path.size() - unfinished.size()) + "'");
-  if (!std::filesystem::exists(path)) throw IoError("restart file '" + path + "' does not exist");
+    throw io::IoError("restart file '" + path + "' is a checkpoint a run did not finish writing; restart from '" +
+                      path.substr(0, path.size() - unfinished.size()) + "'");
+  if (!std::filesystem::exists(path)) throw io::IoError("restart file '" + path + "' does not exist");
   try {
-    const Hdf5File file = Hdf5File::open_read_only(path);
+    const io::Hdf5File file = io::Hdf5File::open_read_only(path);
     if (!file.exists("/analysis") || file.read_string_attribute("/", "format") != kFormat)
-      throw IoError("no checkpoint written by this tirefe");
+      throw io::IoError("no checkpoint written by this tirefe");
     Checkpoint checkpoint;
     checkpoint.title = file.read_string_attribute("/", "title");
     checkpoint.model_index = static_cast<int>(integer_attribute(file, "/", "model_index", 1));
@@ -271,7 +274,8 @@ Checkpoint read_checkpoint(const std::string& path) {
     CarriedState::for_each_field(checkpoint.analysis, FieldReader{file});
     for (const auto& [path, step] : {std::pair{"/analysis/nominal_step", checkpoint.analysis.steps.nominal},
                                      std::pair{"/analysis/current_step", checkpoint.analysis.steps.current}})
-      if (!(step > 0.0)) throw IoError(std::string("'") + path + "' = " + number_text(step) + " is no step size > 0");
+      if (!(step > 0.0))
+        throw io::IoError(std::string("'") + path + "' = " + number_text(step) + " is no step size > 0");
     const long long blocks = integer_attribute(file, "/blocks", "count");
     for (long long b = 0; b < blocks; ++b) {
       const std::string group = "/blocks/" + std::to_string(b);
@@ -293,7 +297,7 @@ Checkpoint read_checkpoint(const std::string& path) {
       const long long values = static_cast<long long>(rows.values.size());
       const long long row_size = row_size_of(rows.row_shape);
       if (row_size < 0 || values % row_size != 0 || values / row_size != rows.rows)
-        throw IoError("rows of '" + rows.path + "' are incomplete");
+        throw io::IoError("rows of '" + rows.path + "' are incomplete");
       // Every row of a result file has its time: the rows of a run nobody tampered with.
       if (rows.path == "/history/time") require_finite(rows.values, "/rows/" + std::to_string(r) + "/values");
       checkpoint.rows.push_back(std::move(rows));
@@ -301,13 +305,13 @@ Checkpoint read_checkpoint(const std::string& path) {
     if (file.exists("/parameters/names")) {
       const std::vector<std::string> names = file.read_strings("/parameters/names");
       const std::vector<std::string> values = file.read_strings("/parameters/values");
-      if (names.size() != values.size()) throw IoError("its parameters are incomplete");
+      if (names.size() != values.size()) throw io::IoError("its parameters are incomplete");
       for (size_t i = 0; i < names.size(); ++i) checkpoint.parameters.emplace_back(names[i], values[i]);
     }
     return checkpoint;
-  } catch (const IoError& error) {
-    throw IoError("restart file '" + path + "' is not a readable checkpoint (" + error.what() + ")");
+  } catch (const io::IoError& error) {
+    throw io::IoError("restart file '" + path + "' is not a readable checkpoint (" + error.what() + ")");
   }
 }
 
-}  // namespace tirefe::io
+}  // namespace tirefe::macros
