@@ -122,9 +122,13 @@ class SidewallLaw {
 class SidewallWedge : public KernelShape<3> {
  public:
   static constexpr int kQuadraturePoints = 2;
-  static constexpr bool kReadsAcceleration = false;
-  static constexpr bool kStoresEnergy = false;             // energy() is zero (above)
-  static constexpr std::array<int, 2> kIdleDofs = {5, 8};  // the tread rotations
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;
+    traits.stores_energy = false;  // energy() is zero (above)
+    traits.idle_dofs = {5, 8};     // the tread rotations
+    return traits;
+  }
 
   /// Reference positions of the spindle and of the two tread nodes (counter-clockwise).
   SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector2d& tread_a, const Eigen::Vector2d& tread_b,

@@ -24,12 +24,16 @@ namespace tirefe {
 
 class TreadPressure : public KernelShape<2> {
  public:
-  static constexpr bool kReadsAcceleration = false;
-  static constexpr bool kReadsVelocity = false;            // no damping
-  static constexpr bool kStoresEnergy = false;             // energy() is zero (above)
-  static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
-  /// [k x] couples x with y only: no component's load moves with the same component.
-  static constexpr bool zero_tangent_entry(int row, int column) { return row % 3 == column % 3; }
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;
+    traits.reads_velocity = false;  // no damping
+    traits.stores_energy = false;   // energy() is zero (above)
+    traits.idle_dofs = {2, 5};      // the rotations
+    // [k x] couples x with y only: no component's load moves with the same component.
+    traits.zero_tangent_entry = [](int row, int column) { return row % 3 == column % 3; };
+    return traits;
+  }
 
   /// Reference positions of the two tread nodes (counter-clockwise), tread width w [m].
   TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,
