@@ -42,7 +42,7 @@ class TreadPressure : public KernelShape<2> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
-  /// The block's batch path (element.hpp): every load at once, the same numbers.
+  /// The block's batch path (element.hpp): every load at once; evaluate() is its block of one.
   class Batch;
 
  private:
@@ -57,6 +57,8 @@ class TreadPressure : public KernelShape<2> {
 class TreadPressure::Batch {
  public:
   explicit Batch(const std::vector<TreadPressure>& loads);
+  /// The batch of other loads (without allocating when their number is the same).
+  void assign(const std::vector<TreadPressure>& loads);
   int size() const { return static_cast<int>(loads_.size()); }
   void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
   const double* residual() const { return residual_.data(); }
