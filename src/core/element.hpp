@@ -342,11 +342,15 @@ struct IdleDofs {
 template <class Kernel>
 struct ZeroTangentEntries {
   static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> mask() {
+    return of(Kernel::traits().zero_tangent_entry);
+  }
+
+ private:
+  static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> of(bool (*zero_entry)(int row, int column)) {
     std::array<bool, Kernel::kDofs * Kernel::kDofs> zero{};
-    constexpr KernelTraits traits = Kernel::traits();
-    if (traits.zero_tangent_entry)
+    if (zero_entry != nullptr)
       for (int k = 0; k < Kernel::kDofs * Kernel::kDofs; ++k)
-        zero[k] = traits.zero_tangent_entry(k / Kernel::kDofs, k % Kernel::kDofs);
+        zero[k] = zero_entry(k / Kernel::kDofs, k % Kernel::kDofs);
     return zero;
   }
 };

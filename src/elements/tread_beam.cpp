@@ -22,7 +22,7 @@ void require_positive(double value, const char* name) {
 /// The strains of one beam (tread_beam.hpp) from its local displacements u[k * stride],
 /// with the direction t and normal n of beta: written once for every path.
 struct BeamStrains {
-  double t[2], normal[2];
+  SineCosine beta;  // t = (cos, sin), n = (-sin, cos)
   double axial, shear, curvature;
 };
 inline BeamStrains beam_strains(double length, double direction_x, double direction_y, double reference_angle,
@@ -31,10 +31,7 @@ inline BeamStrains beam_strains(double length, double direction_x, double direct
   const double stretch_y = direction_y + (u[4 * stride] - u[stride]) / length;
   const SineCosine turn = sine_cosine(reference_angle + 0.5 * (u[2 * stride] + u[5 * stride]));  // beta
   BeamStrains strains;
-  strains.t[0] = turn.cos;
-  strains.t[1] = turn.sin;
-  strains.normal[0] = -turn.sin;
-  strains.normal[1] = turn.cos;
+  strains.beta = turn;
   strains.axial = stretch_x * turn.cos + stretch_y * turn.sin - 1.0;
   strains.shear = -stretch_x * turn.sin + stretch_y * turn.cos;
   strains.curvature = (u[5 * stride] - u[2 * stride]) / length;
@@ -151,7 +148,7 @@ TIREFE_SIMD_CLONES void TreadBeam::Batch::evaluate_beams(const BlockValues& valu
   for (int e = 0; e < n; ++e) {
     const double length = length_[e], h = 1.0 / length;
     const BeamStrains s = beam_strains(length, direction_x_[e], direction_y_[e], reference_angle_[e], u + e, n);
-    const double *t = s.t, *normal = s.normal;
+    const double t[2] = {s.beta.cos, s.beta.sin}, normal[2] = {-s.beta.sin, s.beta.cos};
     const double axial = s.axial, shear = s.shear, curvature = s.curvature;
     const double N = axial_[e] * axial, V = shear_[e] * shear, M = bending_[e] * curvature;
     // Strain gradients: x' depends on the translations (+-1/L0), beta on the rotations (1/2 each).
