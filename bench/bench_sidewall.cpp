@@ -1,5 +1,6 @@
-// Time per evaluate() of the sidewall wedge and the tread pressure kernels, with and
-// without the tangent, on a cycle of deformed states of a 145 SR-12-like wedge.
+// Time per evaluate() of the sidewall wedge and the tread pressure kernels (each their batch
+// on a block of one), with and without the tangent, on a cycle of deformed states of a
+// 145 SR-12-like wedge.
 // Prints nanoseconds per call; a Newton iteration of a 100-element tire makes 100 of each.
 // The wedge's batch path (a ring of 100 on one spindle) is timed per wedge.
 #include <algorithm>

@@ -99,12 +99,12 @@ double relative_tangent_error(const Kernel& kernel, const LocalState<Kernel::kDo
   return (tangent - numerical).norm() / tangent.norm();
 }
 
-/// The largest magnitude among what a kernel's block-loop declarations (element.hpp) say
-/// is zero: the residual entries and tangent rows and columns of its kIdleDofs, its
-/// zero_tangent_entry() entries, if it declares kReadsAcceleration = false or kReadsVelocity
+/// The largest magnitude among what a kernel's traits (KernelTraits, element.hpp) say is
+/// zero: the residual entries and tangent rows and columns of its idle_dofs, its
+/// zero_tangent_entry entries, if it promises reads_acceleration = false or reads_velocity
 /// = false, the change of its residual when the acceleration or the velocity is dropped,
-/// and if it declares kStoresEnergy = false, its energy. The block loop skips these, so
-/// anything but 0 is a wrong declaration.
+/// and if it promises stores_energy = false, its energy. The block loop skips these, so
+/// anything but 0 is a wrong promise.
 template <class Kernel>
 double declared_zero_magnitude(const Kernel& kernel, const LocalState<Kernel::kDofs>& local,
                                const EvaluationContext& context) {

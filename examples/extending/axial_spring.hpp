@@ -8,7 +8,6 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <array>
 #include <string>
 #include <vector>
 
@@ -18,10 +17,15 @@ namespace tirefe::examples {
 
 class AxialSpring : public KernelShape<2> {
  public:
-  // Declarations that let the block loop skip work (element.hpp); the element tests check them.
-  static constexpr bool kReadsAcceleration = false;
-  static constexpr bool kReadsVelocity = false;
-  static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the two rotations
+  // Promises that let the block loop skip work (KernelTraits, element.hpp); the element
+  // tests check them.
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;
+    traits.reads_velocity = false;
+    traits.idle_dofs = {2, 5};  // the two rotations
+    return traits;
+  }
 
   AxialSpring(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double stiffness)
       : reference_(b - a), rest_length_(reference_.norm()), stiffness_(stiffness) {

@@ -43,7 +43,7 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
                                   History& trial, Vector& residual, Matrix* tangent) const {
   residual.setZero();
   if (tangent) tangent->setZero();
-  // 'trial' holds the last evaluation's history until it is overwritten (kReadsLastTrial).
+  // 'trial' holds the last evaluation's history until it is overwritten (traits().reads_last_trial).
   const bool last_slipped = trial.state == ContactState::Slip;
   const double last_traction = trial.trial_traction, last_tangential_force = trial.tangential_force;
   trial.trial_traction = 0.0;

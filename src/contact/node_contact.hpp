@@ -132,8 +132,12 @@ class NodeSurfaceContact : public KernelShape<1, ContactHistory> {
   NodeSurfaceContact(std::shared_ptr<const RigidSurface> surface, const Eigen::Vector2d& reference_position,
                      const ContactParameters& parameters, int node = -1, double start_time = 0.0);
 
-  static constexpr bool kReadsAcceleration = false;  // no mass
-  static constexpr bool kReadsLastTrial = true;      // the slip reversal's secant (above)
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;  // no mass
+    traits.reads_last_trial = true;     // the slip reversal's secant (above)
+    return traits;
+  }
 
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& base, History& trial,
                 Vector& residual, Matrix* tangent) const;

@@ -101,11 +101,15 @@ static_assert(sizeof(TreadSample) == 16 * sizeof(double), "TreadSample must have
 class TreadContact : public KernelShape<2, std::array<TreadSample, 8>> {
  public:
   static constexpr int kSamples = 8;
-  static constexpr double kDampingDepth = 0.5e-3;    // d_0 [m]
-  static constexpr bool kReadsAcceleration = false;  // massless
-  static constexpr bool kReadsLastTrial = true;      // evaluate() writes every field of 'trial' (no copy of 'base')
-  static constexpr bool kBooksEnergy = true;         // its dashpots and friction (energy())
-  static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
+  static constexpr double kDampingDepth = 0.5e-3;  // d_0 [m]
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;  // massless
+    traits.reads_last_trial = true;     // evaluate() writes every field of 'trial' (no copy of 'base')
+    traits.books_energy = true;         // its dashpots and friction (energy())
+    traits.idle_dofs = {2, 5};          // the rotations
+    return traits;
+  }
 
   /// The chord's reference end points (counter-clockwise about the tire's centre).
   TreadContact(std::shared_ptr<const RigidSurface> surface, const Eigen::Vector2d& start, const Eigen::Vector2d& end,

@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -196,14 +197,59 @@ class ElementBlock {
 
 struct NoHistory {};
 
+/// A set of a kernel's local DOFs, written as a list: {5, 8}.
+class LocalDofSet {
+ public:
+  constexpr LocalDofSet() = default;
+  constexpr LocalDofSet(std::initializer_list<int> dofs) {
+    for (int dof : dofs) bits_ |= 1ull << dof;
+  }
+  constexpr bool contains(int dof) const { return (bits_ >> dof) & 1ull; }
+
+ private:
+  unsigned long long bits_ = 0;
+};
+
+/// What a kernel promises so that the block loop may skip work. Every member starts as the
+/// promise of a kernel that makes none; a kernel changes the ones it makes in
+///     static constexpr KernelTraits traits() {
+///       KernelTraits traits;
+///       traits.reads_acceleration = false;
+///       traits.idle_dofs = {5, 8};
+///       return traits;
+///     }
+/// so that a misspelt member does not compile (tests/compile_fail/). The element tests
+/// check every promise (tests/test_support.hpp, declared_zero_magnitude).
+struct KernelTraits {
+  bool reads_acceleration = true;  // false: the gather leaves a = 0
+  bool reads_velocity = true;      // false: the batch path gathers no velocities (values.velocity null)
+  // false: energy() is always zero (a follower load's): the block's energy() neither
+  // gathers nor loops, and the energy balance books the work of its forces instead.
+  bool stores_energy = true;
+  // true: the kernel keeps its own account of what it dissipates, its velocity-dependent
+  // forces included (a contact's): the energy balance does not evaluate its dashpots.
+  bool books_energy = false;
+  // true: 'trial' arrives holding what the element's last evaluation left (the previous
+  // Newton iterate's history) rather than a copy of 'base'; the kernel then writes every field.
+  bool reads_last_trial = false;
+  // Local DOFs whose residual row and tangent row and column are always zero (neither
+  // read nor loaded).
+  LocalDofSet idle_dofs;
+  // True for local tangent entries that are always zero (not scattered): a follower load's.
+  bool (*zero_tangent_entry)(int row, int column) = nullptr;
+};
+
 /// The fixed sizes and block types of a kernel with `Nodes` nodes; kernels derive from it.
 template <int Nodes, class HistoryType = NoHistory>
 struct KernelShape {
+  static_assert(kDofsPerNode * Nodes <= 64, "LocalDofSet holds 64 DOFs");
   static constexpr int kNodes = Nodes;
   static constexpr int kDofs = kDofsPerNode * Nodes;
   using History = HistoryType;
   using Vector = Eigen::Matrix<double, kDofs, 1>;
   using Matrix = Eigen::Matrix<double, kDofs, kDofs, Eigen::RowMajor>;
+  /// No promises; a kernel that makes some declares its own (KernelTraits).
+  static constexpr KernelTraits traits() { return {}; }
 };
 
 namespace detail {
@@ -215,26 +261,10 @@ struct HasAugment<Kernel,
                       std::declval<typename Kernel::History&>(), std::declval<const typename Kernel::History&>()))>>
     : std::true_type {};
 
-// Optional kernel declarations that let the block loop skip work:
-//   static constexpr bool kReadsAcceleration = false;  // gather leaves a = 0
-//   static constexpr std::array<int, N> kIdleDofs = {...};  // local DOFs whose residual
-//       row and tangent row and column are always zero (neither read nor loaded)
-//   static constexpr bool zero_tangent_entry(int row, int column);  // true for local
-//       tangent entries that are always zero (not scattered): a follower load's, say
+// Optional kernel members besides traits() (KernelTraits):
 //   Vector mass_times(const Vector& x) const;  // M x: the inertia forces M a of a kernel
 //       that reads the acceleration, without evaluating the rest (its mass is constant,
 //       as the contract's tangent cM M has it)
-//   static constexpr bool kReadsVelocity = false;  // the batch path gathers no velocities
-//       (its values.velocity is null)
-//   static constexpr bool kStoresEnergy = false;  // energy() is always zero (a follower
-//       load's): the block's energy() neither gathers nor loops, and the energy balance
-//       books the work of its forces instead
-//   static constexpr bool kBooksEnergy = true;  // the kernel keeps its own account of what
-//       it dissipates, its velocity-dependent forces included (a contact's): the energy
-//       balance does not evaluate its dashpots
-//   static constexpr bool kReadsLastTrial = true;  // 'trial' arrives holding what the
-//       element's last evaluation left (the previous Newton iterate's history) rather than
-//       a copy of 'base'; the kernel then writes every field of it
 // Optional batch path: a history-free kernel may evaluate its whole block in one call,
 //   class Kernel::Batch {
 //     explicit Batch(const std::vector<Kernel>& kernels);
@@ -263,18 +293,36 @@ struct HasBatchEnergy<Batch,
                       std::void_t<decltype(std::declval<const Batch&>().energy(std::declval<const BlockValues&>()))>>
     : std::true_type {};
 
-// A kernel's optional flag 'Kernel::Flag' (the declarations listed above), or 'otherwise'.
-#define TIREFE_KERNEL_FLAG(Trait, Flag, otherwise) \
-  template <class Kernel, class = void>            \
-  struct Trait : std::bool_constant<otherwise> {}; \
-  template <class Kernel>                          \
-  struct Trait<Kernel, std::void_t<decltype(Kernel::Flag)>> : std::bool_constant<Kernel::Flag> {};
-TIREFE_KERNEL_FLAG(ReadsAcceleration, kReadsAcceleration, true)
-TIREFE_KERNEL_FLAG(ReadsVelocity, kReadsVelocity, true)
-TIREFE_KERNEL_FLAG(StoresEnergy, kStoresEnergy, true)
-TIREFE_KERNEL_FLAG(ReadsLastTrial, kReadsLastTrial, false)
-TIREFE_KERNEL_FLAG(BooksEnergy, kBooksEnergy, false)
-#undef TIREFE_KERNEL_FLAG
+// The kernel's traits one by one. The flags of an earlier convention, detected by name,
+// are refused: a kernel states its promises in traits() alone.
+template <class Kernel>
+struct ReadsAcceleration : std::bool_constant<Kernel::traits().reads_acceleration> {};
+template <class Kernel>
+struct ReadsVelocity : std::bool_constant<Kernel::traits().reads_velocity> {};
+template <class Kernel>
+struct StoresEnergy : std::bool_constant<Kernel::traits().stores_energy> {};
+template <class Kernel>
+struct ReadsLastTrial : std::bool_constant<Kernel::traits().reads_last_trial> {};
+template <class Kernel>
+struct BooksEnergy : std::bool_constant<Kernel::traits().books_energy> {};
+
+#define TIREFE_REFUSED_KERNEL_FLAG(Flag)       \
+  template <class Kernel, class = void>        \
+  struct Declares_##Flag : std::false_type {}; \
+  template <class Kernel>                      \
+  struct Declares_##Flag<Kernel, std::void_t<decltype(Kernel::Flag)>> : std::true_type {};
+TIREFE_REFUSED_KERNEL_FLAG(kReadsAcceleration)
+TIREFE_REFUSED_KERNEL_FLAG(kReadsVelocity)
+TIREFE_REFUSED_KERNEL_FLAG(kStoresEnergy)
+TIREFE_REFUSED_KERNEL_FLAG(kBooksEnergy)
+TIREFE_REFUSED_KERNEL_FLAG(kReadsLastTrial)
+TIREFE_REFUSED_KERNEL_FLAG(kIdleDofs)
+#undef TIREFE_REFUSED_KERNEL_FLAG
+template <class Kernel>
+constexpr bool kDeclaresLooseFlags =
+    Declares_kReadsAcceleration<Kernel>::value || Declares_kReadsVelocity<Kernel>::value ||
+    Declares_kStoresEnergy<Kernel>::value || Declares_kBooksEnergy<Kernel>::value ||
+    Declares_kReadsLastTrial<Kernel>::value || Declares_kIdleDofs<Kernel>::value;
 
 template <class Kernel, class = void>
 struct HasMassTimes : std::false_type {};
@@ -282,32 +330,29 @@ template <class Kernel>
 struct HasMassTimes<Kernel, std::void_t<decltype(std::declval<const Kernel&>().mass_times(
                                 std::declval<const typename Kernel::Vector&>()))>> : std::true_type {};
 
-/// Which local DOFs a kernel declares idle (all false unless it has kIdleDofs).
-template <class Kernel, class = void>
-struct IdleDofs {
-  static constexpr std::array<bool, Kernel::kDofs> mask() { return {}; }
-};
+/// Which local DOFs a kernel declares idle (traits().idle_dofs).
 template <class Kernel>
-struct IdleDofs<Kernel, std::void_t<decltype(Kernel::kIdleDofs)>> {
+struct IdleDofs {
   static constexpr std::array<bool, Kernel::kDofs> mask() {
     std::array<bool, Kernel::kDofs> idle{};
-    for (int dof : Kernel::kIdleDofs) idle[dof] = true;
+    for (int dof = 0; dof < Kernel::kDofs; ++dof) idle[dof] = Kernel::traits().idle_dofs.contains(dof);
     return idle;
   }
 };
 
-/// Which local tangent entries a kernel declares always zero, row-major (none unless it
-/// has zero_tangent_entry()).
-template <class Kernel, class = void>
-struct ZeroTangentEntries {
-  static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> mask() { return {}; }
-};
+/// Which local tangent entries a kernel declares always zero, row-major (traits().zero_tangent_entry).
 template <class Kernel>
-struct ZeroTangentEntries<Kernel, std::void_t<decltype(Kernel::zero_tangent_entry(0, 0))>> {
+struct ZeroTangentEntries {
   static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> mask() {
+    return of(Kernel::traits().zero_tangent_entry);
+  }
+
+ private:
+  static constexpr std::array<bool, Kernel::kDofs * Kernel::kDofs> of(bool (*zero_entry)(int row, int column)) {
     std::array<bool, Kernel::kDofs * Kernel::kDofs> zero{};
-    for (int k = 0; k < Kernel::kDofs * Kernel::kDofs; ++k)
-      zero[k] = Kernel::zero_tangent_entry(k / Kernel::kDofs, k % Kernel::kDofs);
+    if (zero_entry != nullptr)
+      for (int k = 0; k < Kernel::kDofs * Kernel::kDofs; ++k)
+        zero[k] = zero_entry(k / Kernel::kDofs, k % Kernel::kDofs);
     return zero;
   }
 };
@@ -315,6 +360,8 @@ struct ZeroTangentEntries<Kernel, std::void_t<decltype(Kernel::zero_tangent_entr
 
 template <class Kernel>
 class ElementBlockOf final : public ElementBlock, public BlockResponses<ElementBlockOf<Kernel>, Kernel> {
+  static_assert(!detail::kDeclaresLooseFlags<Kernel>, "a kernel states its promises in traits() (KernelTraits)");
+
  public:
   static constexpr int kNodes = Kernel::kNodes;
   static constexpr int kDofs = kDofsPerNode * kNodes;

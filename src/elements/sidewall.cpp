@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/batch_of_one.hpp"
 #include "core/simd_clones.hpp"
 #include "elements/sine_cosine.hpp"
 
@@ -31,8 +32,41 @@ constexpr double kGaussOffset = 0.28867513459481288225;  // 1 / (2 sqrt 3)
 constexpr double kGaussPoints[SidewallWedge::kQuadraturePoints] = {0.5 - kGaussOffset, 0.5 + kGaussOffset};
 constexpr double kGaussWeight = 0.5;
 
-/// k x a: the counter-clockwise perpendicular.
-inline Eigen::Vector2d perpendicular(const Eigen::Vector2d& a) { return {-a.y(), a.x()}; }
+/// The cord at one point of one wedge (sidewall.hpp), from the spin's cosine and sine, the
+/// point's reference rim offset r_rim e_r and tread point, the spindle's reference position,
+/// the shape functions N_a, N_b and the wedge's displacements u[k * stride]: written once
+/// for the batch's loop over wedges and for cord_state().
+struct CordPoint {
+  double rim_x, rim_y;    // rho = R(theta_S) r_rim e_r
+  double cord_x, cord_y;  // P = x_r - x_t
+  double e_y_x, e_y_y;    // e_y = P / L
+  double chord;           // L
+  double cross, dot;      // of the turned reference cord -rho with e_y: gamma's (shear_angle)
+};
+inline CordPoint cord_point(double cos_spin, double sin_spin, double offset_x, double offset_y, double reference_x,
+                            double reference_y, double spindle_x, double spindle_y, double shape_a, double shape_b,
+                            const double* u, int stride) {
+  CordPoint p;
+  p.rim_x = cos_spin * offset_x - sin_spin * offset_y;
+  p.rim_y = sin_spin * offset_x + cos_spin * offset_y;
+  const double tread_x = reference_x + shape_a * u[3 * stride] + shape_b * u[6 * stride];
+  const double tread_y = reference_y + shape_a * u[4 * stride] + shape_b * u[7 * stride];
+  p.cord_x = spindle_x + u[0] + p.rim_x - tread_x;
+  p.cord_y = spindle_y + u[stride] + p.rim_y - tread_y;
+  p.chord = std::sqrt(p.cord_x * p.cord_x + p.cord_y * p.cord_y);
+  p.e_y_x = p.cord_x / p.chord;
+  p.e_y_y = p.cord_y / p.chord;
+  p.cross = -p.rim_x * p.e_y_y - -p.rim_y * p.e_y_x;
+  p.dot = -p.rim_x * p.e_y_x + -p.rim_y * p.e_y_y;
+  return p;
+}
+
+/// gamma: from the rotated reference cord -rho (length r_rim) to e_y. Within 45 degrees
+/// its sine is well conditioned (d gamma = d sin / cos gamma) and asin costs a fraction of
+/// atan2, which takes over beyond.
+inline double shear_angle(double cross, double dot, double rim_radius) {
+  return std::abs(cross) <= dot ? std::asin(cross / rim_radius) : std::atan2(cross, dot);
+}
 
 /// Root of f(alpha) = sin(alpha) - ratio alpha on (0, pi] for 0 <= ratio < 1. f is
 /// positive below the root and negative above (sinc decreases), which keeps a bracket
@@ -215,14 +249,6 @@ SidewallLaw::CordForce SidewallLaw::cord_force(double chord, double alpha0, doub
   return {start.force + stiffness * (chord - switch_chord_), stiffness};
 }
 
-struct SidewallWedge::Kinematics {
-  Eigen::Vector2d rim_offset;  // rho = R(theta_S) r_rim e_r
-  Eigen::Vector2d cord;        // P = x_r - x_t
-  Eigen::Vector2d e_y, e_x;
-  double chord;        // L
-  double shear_angle;  // gamma
-};
-
 SidewallWedge::SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector2d& tread_a,
                              const Eigen::Vector2d& tread_b, const SidewallProperties& properties,
                              std::shared_ptr<const PressureSchedule> pressure)
@@ -241,160 +267,49 @@ SidewallWedge::SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector
   }
 }
 
-SidewallWedge::Kinematics SidewallWedge::kinematics(const Vector& u, int q, double cos_spin, double sin_spin) const {
-  const double xi = kGaussPoints[q];
-  const Eigen::Vector2d& offset = reference_rim_offset_[q];
-  Kinematics k;
-  k.rim_offset = {cos_spin * offset.x() - sin_spin * offset.y(), sin_spin * offset.x() + cos_spin * offset.y()};
-  const Eigen::Vector2d tread_point = reference_tread_[q] + (1.0 - xi) * u.segment<2>(3) + xi * u.segment<2>(6);
-  k.cord = spindle_ + u.segment<2>(0) + k.rim_offset - tread_point;
-  k.chord = k.cord.norm();
-  k.e_y = k.cord / k.chord;
-  k.e_x = perpendicular(k.e_y);
-  // gamma: from the rotated reference cord -rho (length r_rim) to e_y. Within 45 degrees
-  // its sine is well conditioned (d gamma = d sin / cos gamma) and asin costs a fraction
-  // of atan2, which takes over beyond.
-  const Eigen::Vector2d reference = -k.rim_offset;
-  const double cross = reference.x() * k.e_y.y() - reference.y() * k.e_y.x(), dot = reference.dot(k.e_y);
-  k.shear_angle = std::abs(cross) <= dot ? std::asin(cross / law_.properties().rim_radius) : std::atan2(cross, dot);
-  return k;
-}
-
 SidewallWedge::CordState SidewallWedge::cord_state(const Vector& displacement, int q) const {
-  const Kinematics k = kinematics(displacement, q, std::cos(displacement[2]), std::sin(displacement[2]));
-  return {k.chord, k.shear_angle};
+  const double shape_b = kGaussPoints[q];
+  const CordPoint p = cord_point(std::cos(displacement[2]), std::sin(displacement[2]), reference_rim_offset_[q].x(),
+                                 reference_rim_offset_[q].y(), reference_tread_[q].x(), reference_tread_[q].y(),
+                                 spindle_.x(), spindle_.y(), 1.0 - shape_b, shape_b, displacement.data(), 1);
+  return {p.chord, shear_angle(p.cross, p.dot, law_.properties().rim_radius)};
 }
 
 void SidewallWedge::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
                              Vector& residual, Matrix* tangent) const {
-  const Vector& u = local.displacement;
-  const Vector& velocity = local.velocity;
-  const IntegratorFactors& f = context.factors;
-  const SidewallProperties& properties = law_.properties();
-  const double pressure = pressure_->at(context.time);
-  const double shear_stiffness = properties.shear_stiffness;
-  const double c_r = properties.radial_damping, c_t = properties.circumferential_damping;
-  const bool damped = (c_r != 0.0 || c_t != 0.0) && (f.force_damping != 0.0 || (tangent && f.tangent_damping != 0.0));
-  const double cos_spin = std::cos(u[2]), sin_spin = std::sin(u[2]);
-  const double spin_rate = velocity[2];
-
-  // The traction acts per unit deformed chord length l (see docs/sidewall.md).
-  const Eigen::Vector2d tread_chord = tread_b_ + u.segment<2>(6) - tread_a_ - u.segment<2>(3);
-  const double chord_length = tread_chord.norm();
-  const Eigen::Vector2d chord_direction = tread_chord / chord_length;
-  const double length_weight = kGaussWeight * chord_length;
-
-  // B^T x for B = [I, rho_perp, -N_a I, 0, -N_b I, 0] has the rows x, rho_perp.x, -N_a x,
-  // 0, -N_b x, 0: the quadrature sums the spindle rows, the spin row and the N-weighted
-  // tread rows, and the element vector and matrix are written once from them.
-  Eigen::Vector2d spindle_force = Eigen::Vector2d::Zero(), force_a = Eigen::Vector2d::Zero(),
-                  force_b = Eigen::Vector2d::Zero();
-  double spin_moment = 0.0;
-  // The same for the tangent, K = sum_q B^T J_q (+ the spin's geometric term), where the
-  // 2 x 9 J_q is the derivative of the weighted traction l w_q t_q by the element's DOFs.
-  Eigen::Matrix<double, 2, kDofs> spindle_rows, rows_a, rows_b;
-  Eigen::Matrix<double, 1, kDofs> spin_row;
-  double spin_geometric = 0.0;
-  if (tangent) {
-    spindle_rows.setZero();
-    rows_a.setZero();
-    rows_b.setZero();
-    spin_row.setZero();
-  }
-
-  for (int q = 0; q < kQuadraturePoints; ++q) {
-    const double xi = kGaussPoints[q], shape_a = 1.0 - xi, shape_b = xi;
-    const Kinematics k = kinematics(u, q, cos_spin, sin_spin);
-    const SidewallLaw::CordForce cord = law_.cord_force(k.chord, reference_half_angle_[q], pressure);
-    const double shear_force = shear_stiffness * k.shear_angle;
-    const Eigen::Vector2d elastic = cord.force * k.e_y + shear_force * k.e_x;
-    const Eigen::Vector2d rim_perpendicular = perpendicular(k.rim_offset);
-
-    Eigen::Vector2d damping = Eigen::Vector2d::Zero(), relative_velocity = Eigen::Vector2d::Zero();
-    double v_y = 0.0, v_x = 0.0;
-    if (damped) {
-      // Tread point velocity relative to the rim's rigid motion at x_t (x_t - x_S = rho - P).
-      relative_velocity = shape_a * velocity.segment<2>(3) + shape_b * velocity.segment<2>(6) - velocity.segment<2>(0) -
-                          spin_rate * perpendicular(k.rim_offset - k.cord);
-      v_y = relative_velocity.dot(k.e_y);
-      v_x = relative_velocity.dot(k.e_x);
-      damping = -(c_r * v_y) * k.e_y - (c_t * v_x) * k.e_x;
-    }
-
-    const Eigen::Vector2d weighted = length_weight * (f.force_stiffness * elastic + f.force_damping * damping);
-    spindle_force += weighted;
-    force_a += shape_a * weighted;
-    force_b += shape_b * weighted;
-    spin_moment += rim_perpendicular.dot(weighted);
-    if (!tangent) continue;
-
-    // u-derivatives: the elastic part scales with cK, the damping force's dependence on
-    // u (cord directions, spin term) with wC; the velocity part with cC.
-    const Eigen::Vector2d traction = f.tangent_stiffness * elastic + f.force_damping * damping;
-    Eigen::Matrix2d G = f.tangent_stiffness *
-                        (cord.stiffness * k.e_y * k.e_y.transpose() +
-                         ((cord.force + shear_stiffness) * k.e_x - shear_force * k.e_y) * k.e_x.transpose() / k.chord);
-    Eigen::Vector2d spin_column = -f.tangent_stiffness * shear_stiffness * k.e_x;
-    if (damped) {
-      const Eigen::Matrix2d C_d = c_r * k.e_y * k.e_y.transpose() + c_t * k.e_x * k.e_x.transpose();
-      const Eigen::Matrix2d C_d_turned = C_d * (Eigen::Matrix2d() << 0.0, -1.0, 1.0, 0.0).finished();  // C_d k x
-      G += f.force_damping *
-           (-(c_r - c_t) * (v_x * k.e_y + v_y * k.e_x) * k.e_x.transpose() / k.chord - spin_rate * C_d_turned);
-      spin_column -= f.force_damping * spin_rate * (C_d * k.rim_offset);
-      G += f.tangent_damping * C_d;
-      spin_column -= (f.tangent_damping * c_t * k.chord) * k.e_x;
-    }
-    // J_q = l w_q (G B + spin_column e_theta_S^T) + w_q traction dl/du, dl/du = (0, -t, t).
-    const Eigen::Matrix2d weighted_G = length_weight * G;
-    const Eigen::Vector2d chord_force = kGaussWeight * traction;
-    Eigen::Matrix<double, 2, kDofs> J;
-    J.leftCols<2>() = weighted_G;
-    J.col(2) = weighted_G * rim_perpendicular + length_weight * spin_column;
-    J.middleCols<2>(3) = -shape_a * weighted_G - chord_force * chord_direction.transpose();
-    J.col(5).setZero();
-    J.middleCols<2>(6) = -shape_b * weighted_G + chord_force * chord_direction.transpose();
-    J.col(8).setZero();
-    spindle_rows += J;
-    rows_a += shape_a * J;
-    rows_b += shape_b * J;
-    spin_row += rim_perpendicular.transpose() * J;
-    spin_geometric -= length_weight * k.rim_offset.dot(traction);  // d rho_perp / d theta_S = -rho
-  }
-
-  residual << spindle_force, spin_moment, -force_a, 0.0, -force_b, 0.0;
-  if (!tangent) return;
-  Matrix& K = *tangent;
-  K.topRows<2>() = spindle_rows;
-  K.row(2) = spin_row;
-  K(2, 2) += spin_geometric;
-  K.middleRows<2>(3) = -rows_a;
-  K.row(5).setZero();
-  K.middleRows<2>(6) = -rows_b;
-  K.row(8).setZero();
+  evaluate_as_batch(*this, local, context, residual, tangent);
 }
 
-// The batch path. Its arithmetic is evaluate()'s, term for term, written per wedge on
-// arrays indexed by the wedge, so that the loop over wedges vectorises.
+// The batch path: the wedge's physics, written once per wedge on arrays indexed by the
+// wedge, so that the loops over wedges vectorise; evaluate() is its block of one.
 namespace {
 constexpr int kActiveDofs[] = {0, 1, 2, 3, 4, 6, 7};  // all but the tread rotations
 }
 
-SidewallWedge::Batch::Batch(const std::vector<SidewallWedge>& wedges) : wedges_(wedges) {
+SidewallWedge::Batch::Batch(const std::vector<SidewallWedge>& wedges) { assign(wedges); }
+
+void SidewallWedge::Batch::assign(const std::vector<SidewallWedge>& wedges) {
+  wedges_ = wedges;
+  damped_ = false;
   const size_t n = wedges_.size();
   for (auto* field : {&tread_a_x_, &tread_a_y_, &tread_b_x_, &tread_b_y_, &shear_stiffness_, &radial_damping_,
                       &circumferential_damping_})
-    field->assign(n, 0.0);
+    field->resize(n);
   for (auto* field : {&rim_x_, &rim_y_, &cord_x_, &cord_y_, &e_y_x_, &e_y_y_, &chord_, &force_, &stiffness_,
                       &shear_angle_, &ratio_, &half_angle_, &cos_half_, &sin_half_})
-    field->assign(kQuadraturePoints * n, 0.0);
+    field->resize(kQuadraturePoints * n);
   for (auto* field : {&reference_tread_x_, &reference_tread_y_, &reference_rim_x_, &reference_rim_y_,
                       &reference_half_angle_, &cross_, &dot_})
-    field->assign(kQuadraturePoints * n, 0.0);
+    field->resize(kQuadraturePoints * n);
   for (auto* field : {&spindle_x_, &spindle_y_, &cord_length_, &switch_chord_, &rim_radius_, &signed_bending_,
                       &cos_spin_, &sin_spin_, &membrane_scale_})
-    field->assign(n, 0.0);
-  residual_.assign(kDofs * n, 0.0);
-  tangent_.assign(kDofs * kDofs * n, 0.0);
+    field->resize(n);
+  // The entries the passes never write (idle DOFs') stay zero: cleared for a new layout alone,
+  // so that a batch given other elements of the same number allocates and clears nothing.
+  if (residual_.size() != kDofs * n) {
+    residual_.assign(kDofs * n, 0.0);
+    tangent_.assign(kDofs * kDofs * n, 0.0);
+  }
   for (size_t e = 0; e < n; ++e) {
     const SidewallWedge& wedge = wedges_[e];
     for (int q = 0; q < kQuadraturePoints; ++q) {
@@ -448,11 +363,7 @@ void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
   }
   for (int q = 0; q < kQuadraturePoints; ++q) add_cords(u, q);
   for (int i = 0; i < kQuadraturePoints * n; ++i) {
-    // gamma: from the rotated reference cord -rho (length r_rim) to e_y. Within 45 degrees
-    // its sine is well conditioned (d gamma = d sin / cos gamma) and asin costs a fraction
-    // of atan2, which takes over beyond.
-    const double cross = cross_[i], dot = dot_[i];
-    shear_angle_[i] = std::abs(cross) <= dot ? std::asin(cross / rim_radius_[i % n]) : std::atan2(cross, dot);
+    shear_angle_[i] = shear_angle(cross_[i], dot_[i], rim_radius_[i % n]);
   }
   solve_half_angles(ratio_.data(), kQuadraturePoints * n, half_angle_.data(), cos_half_.data(), sin_half_.data());
   for (int q = 0; q < kQuadraturePoints; ++q) add_cord_forces(q);
@@ -470,8 +381,7 @@ void SidewallWedge::Batch::solve_cords(const BlockValues& values, double time) {
 }
 
 TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_cords(const double* u, int q) {
-  // kinematics() across the wedges, term for term, on plain arrays (which the vectoriser
-  // sees apart).
+  // On plain arrays, which the vectoriser sees apart.
   const int n = size();
   const double shape_a = 1.0 - kGaussPoints[q], shape_b = kGaussPoints[q];
   const double *offset_x = &reference_rim_x_[q * n], *offset_y = &reference_rim_y_[q * n];
@@ -483,22 +393,18 @@ TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_cords(const double* u, int q) 
          *dot = &dot_[q * n], *ratio = &ratio_[q * n];
 #pragma omp simd
   for (int e = 0; e < n; ++e) {
-    const double rx = cos_spin[e] * offset_x[e] - sin_spin[e] * offset_y[e];
-    const double ry = sin_spin[e] * offset_x[e] + cos_spin[e] * offset_y[e];
-    const double tread_x = reference_x[e] + shape_a * u[3 * n + e] + shape_b * u[6 * n + e];
-    const double tread_y = reference_y[e] + shape_a * u[4 * n + e] + shape_b * u[7 * n + e];
-    const double px = spindle_x[e] + u[e] + rx - tread_x, py = spindle_y[e] + u[n + e] + ry - tread_y;
-    const double length = std::sqrt(px * px + py * py);
-    const double ex = px / length, ey = py / length;
-    rim_x[e] = rx;
-    rim_y[e] = ry;
-    cord_x[e] = px;
-    cord_y[e] = py;
-    e_y_x[e] = ex;
-    e_y_y[e] = ey;
-    chord[e] = length;
-    cross[e] = -rx * ey - -ry * ex;
-    dot[e] = -rx * ex + -ry * ey;
+    const CordPoint p = cord_point(cos_spin[e], sin_spin[e], offset_x[e], offset_y[e], reference_x[e], reference_y[e],
+                                   spindle_x[e], spindle_y[e], shape_a, shape_b, u + e, n);
+    rim_x[e] = p.rim_x;
+    rim_y[e] = p.rim_y;
+    cord_x[e] = p.cord_x;
+    cord_y[e] = p.cord_y;
+    e_y_x[e] = p.e_y_x;
+    e_y_y[e] = p.e_y_y;
+    chord[e] = p.chord;
+    cross[e] = p.cross;
+    dot[e] = p.dot;
+    const double length = p.chord;
     // A near-straight cord takes the law's linear continuation: its arch is not solved.
     ratio[e] = length < switch_chord[e] ? length / cord_length[e] : 0.5;
   }
@@ -534,8 +440,11 @@ TIREFE_SIMD_CLONES void SidewallWedge::Batch::add_points(const BlockValues& valu
     const double shear_stiffness = shear_stiffness_[e];
     const double c_r = Damped ? radial_damping_[e] : 0.0, c_t = Damped ? circumferential_damping_[e] : 0.0;
     const double spin_rate = v[2 * n + e];
-    // Rows of B^T times the weighted traction (residual) and its derivative J (tangent,
-    // active columns 0, 1, 2, 3, 4, 6, 7): the spindle, spin and tread rows of evaluate().
+    // B^T x for B = [I, rho_perp, -N_a I, 0, -N_b I, 0] has the rows x, rho_perp.x, -N_a x,
+    // 0, -N_b x, 0: the quadrature sums the spindle rows, the spin row and the N-weighted
+    // tread rows of the weighted traction (residual) and of its derivative J by the DOFs
+    // (tangent, active columns 0, 1, 2, 3, 4, 6, 7), and the element vector and matrix are
+    // written once from them.
     double spindle[2] = {0.0, 0.0}, spin = 0.0, tread_a[2] = {0.0, 0.0}, tread_b[2] = {0.0, 0.0};
     double spindle_rows[2][7] = {}, spin_row[7] = {}, rows_a[2][7] = {}, rows_b[2][7] = {}, spin_geometric = 0.0;
     // Fully unrolled (as are the loops over columns) so that the wedge loop vectorises.

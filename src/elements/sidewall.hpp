@@ -122,9 +122,13 @@ class SidewallLaw {
 class SidewallWedge : public KernelShape<3> {
  public:
   static constexpr int kQuadraturePoints = 2;
-  static constexpr bool kReadsAcceleration = false;
-  static constexpr bool kStoresEnergy = false;             // energy() is zero (above)
-  static constexpr std::array<int, 2> kIdleDofs = {5, 8};  // the tread rotations
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;
+    traits.stores_energy = false;  // energy() is zero (above)
+    traits.idle_dofs = {5, 8};     // the tread rotations
+    return traits;
+  }
 
   /// Reference positions of the spindle and of the two tread nodes (counter-clockwise).
   SidewallWedge(const Eigen::Vector2d& spindle, const Eigen::Vector2d& tread_a, const Eigen::Vector2d& tread_b,
@@ -140,15 +144,12 @@ class SidewallWedge : public KernelShape<3> {
     double chord, shear_angle;
   };
   CordState cord_state(const Vector& displacement, int q) const;
-  /// The block's batch path (element.hpp): every wedge at once, the same numbers.
+  /// The block's batch path (element.hpp): every wedge at once; evaluate() is its block of one.
   class Batch;
   const SidewallLaw& law() const { return law_; }
   double reference_half_angle(int q) const { return reference_half_angle_[q]; }
 
  private:
-  struct Kinematics;
-  Kinematics kinematics(const Vector& displacement, int q, double cos_spin, double sin_spin) const;
-
   SidewallLaw law_;
   std::shared_ptr<const PressureSchedule> pressure_;
   Eigen::Vector2d spindle_, tread_a_, tread_b_;
@@ -161,10 +162,13 @@ class SidewallWedge : public KernelShape<3> {
 /// the cords, solve their arches and take their force law (the shear angle's arcsine, one
 /// sine and cosine per spindle angle and a near-straight cord's law are scalar passes);
 /// then a pass vectorised across wedges forms the weighted tractions, their derivatives
-/// and the element vectors and matrices of evaluate().
+/// and the element vectors and matrices. It is the wedge's one implementation: evaluate()
+/// runs it on a block of one (core/batch_of_one.hpp).
 class SidewallWedge::Batch {
  public:
   explicit Batch(const std::vector<SidewallWedge>& wedges);
+  /// The batch of other wedges (without allocating when their number is the same).
+  void assign(const std::vector<SidewallWedge>& wedges);
   int size() const { return static_cast<int>(wedges_.size()); }
   void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
   const double* residual() const { return residual_.data(); }

@@ -47,13 +47,11 @@ class TreadBeam : public KernelShape<2> {
   };
   Strains strains(const Vector& displacement) const;
   const BeamSection& section() const { return section_; }
-  /// The block's batch path (element.hpp): every beam at once, the same numbers.
+  /// The block's batch path (element.hpp): every beam at once; evaluate() and energy() are
+  /// its block of one.
   class Batch;
 
  private:
-  /// tangent += factor M.
-  void add_mass(double factor, Matrix& tangent) const;
-
   BeamSection section_;
   double length_;
   double reference_angle_;
@@ -62,10 +60,12 @@ class TreadBeam : public KernelShape<2> {
 
 /// Beams over structure-of-arrays data: one loop vectorised across beams forms the
 /// strains (the sine and cosine of beta inline, sine_cosine.hpp), the section forces and
-/// the element vectors and matrices of evaluate().
+/// the element vectors and matrices: the beam's one implementation (core/batch_of_one.hpp).
 class TreadBeam::Batch {
  public:
   explicit Batch(const std::vector<TreadBeam>& beams);
+  /// The batch of other beams (without allocating when their number is the same).
+  void assign(const std::vector<TreadBeam>& beams);
   int size() const { return count_; }
   void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
   const double* residual() const { return residual_.data(); }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include "core/batch_of_one.hpp"
+
 namespace tirefe {
 
 TreadPressure::TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,
@@ -16,37 +18,25 @@ TreadPressure::TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d
 
 void TreadPressure::evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History&, History&,
                              Vector& residual, Matrix* tangent) const {
-  const Vector& u = local.displacement;
-  const IntegratorFactors& f = context.factors;
-  const double half_load = 0.5 * pressure_->at(context.time) * width_;  // p w / 2
-  const Eigen::Vector2d chord = reference_chord_ + u.segment<2>(3) - u.segment<2>(0);
-  const Eigen::Vector2d inward_normal(-chord.y(), chord.x());  // k x c, length |c|
-
-  residual.setZero();
-  residual.segment<2>(0) = residual.segment<2>(3) = (f.force_stiffness * half_load) * inward_normal;
-  if (!tangent) return;
-
-  Matrix& K = *tangent;
-  K.setZero();
-  const double entry = f.tangent_stiffness * half_load;
-  for (int row : {0, 3}) {
-    // d(k x c)/du_b = [k x] = [[0, -1], [1, 0]], d(k x c)/du_a = -[k x].
-    K(row, 1) = entry;
-    K(row + 1, 0) = -entry;
-    K(row, 4) = -entry;
-    K(row + 1, 3) = entry;
-  }
+  evaluate_as_batch(*this, local, context, residual, tangent);
 }
 
 ElementEnergy TreadPressure::energy(const LocalState<kDofs>&, const History&) const { return {}; }
 
-TreadPressure::Batch::Batch(const std::vector<TreadPressure>& loads) : loads_(loads) {
+TreadPressure::Batch::Batch(const std::vector<TreadPressure>& loads) { assign(loads); }
+
+void TreadPressure::Batch::assign(const std::vector<TreadPressure>& loads) {
+  loads_ = loads;
   const size_t n = loads_.size();
-  chord_x_.assign(n, 0.0);
-  chord_y_.assign(n, 0.0);
-  half_load_.assign(n, 0.0);
-  residual_.assign(kDofs * n, 0.0);
-  tangent_.assign(kDofs * kDofs * n, 0.0);
+  chord_x_.resize(n);
+  chord_y_.resize(n);
+  half_load_.resize(n);
+  // The entries the passes never write (idle DOFs') stay zero: cleared for a new layout alone,
+  // so that a batch given other elements of the same number allocates and clears nothing.
+  if (residual_.size() != kDofs * n) {
+    residual_.assign(kDofs * n, 0.0);
+    tangent_.assign(kDofs * kDofs * n, 0.0);
+  }
   for (size_t e = 0; e < n; ++e) {
     chord_x_[e] = loads_[e].reference_chord_.x();
     chord_y_[e] = loads_[e].reference_chord_.y();
@@ -79,6 +69,7 @@ void TreadPressure::Batch::evaluate(const BlockValues& values, const EvaluationC
     residual[n + e] = residual[4 * n + e] = load * chord_x;
   }
   if (!with_tangent) return;
+    // d(k x c)/du_b = [k x] = [[0, -1], [1, 0]], d(k x c)/du_a = -[k x].
 #pragma omp simd
   for (int e = 0; e < n; ++e) {
     const double entry = f.tangent_stiffness * half_load_[e];

@@ -24,12 +24,16 @@ namespace tirefe {
 
 class TreadPressure : public KernelShape<2> {
  public:
-  static constexpr bool kReadsAcceleration = false;
-  static constexpr bool kReadsVelocity = false;            // no damping
-  static constexpr bool kStoresEnergy = false;             // energy() is zero (above)
-  static constexpr std::array<int, 2> kIdleDofs = {2, 5};  // the rotations
-  /// [k x] couples x with y only: no component's load moves with the same component.
-  static constexpr bool zero_tangent_entry(int row, int column) { return row % 3 == column % 3; }
+  static constexpr KernelTraits traits() {
+    KernelTraits traits;
+    traits.reads_acceleration = false;
+    traits.reads_velocity = false;  // no damping
+    traits.stores_energy = false;   // energy() is zero (above)
+    traits.idle_dofs = {2, 5};      // the rotations
+    // [k x] couples x with y only: no component's load moves with the same component.
+    traits.zero_tangent_entry = [](int row, int column) { return row % 3 == column % 3; };
+    return traits;
+  }
 
   /// Reference positions of the two tread nodes (counter-clockwise), tread width w [m].
   TreadPressure(const Eigen::Vector2d& start, const Eigen::Vector2d& end, double width,
@@ -38,7 +42,7 @@ class TreadPressure : public KernelShape<2> {
   void evaluate(const LocalState<kDofs>& local, const EvaluationContext& context, const History& committed,
                 History& trial, Vector& residual, Matrix* tangent) const;
   ElementEnergy energy(const LocalState<kDofs>& local, const History& history) const;
-  /// The block's batch path (element.hpp): every load at once, the same numbers.
+  /// The block's batch path (element.hpp): every load at once; evaluate() is its block of one.
   class Batch;
 
  private:
@@ -53,6 +57,8 @@ class TreadPressure : public KernelShape<2> {
 class TreadPressure::Batch {
  public:
   explicit Batch(const std::vector<TreadPressure>& loads);
+  /// The batch of other loads (without allocating when their number is the same).
+  void assign(const std::vector<TreadPressure>& loads);
   int size() const { return static_cast<int>(loads_.size()); }
   void evaluate(const BlockValues& values, const EvaluationContext& context, bool with_tangent);
   const double* residual() const { return residual_.data(); }
