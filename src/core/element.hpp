@@ -394,6 +394,19 @@ class ElementBlockOf final : public ElementBlock, public BlockResponses<ElementB
   }
   const History& trial_history(int element) const { return trial_[element]; }
   const History& committed_history(int element) const { return committed_[element]; }
+  /// Element e's nodal values at 'state', as its kernel reads them (accelerations only if it reads them).
+  void gather(int e, const State& state, LocalState<kDofs>& local) const {
+    for (int n = 0; n < kNodes; ++n) {
+      const int first = dof_index(nodes_[e][n], 0);
+      local.displacement.template segment<kDofsPerNode>(kDofsPerNode * n) =
+          state.displacement.template segment<kDofsPerNode>(first);
+      local.velocity.template segment<kDofsPerNode>(kDofsPerNode * n) =
+          state.velocity.template segment<kDofsPerNode>(first);
+      if constexpr (detail::ReadsAcceleration<Kernel>::value)
+        local.acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
+            state.acceleration.template segment<kDofsPerNode>(first);
+    }
+  }
   /// Sets an element's history (initial contact state, restart) as committed.
   void set_history(int element, const History& history) {
     committed_[element] = base_[element] = trial_[element] = history;
@@ -612,18 +625,6 @@ class ElementBlockOf final : public ElementBlock, public BlockResponses<ElementB
                        reads_acceleration ? acceleration : nullptr};
   }
 
-  void gather(int e, const State& state, LocalState<kDofs>& local) const {
-    for (int n = 0; n < kNodes; ++n) {
-      const int first = dof_index(nodes_[e][n], 0);
-      local.displacement.template segment<kDofsPerNode>(kDofsPerNode * n) =
-          state.displacement.template segment<kDofsPerNode>(first);
-      local.velocity.template segment<kDofsPerNode>(kDofsPerNode * n) =
-          state.velocity.template segment<kDofsPerNode>(first);
-      if constexpr (detail::ReadsAcceleration<Kernel>::value)
-        local.acceleration.template segment<kDofsPerNode>(kDofsPerNode * n) =
-            state.acceleration.template segment<kDofsPerNode>(first);
-    }
-  }
   void scatter_residual(int e, const Vector& residual, Eigen::VectorXd& global) const {
     for (int n = 0; n < kNodes; ++n)
       global.template segment<kDofsPerNode>(dof_index(nodes_[e][n], 0)) +=

@@ -38,6 +38,8 @@ class ElementResponses {
   virtual int response_points() const = 0;
   /// Response 'index' at every point, at 'state' with the committed histories ('values' resized).
   virtual void response_values(int index, const State& state, std::vector<double>& values) const = 0;
+  /// The same at one point (0-based).
+  virtual double response_value(int index, int point, const State& state) const = 0;
 
   /// The index of the response 'name', -1 if there is none.
   int response_index(const std::string& name) const {
@@ -66,32 +68,16 @@ class BlockResponses<Block, Kernel, true> : public ElementResponses {
   const std::vector<ResponseName>& response_names() const override { return Kernel::response_names(); }
   int response_points() const override { return block().size() * Kernel::kResponsePoints; }
   void response_values(int index, const State& state, std::vector<double>& values) const override {
-    const Block& elements = block();
     values.resize(static_cast<size_t>(response_points()));
+    for (int point = 0; point < response_points(); ++point) values[point] = response_value(index, point, state);
+  }
+  double response_value(int index, int point, const State& state) const override {
+    const Block& elements = block();
+    const int e = point / Kernel::kResponsePoints;
     LocalState<Block::kDofs> local;
-    local.displacement.setZero();
-    local.velocity.setZero();
-    local.acceleration.setZero();
-    // A state may leave out the rates (a static one): they are read as zero then.
-    const bool velocity = state.velocity.size() == state.displacement.size();
-    const bool acceleration = state.acceleration.size() == state.displacement.size();
-    size_t k = 0;
-    for (int e = 0; e < elements.size(); ++e) {
-      const std::vector<int> nodes = elements.element_nodes(e);
-      for (size_t n = 0; n < nodes.size(); ++n) {
-        const int first = dof_index(nodes[n], 0), local_first = kDofsPerNode * static_cast<int>(n);
-        local.displacement.template segment<kDofsPerNode>(local_first) =
-            state.displacement.template segment<kDofsPerNode>(first);
-        if (velocity)
-          local.velocity.template segment<kDofsPerNode>(local_first) =
-              state.velocity.template segment<kDofsPerNode>(first);
-        if (acceleration)
-          local.acceleration.template segment<kDofsPerNode>(local_first) =
-              state.acceleration.template segment<kDofsPerNode>(first);
-      }
-      for (int point = 0; point < Kernel::kResponsePoints; ++point)
-        values[k++] = elements.kernel(e).response(index, point, local, elements.committed_history(e));
-    }
+    local.acceleration.setZero();  // stays zero for kernels that never read it
+    elements.gather(e, state, local);
+    return elements.kernel(e).response(index, point % Kernel::kResponsePoints, local, elements.committed_history(e));
   }
 
  private:

@@ -338,12 +338,10 @@ void add_response_channel(DeckModel& deck, const MacroArguments& arguments) {
   if (point > responses->response_points())
     throw ModelError("point " + std::to_string(point) + " of element block '" + block + "', which has " +
                      std::to_string(responses->response_points()));
-  deck.output_or_default().add_channel(arguments.string("name"), responses->response_names()[index].unit,
-                                       [responses, index, point, scale = arguments.number("scale"),
-                                        values = std::vector<double>()](const State& state, const StepRecord&) mutable {
-                                         responses->response_values(index, state, values);
-                                         return scale * values[static_cast<size_t>(point - 1)];
-                                       });
+  deck.output_or_default().add_channel(
+      arguments.string("name"), responses->response_names()[index].unit,
+      [responses, index, point = static_cast<int>(point - 1), scale = arguments.number("scale")](
+          const State& state, const StepRecord&) { return scale * responses->response_value(index, point, state); });
 }
 
 int history_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {

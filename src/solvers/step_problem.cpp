@@ -98,9 +98,7 @@ bool StepProblem::start_from_driven_move(double step) {
   DrivenDofSolver* driven = solvers_.driven();
   const int factored = response_pattern_;
   response_pattern_ = -1;
-  if (!driven || step != carried_.steps.current || assembler_.update_pattern() ||
-      factored != assembler_.pattern_version())
-    return false;
+  if (!driven || assembler_.update_pattern() || factored != assembler_.pattern_version()) return false;
   // The tangent and its factors are still the converged trial's.
   const DofMap& dofs = model_.dof_map();
   driven_move_.setZero(dofs.equation_count());
@@ -155,7 +153,6 @@ bool StepProblem::solve(NewtonSolver& newton, int max_augmentations, StepRecord&
     solved = false;
   }
   resolve_reference_ = 0.0;
-  start_expected_converged_ = false;
   return solved;
 }
 

@@ -41,7 +41,8 @@ class StepProblem : private StepEquations {
   /// Moves the last trial by its linear response to the driven DOFs' new places
   /// (A_uu du_u = -A_us du_s with the factors of driven_tangent()), so that the next
   /// solve() starts expecting convergence: its first evaluation assembles the residual
-  /// alone. False, nothing moved, when those factors are not the current pattern's.
+  /// alone. False, nothing moved, when those factors are not the current pattern's (the
+  /// caller knows the last trial was of this step's size).
   bool start_from_driven_move(double step);
   /// Newton and the augmentations from the trial as it is; false (history reverted, the
   /// reason in failure()) when it does not converge.
