@@ -47,6 +47,7 @@ local p = tirefe.parameters{
   ring_time = { 0.15, "fine steps after the cleat left the tire (past the last ringing window)", unit = "s" },
   fields_interval = { 0.005, "time between deformed-shape frames", unit = "s" },
   output = { "drum_cleat.h5", "result file (in the output folder)" },
+  views = { false, "make the frames' views for the XDMF index during the run (false: tirefe --views FILE after it)" },
   check = { false, "the deck's self-checks (the test suite's short run sets it)" },
 }
 tirefe.progress{ end_time = p.end_time }
@@ -88,7 +89,7 @@ local tire = model:tire(tire_parameters)
 model:fix{ node = tire.spindle, dofs = { "ux", "rz" } }
 local press = require("press").path(model, tire.spindle, "press")
 
-model:output{ file = p.output, fields_interval = p.fields_interval }
+model:output{ file = p.output, fields_interval = p.fields_interval, views = p.views }
 model:history{ name = "spindle_fx", node = tire.spindle, quantity = "spindle_force", component = "fx" }
 model:history{ name = "spindle_fz", node = tire.spindle, quantity = "spindle_force", component = "fz" }
 model:history{ name = "spin_rate", node = tire.spindle, quantity = "spin_rate" }

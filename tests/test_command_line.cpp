@@ -110,9 +110,9 @@ TEST_CASE(
   CHECK(list.status == 0);
   CHECK(list.err.empty());
   CHECK(list.out.rfind(
-            source_path("inputs/drum_cleat.lua") + ": 28 parameters, set on the command line as name=value\n", 0) == 0);
+            source_path("inputs/drum_cleat.lua") + ": 29 parameters, set on the command line as name=value\n", 0) == 0);
   const auto rows = table_rows(list.out);
-  CHECK(rows.size() == 28);
+  CHECK(rows.size() == 29);
   using Row = std::vector<std::string>;
   CHECK(rows.at("speed_kmh") == Row{"51.3", "km/h", "final drum surface speed"});
   CHECK(rows.at("load") == Row{"3800", "N", "spindle load on the drum"});

@@ -262,6 +262,36 @@ TEST_CASE("a published file holds its last flush, whole, until the close renames
   CHECK_FALSE(fs::exists(working + ".copy"));
 }
 
+TEST_CASE("a file opened published changes only at its close; abandoned, it stays as it was", "[io][hdf5]") {
+  TempPath temp;
+  const std::string working = temp.str() + ".partial";
+  Hdf5File::create(temp.str()).write_vector("/a", {1.0, 2.0});
+  {
+    Hdf5File file = Hdf5File::open_published(temp.str());
+    file.write_vector("/b", {3.0});
+    CHECK(fs::exists(working));
+    CHECK_FALSE(Hdf5File::open_read_only(temp.str()).exists("/b"));  // a kill now leaves the file as it was
+    file.abandon();
+  }
+  CHECK_FALSE(fs::exists(working));
+  CHECK_FALSE(Hdf5File::open_read_only(temp.str()).exists("/b"));
+  {
+    Hdf5File file = Hdf5File::open_published(temp.str());
+    CHECK(file.shape("/a") == std::vector<hsize_t>{2});
+    CHECK(file.members("/") == std::vector<std::string>{"a"});
+    file.write_vector("/b", {3.0});
+    file.close();
+  }
+  CHECK(Hdf5File::open_read_only(temp.str()).read_doubles("/b") == std::vector<double>{3.0});
+  CHECK(Hdf5File::open_read_only(temp.str()).members("/") == std::vector<std::string>{"a", "b"});
+  CHECK_FALSE(fs::exists(working));
+  // Not an HDF5 file: refused before anything is copied.
+  std::ofstream(temp.str(), std::ios::trunc) << "not a result";
+  CHECK_THROWS_WITH(Hdf5File::open_published(temp.str()),
+                    Catch::Contains("cannot open file") && Catch::Contains(temp.str()));
+  CHECK_FALSE(fs::exists(working));
+}
+
 TEST_CASE("a flush written by another thread: rows appended meanwhile wait for the next, in order", "[io][hdf5]") {
   TempPath temp;
   constexpr int kStaged = 200, kMeanwhile = 5000;

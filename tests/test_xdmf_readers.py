@@ -100,6 +100,35 @@ def test_meshio_reads_the_finished_run(folder):
         assert np.abs(u[:, :2]).max() > 0.4 and np.abs(deformation[-1][:, :2]).max() < 0.03
 
 
+def test_views_made_after_the_run_are_those_made_during_it(folder):
+    """views=false: the run makes no views; `tirefe --views` then makes every view the index
+    names (frames, drum), the same data as the run that made them (the first test's), and a
+    second call makes none."""
+    later = os.path.join(folder, "later")
+    run_deck(later, "views=false")
+    h5, index = os.path.join(later, "xdmf.h5"), os.path.join(later, "xdmf.xmf")
+    with h5py.File(h5, "r") as f:
+        assert "frames" not in f["fields"] and "frames" not in f["surfaces/drum"], list(f["fields"])
+        frames = len(f["fields/time"])
+    made = subprocess.run([TIREFE, "--views", h5], capture_output=True, text=True)
+    assert made.returncode == 0 and made.stdout == f"{h5}: {5 * frames} views made\n", made
+    named = {dataset_path(item) for item in ElementTree.parse(index).getroot().iter("DataItem") if "frames" in item.text}
+    assert len(named) == 5 * frames, len(named)
+    during = os.path.join(folder, "run", "xdmf.h5")
+    with h5py.File(h5, "r") as f, h5py.File(during, "r") as g:
+        for path in named:
+            assert np.array_equal(f[path][:], g[path][:]), path
+    again = subprocess.run([TIREFE, "--views", h5], capture_output=True, text=True)
+    assert again.returncode == 0 and again.stdout == f"{h5}: 0 views made\n", again
+    with meshio.xdmf.TimeSeriesReader(index) as reader:
+        assert reader.num_steps == frames
+        reader.read_points_cells()
+        _, point_data, _ = reader.read_data(frames - 1)
+        assert set(point_data) == {"displacement", "velocity", "rotation", "deformation"}, set(point_data)
+    missing = subprocess.run([TIREFE, "--views", os.path.join(later, "none.h5")], capture_output=True, text=True)
+    assert missing.returncode == 1 and "cannot open file" in missing.stderr and "none.h5" in missing.stderr, missing
+
+
 def test_plot_results_on_the_finished_run(folder):
     """post/plot_results.py: --help prints its usage (it took '--help' for a file name), the
     finished run gives its two plots, a missing file one line that names it."""

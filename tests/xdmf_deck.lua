@@ -5,7 +5,7 @@
 --
 --   tirefe tests/xdmf_deck.lua [elements=40] [end_time=1.8] [fields_interval=0.01] ...
 local p = tirefe.parameters{ elements = 40, end_time = 1.8, dt = 2e-3, depth = 0.015, speed = 5.0,
-                              fields_interval = 0.01, output = "xdmf.h5" }
+                              fields_interval = 0.01, output = "xdmf.h5", views = true }
 
 local model = tirefe.model{ title = "calibrated tire on a drum (XDMF readers)" }
 local drum_radius = 0.85
@@ -16,7 +16,7 @@ tire_parameters.pressure_load_function = "inflation"
 tire_parameters.y = drum_radius + tire_parameters.outer_diameter / 2
 model:load_function{ name = "inflation", points = { { 0, 0 }, { 1, 1 }, { 1e9, 1 } } }
 local tire = model:tire(tire_parameters)
-model:output{ file = p.output, fields_interval = p.fields_interval }
+model:output{ file = p.output, fields_interval = p.fields_interval, views = p.views }
 
 model:load_function{ name = "press", points = { { 1, 0 }, { 1.5, 1 }, { 1e9, 1 } } }
 model:fix{ node = tire.spindle, dofs = { "ux", "rz" } }

@@ -14,6 +14,7 @@
 #include "deck/interrupt.hpp"
 #include "deck/lua_module_dir.hpp"
 #include "deck/lua_sandbox.hpp"
+#include "io/frame_views.hpp"
 #include "macros/macro_table.hpp"
 #include "app/parameter_list.hpp"
 #include "tirefe/source_paths.hpp"
@@ -27,6 +28,7 @@ constexpr const char* kUsage =
     "usage: tirefe DECK.lua [key=value ...] [--output-dir DIR] [--restart CHECKPOINT] [--quiet | --verbose]\n"
     "                       [--allow-read DIR] [--allow-write DIR] [--lua-memory MIB]\n"
     "       tirefe --list-parameters DECK.lua\n"
+    "       tirefe --views RESULT.h5 ...\n"
     "       tirefe --help | --macros | --version\n";
 
 constexpr const char* kHelp =
@@ -43,6 +45,8 @@ constexpr const char* kHelp =
     "  --allow-write DIR       let the deck write files in DIR too (repeatable)\n"
     "  --lua-memory MIB        the most memory the deck's Lua may hold (default 1024 MiB)\n"
     "  --list-parameters DECK  the deck's parameters (name, default, unit, meaning); runs no model\n"
+    "  --views RESULT.h5 ...   make the views of the field frames that the XDMF index beside each\n"
+    "                          result file names, where the run left them out (model:output's views)\n"
     "  --macros                the macro reference (Markdown)\n"
     "  --version               version and git commit\n"
     "  -h, --help              this text\n"
@@ -79,6 +83,22 @@ DeckOutcome list_parameters(int argc, char** argv) {
     std::cout << parameter_table(deck, declared_parameters(deck));
   } catch (const std::exception& error) {
     return {1, "tirefe: " + std::string(error.what()) + "\n"};
+  }
+  return {};
+}
+
+/// tirefe --views RESULT.h5 ...: the views each file lacks, or the first file's error.
+DeckOutcome make_views(const std::vector<std::string>& files) {
+  if (files.empty() ||
+      std::any_of(files.begin(), files.end(), [](const std::string& f) { return f.rfind("-", 0) == 0; }))
+    return {2, std::string("tirefe: --views takes one or more result files and nothing else\n") + kUsage};
+  for (const std::string& file : files) {
+    try {
+      const size_t made = io::make_frame_views(file);
+      std::cout << file << ": " << made << " views made\n";
+    } catch (const std::exception& error) {
+      return {1, "tirefe: " + std::string(error.what()) + "\n"};
+    }
   }
   return {};
 }
@@ -159,6 +179,7 @@ DeckOutcome run_deck_command(int argc, char** argv, const std::function<void(Dec
     return {};
   }
   if (std::count(arguments.begin(), arguments.end(), "--list-parameters")) return list_parameters(argc, argv);
+  if (!arguments.empty() && arguments.front() == "--views") return make_views({arguments.begin() + 1, arguments.end()});
   if (argc == 2 && std::string(argv[1]) == "--macros") {
     std::cout << macro_reference();
     return {};

@@ -3,6 +3,7 @@
 // exits with the status.
 //   tirefe deck.lua [key=value ...] [--output-dir DIR] [--restart FILE] [--quiet | --verbose]
 //   tirefe --list-parameters DECK    the deck's parameters, without running it
+//   tirefe --views RESULT.h5 ...    the field frames' views a run left out
 //   tirefe --help | --macros | --version
 #pragma once
 

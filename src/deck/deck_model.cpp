@@ -210,7 +210,8 @@ int DeckModel::load_function(const std::string& name) const {
   return found->second;
 }
 
-void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval) {
+void DeckModel::open_output(const std::string& file, int field_interval, double field_time_interval,
+                            bool views_during_run) {
   if (output_) throw ModelError("this model already writes to '" + output_->path() + "'");
   const io::RunMetadata metadata{title_, session_.deck_path, session_.deck_text, session_.parameters,
                                  wheel_axes_statement()};
@@ -226,6 +227,7 @@ void DeckModel::open_output(const std::string& file, int field_interval, double 
     output_ = std::make_unique<io::ResultFile>(file, metadata, io::ResultStorage::Discarded);
   output_->set_field_interval(field_interval);
   output_->set_field_time_interval(field_time_interval);
+  output_->set_views_during_run(views_during_run);
   for (const auto& describe : output_descriptions_) describe(*output_);
   output_descriptions_.clear();
 }

@@ -93,7 +93,9 @@ class DeckModel {
 
   /// Opens the result file (a relative path is taken inside the session's output folder);
   /// in a process that does not own the model, a discarded one (no file is created).
-  void open_output(const std::string& file, int field_interval, double field_time_interval = 0.0);
+  /// Without views_during_run the frames' views are left to `tirefe --views FILE`.
+  void open_output(const std::string& file, int field_interval, double field_time_interval = 0.0,
+                   bool views_during_run = true);
   io::ResultFile* output() { return output_.get(); }
   /// The result file, opened under a default name if the deck named none.
   io::ResultFile& output_or_default();

@@ -379,6 +379,21 @@ Hdf5File Hdf5File::open_read_only(const std::string& path) { return Hdf5File(pat
 
 Hdf5File Hdf5File::open_read_write(const std::string& path) { return Hdf5File(path, open_file(path, H5F_ACC_RDWR)); }
 
+Hdf5File Hdf5File::open_published(const std::string& path) {
+  const std::string working = path + ".partial";
+  for (const std::string& leftover : {working, working + ".copy"}) clear_for_temporary(leftover, kHdf5Signature);
+  open_file(path, H5F_ACC_RDONLY);  // an HDF5 file, named as such, before it is copied
+  copy_file(path, working);
+  try {
+    Hdf5File file(path, open_file(working, H5F_ACC_RDWR));
+    file.working_path_ = working;
+    return file;
+  } catch (const IoError&) {
+    std::remove(working.c_str());
+    throw;
+  }
+}
+
 Hdf5File::Hdf5File(Hdf5File&& other) noexcept
     : path_(std::move(other.path_)),
       working_path_(std::move(other.working_path_)),
@@ -586,14 +601,22 @@ ExtendibleDataset& Hdf5File::create_chunked(const std::string& dataset_path, con
 
 void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row, hsize_t first,
                               hsize_t count, hsize_t width) {
+  std::vector<hsize_t> dims = source.dims_;
+  // The source as it will be once 'row' is written (appended rows may still wait in memory).
+  if (!dims.empty()) dims[0] = std::max(source.staged_extent(), row + 1);
+  write_row_view(view_path, source.path(), dims, row, first, count, width);
+}
+
+void Hdf5File::write_row_view(const std::string& view_path, const std::string& source_path,
+                              const std::vector<hsize_t>& source_dims, hsize_t row, hsize_t first, hsize_t count,
+                              hsize_t width) {
   auto message = [&] { return describe("write view", view_path, path_); };
   latch_->refuse_if_failed(message);
-  const std::vector<hsize_t>& dims = source.dims_;
-  if (dims.size() != 3 || first + count > dims[2] || count == 0 || (width == 0 ? count != 1 : count > width))
-    throw IoError(message() + ": no such columns of '" + source.path() + "'");
+  const std::vector<hsize_t>& dims = source_dims;
+  if (dims.size() != 3 || row >= dims[0] || first + count > dims[2] || count == 0 ||
+      (width == 0 ? count != 1 : count > width))
+    throw IoError(message() + ": no such row or columns of '" + source_path + "'");
   const hsize_t entries = dims[1];
-  // The source as it will be once 'row' is written (appended rows may still wait in memory).
-  const std::vector<hsize_t> source_dims{std::max(source.staged_extent(), row + 1), entries, dims[2]};
   const std::vector<hsize_t> source_start{row, 0, first}, source_count{1, entries, count};
   Hdf5Handle source_space = dataspace_of(source_dims);
   latch_->check(H5Sselect_hyperslab(source_space.get(), H5S_SELECT_SET, source_start.data(), nullptr,
@@ -615,7 +638,7 @@ void Hdf5File::write_row_view(const std::string& view_path, const ExtendibleData
   latch_->check(H5Pset_dset_no_attrs_hint(dcpl.get(), true), message);
 #endif
   // "." is this file.
-  latch_->check(H5Pset_virtual(dcpl.get(), view_space.get(), ".", source.path().c_str(), source_space.get()), message);
+  latch_->check(H5Pset_virtual(dcpl.get(), view_space.get(), ".", source_path.c_str(), source_space.get()), message);
   latch_->check(H5Sselect_all(view_space.get()), message);
   Hdf5Handle view(latch_->check(H5Dcreate2(file_.get(), view_path.c_str(), H5T_IEEE_F64LE, view_space.get(),
                                            lcpl_.get(), dcpl.get(), H5P_DEFAULT),
@@ -701,6 +724,28 @@ bool Hdf5File::exists(const std::string& object_path) const {
     if (found <= 0) return false;
   }
   return true;
+}
+
+std::vector<hsize_t> Hdf5File::shape(const std::string& dataset_path) const {
+  auto message = [&] { return describe("read the shape of", dataset_path, path_); };
+  Hdf5Handle dataset(latch_->check(H5Dopen2(file_.get(), dataset_path.c_str(), H5P_DEFAULT), message), H5Dclose);
+  Hdf5Handle space(latch_->check(H5Dget_space(dataset.get()), message), H5Sclose);
+  std::vector<hsize_t> dims(static_cast<size_t>(latch_->check(H5Sget_simple_extent_ndims(space.get()), message)));
+  latch_->check(H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr), message);
+  return dims;
+}
+
+std::vector<std::string> Hdf5File::members(const std::string& group_path) const {
+  auto message = [&] { return describe("list the members of", group_path, path_); };
+  std::vector<std::string> names;
+  const auto add = [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+    return 0;
+  };
+  latch_->check(H5Literate_by_name(file_.get(), group_path.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, add, &names,
+                                   H5P_DEFAULT),
+                message);
+  return names;
 }
 
 void Hdf5File::flush() {

@@ -149,6 +149,10 @@ class Hdf5File {
   static Hdf5File open_read_only(const std::string& path);
   // Open an existing file to change it (tests and fuzzing alter checkpoints with it).
   static Hdf5File open_read_write(const std::string& path);
+  // Open an existing file to add to it, whole at every instant: it is copied to
+  // '<path>.partial', changed there and renamed over 'path' at close(); a process killed
+  // meanwhile leaves 'path' as it was (and a leftover that the next open removes).
+  static Hdf5File open_published(const std::string& path);
 
   Hdf5File(Hdf5File&& other) noexcept;
   Hdf5File& operator=(Hdf5File&& other) noexcept;
@@ -192,6 +196,10 @@ class Hdf5File {
   // one whole dataset per frame (XDMF readers) read these.
   void write_row_view(const std::string& view_path, const ExtendibleDataset& source, hsize_t row, hsize_t first,
                       hsize_t count, hsize_t width);
+  // The same of a dataset of 'source_shape' (rows x n x c) at 'source_path'.
+  void write_row_view(const std::string& view_path, const std::string& source_path,
+                      const std::vector<hsize_t>& source_shape, hsize_t row, hsize_t first, hsize_t count,
+                      hsize_t width);
 
   // Whole dataset converted to double / long long, plus its shape (empty for scalars).
   std::vector<double> read_doubles(const std::string& dataset_path, std::vector<hsize_t>* shape = nullptr) const;
@@ -208,6 +216,10 @@ class Hdf5File {
   const std::deque<ExtendibleDataset>& extendible_datasets() const { return datasets_; }
   ExtendibleDataset* find_extendible(const std::string& dataset_path);
   bool exists(const std::string& object_path) const;
+  // A dataset's dimensions (empty for a scalar).
+  std::vector<hsize_t> shape(const std::string& dataset_path) const;
+  // The names of a group's members, in the order of their names.
+  std::vector<std::string> members(const std::string& group_path) const;
   // Removes the dataset or group at 'object_path' (to write it anew).
   void remove(const std::string& object_path);
 

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <limits>
 
+#include "io/frame_views.hpp"
 #include "io/temporary_file.hpp"
 #include "tirefe/version.hpp"
 
@@ -323,7 +324,7 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   const size_t earlier = frames_written();
   for (size_t frame = 0; frame < earlier; ++frame) {
     append_outline(surface, frame_time(frame));
-    if (frame < first_unviewed_frame())
+    if (frame < first_unviewed_frame() && views_during_run_)
       file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
   }
   index_.add_grid(grid);
@@ -369,14 +370,12 @@ void ResultFile::append_deformation(const Model& model, const State& state) {
 }
 
 void ResultFile::write_views(size_t frame) {
-  const std::string prefix = "/fields/frames/" + std::to_string(frame) + "/";
-  file_.write_row_view(prefix + "displacement", *field_displacement_, frame, 0, 2, 3);
-  file_.write_row_view(prefix + "velocity", *field_velocity_, frame, 0, 2, 3);
-  file_.write_row_view(prefix + "rotation", *field_displacement_, frame, 2, 1, 0);
-  if (field_deformation_) file_.write_row_view(prefix + "deformation", *field_deformation_, frame, 0, 2, 3);
-  for (const Surface& surface : surfaces_)
-    file_.write_row_view("/surfaces/" + surface.name + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2,
-                         2);
+  if (!views_during_run_) return;
+  std::vector<std::string> surfaces;
+  for (const Surface& surface : surfaces_) surfaces.push_back(surface.name);
+  const auto has = [this](const std::string& dataset) { return file_.find_extendible(dataset) != nullptr; };
+  for (const RowView& view : frame_views(frame, has, surfaces))
+    file_.write_row_view(view.path, *file_.find_extendible(view.source), frame, view.first, view.count, view.width);
 }
 
 void ResultFile::write_unviewed_views() {

@@ -126,6 +126,11 @@ class ResultFile {
   /// seconds (0: never), whatever the step sizes.
   void set_field_time_interval(double interval) { field_time_interval_ = interval; }
 
+  /// Whether the run makes the views of its frames (the XDMF index's datasets) as it writes
+  /// them, or leaves them to `tirefe --views FILE` (make_frame_views): some 50 us of the
+  /// writer's time per view, five per frame of a tire on a drum.
+  void set_views_during_run(bool during_run) { views_during_run_ = during_run; }
+
   /// A tire's rim: its spindle node and the nodes the tire carries (for /fields/deformation).
   /// Rims and node sets given after the mesh was written are ignored.
   void add_rim(int spindle, std::vector<int> nodes);
@@ -237,6 +242,7 @@ class ResultFile {
   std::vector<Channel> pending_channels_;
   std::vector<HistoryChannel> channels_;
   bool mesh_written_ = false;
+  bool views_during_run_ = true;
   int field_interval_ = 0;
   double field_time_interval_ = 0.0;
   double next_field_time_ = -std::numeric_limits<double>::infinity();

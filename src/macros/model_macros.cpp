@@ -228,7 +228,7 @@ int solve_macro(lua_State* L, DeckModel& deck, const MacroArguments& arguments) 
 
 int output_macro(lua_State*, DeckModel& deck, const MacroArguments& arguments) {
   deck.open_output(arguments.string("file"), static_cast<int>(arguments.integer("fields_every")),
-                   arguments.number("fields_interval"));
+                   arguments.number("fields_interval"), arguments.boolean("views"));
   return 0;
 }
 
@@ -659,7 +659,10 @@ void add_model_macros(MacroTable& table) {
          Range::NonNegative},
         {"fields_interval", VT::Number, false, "s",
          "write displacement fields every this much time, whatever the step sizes (0: never)", std::string("0"),
-         Range::NonNegative}},
+         Range::NonNegative},
+        {"views", VT::Boolean, false, "",
+         "make the frames' views for the XDMF index during the run (false: `tirefe --views FILE` makes them)",
+         std::string("true")}},
        "model:output{ file = \"cantilever.h5\", fields_every = 1 }"},
       output_macro);
   add({"history",
