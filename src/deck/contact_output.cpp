@@ -50,15 +50,26 @@ ContactSource contact_source(const TreadContactBlock& block) {
 void add_contact_output(io::ResultFile& file, Analysis& analysis, const ContactSource& source,
                         const std::string& channel_prefix, int every) {
   if (!channel_prefix.empty()) {
-    const auto summarize = source.summarize;
+    // The four totals of a step from one pass over the points, the first channel's.
+    struct StepSummary {
+      int step = -1;
+      double time = 0.0;
+      ContactSummary summary;
+    };
+    const auto cache = std::make_shared<StepSummary>();
+    const auto at = [summarize = source.summarize, cache](const State& state,
+                                                          const StepRecord& record) -> const ContactSummary& {
+      if (cache->step != record.step || cache->time != state.time) *cache = {record.step, state.time, summarize()};
+      return cache->summary;
+    };
     file.add_channel(channel_prefix + "_fx", "N",
-                     [summarize](const State&, const StepRecord&) { return summarize().force.x(); });
+                     [at](const State& state, const StepRecord& record) { return at(state, record).force.x(); });
     file.add_channel(channel_prefix + "_fy", "N",
-                     [summarize](const State&, const StepRecord&) { return summarize().force.y(); });
+                     [at](const State& state, const StepRecord& record) { return at(state, record).force.y(); });
     file.add_channel(channel_prefix + "_patch_length", "m",
-                     [summarize](const State&, const StepRecord&) { return summarize().patch_length; });
-    file.add_channel(channel_prefix + "_nodes_in_contact", "", [summarize](const State&, const StepRecord&) {
-      return static_cast<double>(summarize().nodes_in_contact);
+                     [at](const State& state, const StepRecord& record) { return at(state, record).patch_length; });
+    file.add_channel(channel_prefix + "_nodes_in_contact", "", [at](const State& state, const StepRecord& record) {
+      return static_cast<double>(at(state, record).nodes_in_contact);
     });
     // The surface's prescribed motion (a drum's angle, a road's travel), to place events
     // such as a cleat passage on the time axis.
