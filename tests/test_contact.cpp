@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <random>
 
 #include "contact/node_contact.hpp"
 #include "deck_support.hpp"
@@ -366,6 +367,71 @@ TEST_CASE("long road profiles are searched in a window and give the same project
       nearest = std::min(nearest, (x - piece.point(piece.closest(x))).norm());
     CHECK(std::abs(p.gap) == Approx(nearest).epsilon(1e-12));
   }
+}
+
+TEST_CASE("a long road's projection is the first nearest of all its pieces to the bit", "[contact][surface]") {
+  // A random profile of 4000 points at uneven spacing with vertical steps, its convex edges
+  // rounded, and points near it, right above its points, beyond its ends and far above it:
+  // point, tangent and gap are those of the first piece nearest among all, found by
+  // projecting on every piece with the same arithmetic.
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Eigen::Vector2d> points{{-0.3, 0.0}};
+  bool stepped = false;
+  for (int i = 1; i < 4000; ++i) {
+    const Eigen::Vector2d& last = points.back();
+    stepped = !stepped && unit(random) < 0.03;
+    const double dx = stepped ? 0.0 : 0.005 + 0.035 * unit(random);
+    const double dy = stepped ? (unit(random) < 0.5 ? -1.0 : 1.0) * (0.005 + 0.01 * unit(random))
+                              : 0.3 * dx * (2.0 * unit(random) - 1.0);
+    points.emplace_back(last.x() + dx, last.y() + dy);
+  }
+  const RoadProfile road(points, 0.001);
+  const SurfaceCurve& curve = road.curve();
+  REQUIRE(curve.pieces().size() > points.size() + 50);  // fillets among the segments
+
+  struct Nearest {
+    double distance = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d point = Eigen::Vector2d::Zero(), tangent = Eigen::Vector2d::Zero();
+  };
+  auto nearest_of_all = [&](const Eigen::Vector2d& x) {
+    Nearest nearest;
+    for (const SurfaceCurve::Piece& piece : curve.pieces()) {
+      double l = 0.0;
+      Eigen::Vector2d point, tangent;
+      piece.closest_point(x, l, point, tangent);
+      const double distance = (x - point).squaredNorm();
+      if (distance < nearest.distance) nearest = {distance, point, tangent};
+    }
+    return nearest;
+  };
+  std::vector<Eigen::Vector2d> queries;
+  for (int k = 0; k < 3000; ++k) {  // near the profile
+    const int i = static_cast<int>(unit(random) * (points.size() - 1));
+    const Eigen::Vector2d on = points[i] + unit(random) * (points[i + 1] - points[i]);
+    queries.push_back(on + Eigen::Vector2d(0.06 * unit(random) - 0.03, 0.06 * unit(random) - 0.02));
+  }
+  for (int k = 0; k < 1000; ++k) {  // right above (and below) a point: equal x
+    const Eigen::Vector2d& point = points[static_cast<int>(unit(random) * points.size())];
+    queries.push_back(point + Eigen::Vector2d(0.0, 0.04 * unit(random) - 0.01));
+  }
+  for (double x : {-5.0, -0.3, points.back().x(), points.back().x() + 5.0}) queries.emplace_back(x, 0.01);
+  for (int k = 0; k < 20; ++k) queries.emplace_back(points.back().x() * unit(random), 0.5 + unit(random));
+  int at_vertex = 0;
+  for (const Eigen::Vector2d& x : queries) {
+    const SurfaceProjection p = road.project(x, 0.0);
+    const Nearest nearest = nearest_of_all(x);
+    REQUIRE(p.point == nearest.point);
+    if (p.at_vertex) {
+      CHECK(std::abs(p.gap) == std::sqrt(nearest.distance));
+      ++at_vertex;
+    } else {
+      CHECK(p.tangent == nearest.tangent);
+      CHECK(p.gap == (x - nearest.point).dot(Eigen::Vector2d(-nearest.tangent.y(), nearest.tangent.x())));
+    }
+    CHECK((curve.point(p.coordinate) - p.point).norm() <= 1e-12);
+  }
+  CHECK(at_vertex > 10);
 }
 
 TEST_CASE("a drum's projection skips the pieces that cannot be nearer and gives the nearest", "[contact][surface]") {

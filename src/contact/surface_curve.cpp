@@ -15,6 +15,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr int kWindowedPieces = 8;  // an x-monotone curve of this many pieces is searched in a window
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); }
 /// k x v: the left normal.
@@ -317,7 +318,7 @@ void SurfaceCurve::number_arc_length() {
   }
 
   // Search window: on a curve whose pieces advance in x, the pieces near a point are a
-  // contiguous run found by bisection (long road profiles).
+  // contiguous run, found from the cell of x (long road profiles).
   x_min_.resize(count);
   x_max_.resize(count);
   for (int i = 0; i < count; ++i) {
@@ -353,6 +354,43 @@ void SurfaceCurve::number_arc_length() {
   }
   x_monotone_ = !closed_;
   for (int i = 1; i < count && x_monotone_; ++i) x_monotone_ = x_min_[i] >= x_min_[i - 1] && x_max_[i] >= x_max_[i - 1];
+  index_cells();
+}
+
+namespace {
+
+/// std::lower_bound over non-decreasing values, walked from index i: the same index (for a
+/// NaN too) in as many steps as lie between.
+int lower_bound_from(const std::vector<double>& values, double x, int i) {
+  const int count = static_cast<int>(values.size());
+  while (i < count && values[i] < x) ++i;
+  while (i > 0 && !(values[i - 1] < x)) --i;
+  return i;
+}
+
+/// std::upper_bound over non-decreasing values, walked from index i.
+int upper_bound_from(const std::vector<double>& values, double x, int i) {
+  const int count = static_cast<int>(values.size());
+  while (i < count && !(x < values[i])) ++i;
+  while (i > 0 && x < values[i - 1]) --i;
+  return i;
+}
+
+}  // namespace
+
+void SurfaceCurve::index_cells() {
+  // As many cells as pieces over the finite part, from the end of the leading ray to the
+  // start of the trailing one: a road sampled evenly has a piece or two per cell.
+  cell_first_.clear();
+  const int count = static_cast<int>(pieces_.size());
+  if (!x_monotone_ || count < kWindowedPieces) return;
+  const double low = x_max_.front(), high = x_min_.back();
+  if (!(high > low) || !std::isfinite(high - low)) return;
+  cell_origin_ = low;
+  cells_per_x_ = count / (high - low);
+  cell_first_.resize(count);
+  for (int c = 0; c < count; ++c)
+    cell_first_[c] = lower_bound_from(x_max_, low + c / cells_per_x_, c > 0 ? cell_first_[c - 1] : 0);
 }
 
 // ---- queries -----------------------------------------------------------------------
@@ -369,19 +407,36 @@ const SurfaceCurve::Joint* SurfaceCurve::joint_before(int piece) const {
   return &joints_[piece - 1];
 }
 
-void SurfaceCurve::candidate_range(const Eigen::Vector2d& x, int& first, int& last) const {
+int SurfaceCurve::first_reaching(double x) const {
+  if (cell_first_.empty()) return static_cast<int>(std::lower_bound(x_max_.begin(), x_max_.end(), x) - x_max_.begin());
+  const double cell = (x - cell_origin_) * cells_per_x_;
+  const int last_cell = static_cast<int>(cell_first_.size()) - 1;
+  const int c = cell > 0.0 ? (cell < last_cell ? static_cast<int>(cell) : last_cell) : 0;  // a NaN: the first
+  return lower_bound_from(x_max_, x, cell_first_[c]);
+}
+
+SurfaceCurve::Candidate SurfaceCurve::candidate(int i, const Eigen::Vector2d& x) const {
+  Candidate c;
+  c.piece = i;
+  pieces_[i].closest_point(x, c.l, c.point, c.tangent);
+  c.distance = (x - c.point).squaredNorm();
+  return c;
+}
+
+void SurfaceCurve::candidate_range(const Eigen::Vector2d& x, int& first, int& last, Candidate& centre) const {
   const int count = static_cast<int>(pieces_.size());
   first = 0;
   last = count - 1;
-  if (!x_monotone_ || count < 8) return;
+  if (!x_monotone_ || count < kWindowedPieces) return;
   // The piece above or below x, then every piece whose x-range comes within that distance.
-  const int below = std::min<int>(
-      static_cast<int>(std::lower_bound(x_max_.begin(), x_max_.end(), x.x()) - x_max_.begin()), count - 1);
-  const double reach = (x - pieces_[below].point(pieces_[below].closest(x))).norm();
-  first = static_cast<int>(std::lower_bound(x_max_.begin(), x_max_.end(), x.x() - reach) - x_max_.begin());
-  last = static_cast<int>(std::upper_bound(x_min_.begin(), x_min_.end(), x.x() + reach) - x_min_.begin()) - 1;
-  first = std::clamp(first, 0, below);
-  last = std::clamp(last, below, count - 1);
+  const int below = std::min(first_reaching(x.x()), count - 1);
+  centre = candidate(below, x);
+  // An arc's reach from Piece::point at its angle, not from the direction to its centre:
+  // the window holds the same pieces to the last bit however the point is found.
+  const Piece& piece = pieces_[below];
+  const double reach = piece.arc_ ? (x - piece.point(piece.closest(x))).norm() : std::sqrt(centre.distance);
+  first = std::clamp(lower_bound_from(x_max_, x.x() - reach, below), 0, below);
+  last = std::clamp(upper_bound_from(x_min_, x.x() + reach, below) - 1, below, count - 1);
 }
 
 bool SurfaceCurve::beyond(int i, const Eigen::Vector2d& x, double reach) const {
@@ -393,42 +448,42 @@ bool SurfaceCurve::beyond(int i, const Eigen::Vector2d& x, double reach) const {
 
 SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
   int first = 0, last = 0;
-  candidate_range(x, first, last);
-  int nearest = first;
-  double nearest_l = 0.0, nearest_distance = kInfinity;
-  Eigen::Vector2d nearest_point, nearest_tangent;
-  double reach = kInfinity;  // sqrt(nearest_distance) + margin
+  Candidate centre;
+  candidate_range(x, first, last, centre);
+  // The nearest piece, the first of them at a tie; the search starts from the window's
+  // centre when its distance is known.
+  Candidate nearest;
+  nearest.piece = first;
+  const int known = centre.distance < kInfinity ? centre.piece : -1;
+  if (known >= 0) nearest = centre;
+  auto reach_of = [&](double distance) {  // sqrt(distance) + margin
+    return distance < kInfinity ? std::sqrt(distance) + 1e-9 * scale_ : kInfinity;
+  };
+  double reach = reach_of(nearest.distance);
   for (int i = first; i <= last; ++i) {
     // A piece that cannot come nearer than the nearest so far is not projected on (a drum's
     // cleat, away from it: its arcs' arctangents are most of a projection's cost). The
     // margin keeps round-off in the bound from skipping a piece as near.
-    if (reach < kInfinity && beyond(i, x, reach)) continue;
-    double l = 0.0;
-    Eigen::Vector2d point, tangent;
-    pieces_[i].closest_point(x, l, point, tangent);
-    const double distance = (x - point).squaredNorm();
-    if (distance < nearest_distance) {
-      nearest = i;
-      nearest_l = l;
-      nearest_distance = distance;
-      nearest_point = point;
-      nearest_tangent = tangent;
-      reach = nearest_distance < kInfinity ? std::sqrt(nearest_distance) + 1e-9 * scale_ : kInfinity;
+    if (i == known || (reach < kInfinity && beyond(i, x, reach))) continue;
+    const Candidate c = candidate(i, x);
+    if (c.distance < nearest.distance || (c.distance == nearest.distance && i < nearest.piece)) {
+      nearest = c;
+      reach = reach_of(nearest.distance);
     }
   }
-  const Piece& piece = pieces_[nearest];
+  const Piece& piece = pieces_[nearest.piece];
   // No piece nearer than infinity (x not finite or immensely far): the first piece's start.
-  if (!(nearest_distance < kInfinity)) piece.point_and_tangent(nearest_l, nearest_point, nearest_tangent);
+  if (!(nearest.distance < kInfinity)) piece.point_and_tangent(nearest.l, nearest.point, nearest.tangent);
   SurfaceProjection p;
-  p.point = nearest_point;
-  p.coordinate = piece.shift_ + nearest_l;
+  p.point = nearest.point;
+  p.coordinate = piece.shift_ + nearest.l;
 
   // At a corner, the vertex rule (header comment).
   const Joint* joint = nullptr;
-  if (nearest_l <= piece.begin_)
-    joint = joint_before(nearest);
-  else if (nearest_l >= piece.end_)
-    joint = joint_after(nearest);
+  if (nearest.l <= piece.begin_)
+    joint = joint_before(nearest.piece);
+  else if (nearest.l >= piece.end_)
+    joint = joint_after(nearest.piece);
   if (joint && joint->corner) {
     const Eigen::Vector2d from_vertex = x - p.point;
     const double distance = from_vertex.norm();
@@ -451,7 +506,7 @@ SurfaceProjection SurfaceCurve::project(const Eigen::Vector2d& x) const {
       return p;
     }
   }
-  p.tangent = nearest_tangent;
+  p.tangent = nearest.tangent;
   p.normal = left_normal(p.tangent);
   p.gap = (x - p.point).dot(p.normal);
   p.curvature = piece.curvature();

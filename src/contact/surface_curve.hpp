@@ -137,7 +137,21 @@ class SurfaceCurve {
   int piece_at(double s) const;
   const Joint* joint_after(int piece) const;
   const Joint* joint_before(int piece) const;
-  void candidate_range(const Eigen::Vector2d& x, int& first, int& last) const;
+  /// The closest point to x of one piece, as the search keeps it.
+  struct Candidate {
+    int piece = -1;  // -1: none
+    double l = 0.0;
+    double distance = std::numeric_limits<double>::infinity();  // squared
+    Eigen::Vector2d point = Eigen::Vector2d::Zero(), tangent = Eigen::Vector2d::Zero();
+  };
+  Candidate candidate(int i, const Eigen::Vector2d& x) const;
+  /// The pieces first..last that may hold the closest point to x. On an x-monotone curve of
+  /// many pieces a window around the piece above or below x, whose projection is 'centre'
+  /// (none elsewhere).
+  void candidate_range(const Eigen::Vector2d& x, int& first, int& last, Candidate& centre) const;
+  /// The first piece whose x-range reaches x (std::lower_bound over x_max_), from its cell.
+  int first_reaching(double x) const;
+  void index_cells();
   /// True if piece i lies farther than 'reach' from x, by bounds without trigonometry (a
   /// ball around the piece; an arc's circle). Never for a ray or a line.
   bool beyond(int i, const Eigen::Vector2d& x, double reach) const;
@@ -146,7 +160,11 @@ class SurfaceCurve {
   std::vector<Joint> joints_;  // joints_[i] follows pieces_[i]; the last one only when closed
   std::vector<Corner> corners_;
   std::vector<double> x_min_, x_max_;  // per piece, for the search window of x-monotone curves
-  struct Ball {                        // holds a bounded piece: its middle and the distance from there to its ends
+  // Cells of equal width over the x-monotone curve's finite part, each with the first piece
+  // whose x-range reaches its left edge: where the search for the piece at x starts.
+  std::vector<int> cell_first_;
+  double cell_origin_ = 0.0, cells_per_x_ = 0.0;
+  struct Ball {  // holds a bounded piece: its middle and the distance from there to its ends
     Eigen::Vector2d centre = Eigen::Vector2d::Zero();
     double radius = std::numeric_limits<double>::infinity();
   };
