@@ -21,8 +21,7 @@ void require(bool condition, const std::string& message) {
 
 // ---- RigidSurface ------------------------------------------------------------------
 
-SurfaceProjection RigidSurface::project(const Eigen::Vector2d& x, double time) const {
-  const RigidPose pose = motion_.pose(time);
+SurfaceProjection RigidSurface::project(const Eigen::Vector2d& x, const RigidPose& pose) const {
   SurfaceProjection projection = curve_.project(motion_.to_material(x, pose));
   projection.point = motion_.to_space(projection.point, pose);
   projection.normal = pose.rotation * projection.normal;

@@ -33,7 +33,10 @@ class RigidSurface {
   virtual ~RigidSurface() = default;
 
   /// Closest-point projection of the spatial point x at time t.
-  SurfaceProjection project(const Eigen::Vector2d& x, double time) const;
+  SurfaceProjection project(const Eigen::Vector2d& x, double time) const { return project(x, motion_.pose(time)); }
+  /// The same with the surface at 'pose', its motion's pose at that time (RigidMotion::pose):
+  /// for a caller that asks several things at one time.
+  SurfaceProjection project(const Eigen::Vector2d& x, const RigidPose& pose) const;
   /// Spatial position and velocity of the material point s at time t.
   Eigen::Vector2d point(double coordinate, double time) const;
   Eigen::Vector2d velocity(double coordinate, double time) const;

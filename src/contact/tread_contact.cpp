@@ -59,8 +59,8 @@ void far_sample(const TreadSample& base, double step, double clearance, TreadSam
 }  // namespace
 
 Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen::Vector2d& v,
-                                           const EvaluationContext& context, const TreadSample& base,
-                                           TreadSample& trial, Eigen::Matrix2d* stiffness,
+                                           const EvaluationContext& context, const RigidPose& pose,
+                                           const TreadSample& base, TreadSample& trial, Eigen::Matrix2d* stiffness,
                                            Eigen::Matrix2d* damping) const {
   const double t = context.time, h = context.time_step;
   if (base.state == ContactState::Open) {
@@ -70,13 +70,12 @@ Eigen::Vector2d TreadContact::sample_force(const Eigen::Vector2d& x, const Eigen
       return Eigen::Vector2d::Zero();
     }
   }
-  const SurfaceProjection p = surface_->project(x, t);
+  const SurfaceProjection p = surface_->project(x, pose);
   trial.coordinate = p.coordinate;
   trial.gap = p.gap;
   const Eigen::Vector2d& nu = p.normal;
   const Eigen::Vector2d& tau = p.tangent;
   const RigidMotion& motion = surface_->motion();
-  const RigidPose& pose = motion.pose(t);
   // Relative to the surface's material point at x: a sample stuck to a spinning drum turns
   // with it, also when it has sunk into the drum.
   const Eigen::Vector2d surface_velocity = motion.velocity(x, pose);
@@ -187,11 +186,14 @@ void TreadContact::evaluate(const LocalState<kDofs>& local, const EvaluationCont
       return;
     }
   }
+  // The surface's pose once for the chord's samples.
+  const RigidPose pose = surface_->motion().pose(context.time);
   Eigen::Matrix2d stiffness, damping;
   for (int q = 0; q < kSamples; ++q) {
     const double xi = sample_weight(q), shares[2] = {1.0 - xi, xi};
-    const Eigen::Vector2d force = sample_force((1.0 - xi) * xa + xi * xb, (1.0 - xi) * va + xi * vb, context, base[q],
-                                               trial[q], tangent ? &stiffness : nullptr, tangent ? &damping : nullptr);
+    const Eigen::Vector2d force =
+        sample_force((1.0 - xi) * xa + xi * xb, (1.0 - xi) * va + xi * vb, context, pose, base[q], trial[q],
+                     tangent ? &stiffness : nullptr, tangent ? &damping : nullptr);
     if (trial[q].state == ContactState::Open) continue;
     for (int i = 0; i < 2; ++i) residual.segment<2>(3 * i) -= (f.force_stiffness * shares[i]) * force;
     if (!tangent) continue;

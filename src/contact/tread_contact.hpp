@@ -134,11 +134,11 @@ class TreadContact : public KernelShape<2, std::array<TreadSample, 8>> {
   static double sample_weight(int q) { return (q + 0.5) / kSamples; }  // xi_q
 
  private:
-  /// The law at one sample at x with velocity v: its force on the tire (returned), and
-  /// -df/dx, -df/dv when 'stiffness' is given.
+  /// The law at one sample at x with velocity v, the surface at 'pose': its force on the
+  /// tire (returned), and -df/dx, -df/dv when 'stiffness' is given.
   Eigen::Vector2d sample_force(const Eigen::Vector2d& x, const Eigen::Vector2d& v, const EvaluationContext& context,
-                               const TreadSample& base, TreadSample& trial, Eigen::Matrix2d* stiffness,
-                               Eigen::Matrix2d* damping) const;
+                               const RigidPose& pose, const TreadSample& base, TreadSample& trial,
+                               Eigen::Matrix2d* stiffness, Eigen::Matrix2d* damping) const;
 
   std::shared_ptr<const RigidSurface> surface_;
   Eigen::Vector2d start_, end_;
