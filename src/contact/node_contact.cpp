@@ -63,7 +63,9 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
       return;
     }
   }
-  const SurfaceProjection p = surface_->project(x, context.time);
+  // The surface's pose once for the projection and the sliding velocity.
+  const RigidPose pose = surface_->motion().pose(context.time);
+  const SurfaceProjection p = surface_->project(x, pose);
   trial.coordinate = p.coordinate;
   trial.gap = p.gap;
 
@@ -113,7 +115,7 @@ void NodeSurfaceContact::evaluate(const LocalState<kDofs>& local, const Evaluati
     trial.tangential_force = tangential_force;
     trial.trial_traction = trial_traction;
     trial.force = force;
-    trial.sliding_velocity = (local.velocity.head<2>() - surface_->velocity_at(p.point, context.time)).dot(p.tangent);
+    trial.sliding_velocity = (local.velocity.head<2>() - surface_->motion().velocity(p.point, pose)).dot(p.tangent);
   }
 
   residual.head<2>() = -context.factors.force_stiffness * force;
