@@ -115,20 +115,14 @@ Eigen::Vector2d SurfaceCurve::Piece::tangent(double l) const {
   return orientation_ * Eigen::Vector2d(-std::sin(angle), std::cos(angle));
 }
 
-void SurfaceCurve::Piece::point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const {
-  if (!arc_) {
-    point = origin_ + l * direction_;
-    tangent = direction_;
-    return;
-  }
+void SurfaceCurve::Piece::arc_point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const {
   const double angle = start_angle_ + orientation_ * l / radius_;
   const double cosine = std::cos(angle), sine = std::sin(angle);
   point = origin_ + radius_ * Eigen::Vector2d(cosine, sine);
   tangent = orientation_ * Eigen::Vector2d(-sine, cosine);
 }
 
-double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
-  if (!arc_) return std::clamp((x - origin_).dot(direction_), begin_, end_);
+double SurfaceCurve::Piece::arc_closest(const Eigen::Vector2d& x) const {
   const Eigen::Vector2d radial = x - origin_;
   if (radial.squaredNorm() == 0.0) return begin_;  // the centre: every point is as near
   const double l = radius_ * wrapped_angle(orientation_ * (std::atan2(radial.y(), radial.x()) - start_angle_));
@@ -137,10 +131,8 @@ double SurfaceCurve::Piece::closest(const Eigen::Vector2d& x) const {
   return (x - begin_point_).squaredNorm() <= (x - end_point_).squaredNorm() ? begin_ : end_;
 }
 
-void SurfaceCurve::Piece::closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point,
-                                        Eigen::Vector2d& tangent) const {
-  l = closest(x);
-  if (!arc_) return point_and_tangent(l, point, tangent);
+void SurfaceCurve::Piece::arc_closest_point(const Eigen::Vector2d& x, double l, Eigen::Vector2d& point,
+                                            Eigen::Vector2d& tangent) const {
   // An arc's closest() gives an end (x beyond the span, or at the centre) or a point inside.
   if (l == begin_ || l == end_) {
     point = l == begin_ ? begin_point_ : end_point_;
@@ -415,7 +407,8 @@ int SurfaceCurve::first_reaching(double x) const {
   return lower_bound_from(x_max_, x, cell_first_[c]);
 }
 
-SurfaceCurve::Candidate SurfaceCurve::candidate(int i, const Eigen::Vector2d& x) const {
+// Inline: the search's inner step, on every piece it does not skip.
+inline SurfaceCurve::Candidate SurfaceCurve::candidate(int i, const Eigen::Vector2d& x) const {
   Candidate c;
   c.piece = i;
   pieces_[i].closest_point(x, c.l, c.point, c.tangent);

@@ -23,6 +23,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -68,13 +69,23 @@ class SurfaceCurve {
     Eigen::Vector2d tangent(double l) const;
     /// Point and tangent together (an arc's sine and cosine once), the values of point()
     /// and tangent().
-    void point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const;
+    void point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const {
+      if (arc_) return arc_point_and_tangent(l, point, tangent);
+      point = origin_ + l * direction_;
+      tangent = direction_;
+    }
     double curvature() const { return arc_ ? -orientation_ / radius_ : 0.0; }
     /// Local arc length of the point of this piece closest to x.
-    double closest(const Eigen::Vector2d& x) const;
+    double closest(const Eigen::Vector2d& x) const {
+      return arc_ ? arc_closest(x) : std::clamp((x - origin_).dot(direction_), begin_, end_);
+    }
     /// closest(x) with the point and tangent there; inside an arc's span they come from
     /// the direction of x from the centre rather than from the sine and cosine of an angle.
-    void closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const;
+    void closest_point(const Eigen::Vector2d& x, double& l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const {
+      l = closest(x);
+      if (arc_) return arc_closest_point(x, l, point, tangent);
+      point_and_tangent(l, point, tangent);
+    }
 
    private:
     friend class SurfaceCurve;
@@ -89,6 +100,11 @@ class SurfaceCurve {
     Eigen::Vector2d begin_point_ = Eigen::Vector2d::Zero(), begin_tangent_ = Eigen::Vector2d::Zero();
     Eigen::Vector2d end_point_ = Eigen::Vector2d::Zero(), end_tangent_ = Eigen::Vector2d::Zero();
     void keep_ends();
+    // The arc's side of point_and_tangent, closest and closest_point (the straight side inline:
+    // a long road's projections are mostly on straight pieces).
+    void arc_point_and_tangent(double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const;
+    double arc_closest(const Eigen::Vector2d& x) const;
+    void arc_closest_point(const Eigen::Vector2d& x, double l, Eigen::Vector2d& point, Eigen::Vector2d& tangent) const;
   };
 
   /// A corner left after rounding: where the vertex rule applies.
