@@ -4,16 +4,19 @@
 
 namespace tirefe::io {
 
+RowView surface_view(const std::string& surface, size_t frame) {
+  return {"/surfaces/" + surface + "/frames/" + std::to_string(frame), "/surfaces/" + surface + "/outline", 0, 2, 2};
+}
+
 std::vector<RowView> frame_views(size_t frame, const std::function<bool(const std::string&)>& has,
                                  const std::vector<std::string>& surfaces) {
-  const std::string number = std::to_string(frame), prefix = "/fields/frames/" + number + "/";
+  const std::string prefix = "/fields/frames/" + std::to_string(frame) + "/";
   std::vector<RowView> views;
   for (const char* vector : {"displacement", "velocity", "deformation"})
     if (has(std::string("/fields/") + vector))
       views.push_back({prefix + vector, std::string("/fields/") + vector, 0, 2, 3});
   views.push_back({prefix + "rotation", "/fields/displacement", 2, 1, 0});
-  for (const std::string& surface : surfaces)
-    views.push_back({"/surfaces/" + surface + "/frames/" + number, "/surfaces/" + surface + "/outline", 0, 2, 2});
+  for (const std::string& surface : surfaces) views.push_back(surface_view(surface, frame));
   return views;
 }
 
@@ -31,7 +34,12 @@ size_t make_frame_views(const std::string& path) {
     auto found = shapes.find(dataset);
     return found != shapes.end() ? found->second : shapes[dataset] = file.shape(dataset);
   };
-  const auto has = [&](const std::string& dataset) { return shapes.count(dataset) || file.exists(dataset); };
+  std::map<std::string, bool> present;  // the same answer for every frame
+  const auto has = [&](const std::string& dataset) {
+    const auto [found, fresh] = present.try_emplace(dataset, false);
+    if (fresh) found->second = file.exists(dataset);
+    return found->second;
+  };
   // Only frames that have some views already need each one looked for.
   const bool some_made = file.exists("/fields/frames");
   size_t made = 0;

@@ -21,6 +21,9 @@ struct RowView {
   hsize_t first, count, width;  // Hdf5File::write_row_view
 };
 
+/// Frame 'frame' of a surface's outline.
+RowView surface_view(const std::string& surface, size_t frame);
+
 /// The views of frame 'frame', of the datasets 'has' finds (velocity and deformation are
 /// not in every file) and of the surfaces 'surfaces'.
 std::vector<RowView> frame_views(size_t frame, const std::function<bool(const std::string&)>& has,

@@ -324,8 +324,10 @@ void ResultFile::add_surface(const std::string& name, bool closed, Outline outli
   const size_t earlier = frames_written();
   for (size_t frame = 0; frame < earlier; ++frame) {
     append_outline(surface, frame_time(frame));
-    if (frame < first_unviewed_frame() && views_during_run_)
-      file_.write_row_view(group + "/frames/" + std::to_string(frame), *surface.rows, frame, 0, 2, 2);
+    if (frame < first_unviewed_frame() && views_during_run_) {
+      const RowView view = surface_view(name, frame);
+      file_.write_row_view(view.path, *surface.rows, frame, view.first, view.count, view.width);
+    }
   }
   index_.add_grid(grid);
   if (earlier > 0) {
