@@ -112,14 +112,16 @@ local front_crossing = start + p.ramp + p.lead
 local rear_crossing = front_crossing + wheelbase / v
 -- Before the cruise, steps in which the road travels as far as in dt at full speed, up to
 -- dt_max (never below dt): settling on the still road and the slow part of the ramp take
--- longer steps, in windows of a tenth of a second, the speed taken at each window's end.
+-- longer steps, in windows of a tenth of a second, the road's speed taken from its own
+-- motion (tirefe.spin_up) at each window's end.
 local windows = { { front_crossing - 0.02, rear_crossing + (p.length + 0.3) / v, p.dt_pothole } }
 local longest = math.max(p.dt, p.dt_max)
 if p.settle > 0 then windows[#windows + 1] = { 2.0, start, longest } end
 local pieces = math.ceil(p.ramp / 0.1)
 for k = 1, pieces do
   local from, to = start + (k - 1) * p.ramp / pieces, start + k * p.ramp / pieces
-  windows[#windows + 1] = { from, to, math.max(p.dt, math.min(longest, p.dt * pieces / k)) }
+  local _, speed = tirefe.spin_up{ rate = v, ramp_time = p.ramp, start_time = start, time = to }
+  windows[#windows + 1] = { from, to, math.max(p.dt, math.min(longest, p.dt * v / speed)) }
 end
 local run = tirefe.vehicle{ body = body, corners = corners, duration = p.settle + p.ramp + p.cruise, dt = p.dt,
                             step_windows = windows,
