@@ -259,6 +259,24 @@ TEST_CASE("vehicle pothole deck, short version: loads, strikes against converged
       CHECK(hdf5.read_doubles(std::string("/history/") + channel).size() == time.size());
     CHECK(hdf5.read_string_attribute("/", "heading") == "+x");
   }
+  {
+    // The steps: the road's travel in a step as at full speed in dt = 0.5 ms, up to dt_max =
+    // 2 ms, while it is still (settling from 2 s) or slow (the ramp from 2.05 s, in windows of
+    // 0.1 s, the speed at the window's end); 0.5 ms at full speed, 0.2 ms at the chuckhole.
+    const auto hdf5 = tirefe::io::Hdf5File::open_read_only((output / "vehicle_pothole_LF.h5").string());
+    const std::vector<double> time = hdf5.read_doubles("/history/time");
+    auto step_after = [&](double t) {
+      const auto next = std::upper_bound(time.begin(), time.end(), t);
+      REQUIRE((next != time.begin() && next != time.end()));
+      return *next - *(next - 1);
+    };
+    CHECK(step_after(2.02) == Approx(2e-3).epsilon(1e-9));        // settling
+    CHECK(step_after(2.10) == Approx(2e-3).epsilon(1e-9));        // ramp to 20 % of the speed
+    CHECK(step_after(2.30) == Approx(5e-4 / 0.6).epsilon(1e-9));  // ramp to 60 %
+    CHECK(step_after(2.50) == Approx(5e-4).epsilon(1e-9));        // ramp to full speed
+    CHECK(step_after(2.60) == Approx(5e-4).epsilon(1e-9));        // at speed
+    CHECK(step_after(2.70) == Approx(2e-4).epsilon(1e-9));        // crossing the chuckhole
+  }
   // The left wheels' strikes against this protocol's converged ones (regression: the same
   // run with dt_pothole = 50 us; at 200, 100 and 50 us the peaks move by 2.9 % at most,
   // docs/vehicle.md), and their energy account (the deck checks it too).
